@@ -1,0 +1,16 @@
+//! # ocean-fft
+//!
+//! A pure-CPU simulation of the open-ocean surface with Tessendorf's statistical FFT method and
+//! calibrated oceanographic spectra.
+#![warn(missing_docs)]
+
+mod dispersion;
+mod error;
+
+pub use dispersion::{Dispersion, GRAVITY, SURFACE_TENSION, WATER_DENSITY};
+pub use error::Error;
+pub use glam::{Vec2, Vec3};
+pub use num_complex::Complex32;
+
+/// Largest supported grid size N (a cascade holds about 40·N² bytes per field set).
+pub const MAX_SIZE: usize = 4096;
