@@ -27,9 +27,10 @@ const TENSION: f64 = SURFACE_TENSION as f64 / WATER_DENSITY as f64;
 /// matched on; build one with [`Dispersion::finite_depth`] or [`Dispersion::capillary`] to have
 /// the depth checked. An unchecked depth that is not finite and positive is treated as deep
 /// water, so evaluation never yields NaN.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Dispersion {
     /// Deep water: ω = √(g k).
+    #[default]
     Deep,
     /// Water of finite depth: ω = √(g k tanh(k h)).
     FiniteDepth {
@@ -41,12 +42,6 @@ pub enum Dispersion {
         /// Water depth h, in metres.
         depth: f32,
     },
-}
-
-impl Default for Dispersion {
-    fn default() -> Self {
-        Dispersion::Deep
-    }
 }
 
 impl Dispersion {
@@ -217,7 +212,9 @@ impl Dispersion {
     #[inline]
     fn d_omega_squared(&self, k: f64) -> f64 {
         let (force, d_force) = match self {
-            Dispersion::Capillary { .. } => (G * k + TENSION * k * k * k, G + 3.0 * TENSION * k * k),
+            Dispersion::Capillary { .. } => {
+                (G * k + TENSION * k * k * k, G + 3.0 * TENSION * k * k)
+            }
             _ => (G * k, G),
         };
         match self.depth_f64() {

@@ -28,6 +28,13 @@ pub enum Error {
         /// The size that was given.
         size: usize,
     },
+    /// A parameter that the chosen model does not have (for example γ on a Phillips spectrum).
+    NotApplicable {
+        /// Name of the parameter.
+        name: &'static str,
+        /// Why it does not apply.
+        reason: &'static str,
+    },
     /// The wave-number band `[k_min, k_max)` was empty or inverted, or held no wave vector of
     /// the grid.
     EmptyBand {
@@ -46,12 +53,18 @@ impl fmt::Display for Error {
                 name,
                 value,
                 expected,
-            } => write!(f, "parameter `{name}` = {value} is out of range (expected {expected})"),
+            } => write!(
+                f,
+                "parameter `{name}` = {value} is out of range (expected {expected})"
+            ),
             Error::InvalidSize { size } => write!(
                 f,
                 "grid size {size} is invalid (expected an even number from 4 to {})",
                 crate::MAX_SIZE
             ),
+            Error::NotApplicable { name, reason } => {
+                write!(f, "parameter `{name}` does not apply: {reason}")
+            }
             Error::EmptyBand { k_min, k_max } => write!(
                 f,
                 "wave-number band [{k_min}, {k_max}) rad/m is empty or holds no grid wave vector"

@@ -1,0 +1,638 @@
+//! The directional wave spectrum: what a [`Cascade`](crate) turns into waves.
+
+mod omega;
+mod spreading;
+
+use std::f64::consts::PI;
+
+use glam::Vec2;
+
+use crate::dispersion::Dispersion;
+use crate::error::{self, Error};
+
+pub use spreading::Spreading;
+
+use omega::{G, PIERSON_MOSKOWITZ_ALPHA, PIERSON_MOSKOWITZ_PEAK};
+use spreading::SpreadingParams;
+
+/// Default JONSWAP peak enhancement γ (Hasselmann et al. 1973).
+pub const DEFAULT_GAMMA: f32 = 3.3;
+
+/// How the shallow-water depth factor Φ(ω, h) of the TMA spectrum is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DepthFactor {
+    /// No depth factor: Φ = 1 (JONSWAP, Pierson–Moskowitz and Phillips by default).
+    #[default]
+    None,
+    /// Kitaigorodskii, Krasitskii & Zaslavskii's (1975) exact factor
+    /// Φ = tanh²(kh) / (1 + 2kh / sinh(2kh)), with k solved from ω² = g k tanh(kh)
+    /// (the TMA default; Bouws et al. 1985).
+    Kitaigorodskii,
+    /// Thompson & Vincent's (1983) piecewise approximation in ω_h = ω√(h/g)
+    /// (within 5 % of the exact factor; Hughes 1984).
+    ThompsonVincent,
+}
+
+/// The model behind S(ω).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Model {
+    /// JONSWAP shape (Pierson–Moskowitz when γ = 1).
+    Jonswap {
+        alpha: f32,
+        peak_omega: f32,
+        gamma: f32,
+    },
+    /// Tessendorf's Phillips spectrum, defined on k.
+    Phillips { amplitude: f32 },
+}
+
+/// A directional wave spectrum S(k) = S(ω) · D(ω, θ) · (dω/dk)/k · F(k), in m⁴.
+///
+/// Plain data, valid from construction on: every constructor and `with_*` setter checks its
+/// numbers and returns [`Error`] for bad ones, so evaluation is infallible and NaN-free.
+///
+/// ```
+/// # use ocean_fft::{Spectrum, Spreading};
+/// let spectrum = Spectrum::jonswap(10.0, 100_000.0)?   // U10 [m/s], fetch [m]
+///     .with_wind_direction(0.3)?                       // rad, toward which the wind blows
+///     .with_spreading(Spreading::DonelanBanner)?;
+/// let hs = spectrum.significant_wave_height();         // m
+/// assert!(hs > 1.0 && hs < 3.0);
+/// # Ok::<(), ocean_fft::Error>(())
+/// ```
+///
+/// The default spreading is [`Spreading::DonelanBanner`] for the oceanographic spectra and
+/// `Spreading::Cosine { exponent: 2.0, upwind: 1.0 }` (Tessendorf's |k̂·ŵ|²) for Phillips.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spectrum {
+    model: Model,
+    wind_speed: f32,
+    fetch: Option<f32>,
+    wind_direction: f32,
+    spreading: Spreading,
+    swell: f32,
+    spread_blend: f32,
+    short_wave_length: f32,
+    dispersion: Dispersion,
+    depth_factor: DepthFactor,
+}
+
+impl Spectrum {
+    fn with_model(model: Model, wind_speed: f32, fetch: Option<f32>) -> Self {
+        let spreading = match model {
+            Model::Jonswap { .. } => Spreading::DonelanBanner,
+            Model::Phillips { .. } => Spreading::Cosine {
+                exponent: 2.0,
+                upwind: 1.0,
+            },
+        };
+        Spectrum {
+            model,
+            wind_speed,
+            fetch,
+            wind_direction: 0.0,
+            spreading,
+            swell: 0.0,
+            spread_blend: 1.0,
+            short_wave_length: 0.0,
+            dispersion: Dispersion::Deep,
+            depth_factor: DepthFactor::None,
+        }
+    }
+
+    /// JONSWAP spectrum of a fetch-limited sea (Hasselmann et al. 1973) from the wind speed U
+    /// at 10 m in m/s and the fetch F in metres, with γ = 3.3, deep water:
+    ///
+    /// ```text
+    /// α = 0.076 (U² / (F g))^0.22,   ω_p = 22 (g² / (U F))^(1/3)
+    /// ```
+    ///
+    /// The fetch law is not capped at full development: a fetch beyond a few hundred
+    /// kilometres gives a peak below the Pierson–Moskowitz one.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless both are finite and > 0.
+    pub fn jonswap(wind_speed: f32, fetch: f32) -> Result<Self, Error> {
+        let u = error::positive("wind_speed", wind_speed)?;
+        let f = error::positive("fetch", fetch)?;
+        let (u64, f64_) = (f64::from(u), f64::from(f));
+        let alpha = omega::jonswap_alpha(u64, f64_) as f32;
+        let peak_omega = omega::jonswap_peak_omega(u64, f64_) as f32;
+        Self::check_model(alpha, peak_omega)?;
+        Ok(Self::with_model(
+            Model::Jonswap {
+                alpha,
+                peak_omega,
+                gamma: DEFAULT_GAMMA,
+            },
+            u,
+            Some(f),
+        ))
+    }
+
+    /// JONSWAP spectrum from its parameters: α (dimensionless, > 0), ω_p in rad/s (> 0) and
+    /// γ (> 0), deep water.
+    ///
+    /// The wind speed used by the [`Spreading::Mitsuyasu`] and [`Spreading::Hasselmann`]
+    /// spreadings is taken as that of a fully developed sea with this peak,
+    /// U = 0.877 g / ω_p.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless all three are finite and > 0.
+    pub fn jonswap_from_parameters(alpha: f32, peak_omega: f32, gamma: f32) -> Result<Self, Error> {
+        let alpha = error::positive("alpha", alpha)?;
+        let peak_omega = error::positive("peak_omega", peak_omega)?;
+        let gamma = error::positive("gamma", gamma)?;
+        let wind_speed = (PIERSON_MOSKOWITZ_PEAK * G / f64::from(peak_omega)) as f32;
+        Self::check_model(alpha, peak_omega)?;
+        Ok(Self::with_model(
+            Model::Jonswap {
+                alpha,
+                peak_omega,
+                gamma,
+            },
+            error::positive("wind_speed", wind_speed)?,
+            None,
+        ))
+    }
+
+    /// Pierson–Moskowitz spectrum of a fully developed sea (Pierson & Moskowitz 1964) from the
+    /// wind speed U in m/s: JONSWAP with α = 0.0081, ω_p = 0.877 g/U, γ = 1.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `wind_speed` is finite and > 0.
+    pub fn pierson_moskowitz(wind_speed: f32) -> Result<Self, Error> {
+        let u = error::positive("wind_speed", wind_speed)?;
+        let peak_omega = (PIERSON_MOSKOWITZ_PEAK * G / f64::from(u)) as f32;
+        let alpha = PIERSON_MOSKOWITZ_ALPHA as f32;
+        Self::check_model(alpha, peak_omega)?;
+        Ok(Self::with_model(
+            Model::Jonswap {
+                alpha,
+                peak_omega,
+                gamma: 1.0,
+            },
+            u,
+            None,
+        ))
+    }
+
+    /// TMA spectrum of a fetch-limited sea in water of finite depth (Bouws et al. 1985):
+    /// JONSWAP from wind speed U (m/s) and fetch F (m) times Kitaigorodskii's depth factor,
+    /// with finite-depth dispersion for depth h in metres.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless all three are finite and > 0.
+    pub fn tma(wind_speed: f32, fetch: f32, depth: f32) -> Result<Self, Error> {
+        Self::jonswap(wind_speed, fetch)?
+            .with_depth(depth)?
+            .with_depth_factor(DepthFactor::Kitaigorodskii)
+    }
+
+    /// Tessendorf's (2001) Phillips spectrum from the wind speed U in m/s and a free amplitude
+    /// A in m² (not calibrated to a wave height):
+    ///
+    /// ```text
+    /// S(k) = A exp(−1/(k L_w)²) / k⁴ · |k̂·ŵ|²,   L_w = U²/g
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `wind_speed` is finite and > 0 and
+    /// `amplitude` finite and ≥ 0.
+    pub fn phillips(wind_speed: f32, amplitude: f32) -> Result<Self, Error> {
+        let u = error::positive("wind_speed", wind_speed)?;
+        let amplitude = error::non_negative("amplitude", amplitude)?;
+        Ok(Self::with_model(Model::Phillips { amplitude }, u, None))
+    }
+
+    fn check_model(alpha: f32, peak_omega: f32) -> Result<(), Error> {
+        // Extreme but finite inputs can push the derived parameters out of f32.
+        error::positive("alpha", alpha)?;
+        error::positive("peak_omega", peak_omega)?;
+        Ok(())
+    }
+
+    /// Sets the JONSWAP peak enhancement γ (dimensionless, > 0; 1 gives Pierson–Moskowitz).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `gamma` is finite and > 0;
+    /// [`Error::NotApplicable`] on a Phillips spectrum.
+    #[must_use = "with_* returns the changed spectrum"]
+    pub fn with_gamma(mut self, gamma: f32) -> Result<Self, Error> {
+        let gamma = error::positive("gamma", gamma)?;
+        match &mut self.model {
+            Model::Jonswap { gamma: g, .. } => *g = gamma,
+            Model::Phillips { .. } => {
+                return Err(Error::NotApplicable {
+                    name: "gamma",
+                    reason: "the Phillips spectrum has no peak enhancement",
+                })
+            }
+        }
+        Ok(self)
+    }
+
+    /// Sets the wind direction θ_w in radians: the direction the wind blows toward, as the
+    /// angle of the unit vector (cos θ_w, sin θ_w) in (x, z). Waves travel downwind.
+    /// Stored wrapped to [−π, π].
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] unless `wind_direction` is finite.
+    #[must_use = "with_* returns the changed spectrum"]
+    pub fn with_wind_direction(mut self, wind_direction: f32) -> Result<Self, Error> {
+        let theta = error::finite("wind_direction", wind_direction)?;
+        self.wind_direction = wrap_angle(f64::from(theta)) as f32;
+        Ok(self)
+    }
+
+    /// Sets the directional spreading.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] for bad variant parameters (`s` ≤ 0,
+    /// `exponent` < 0, `upwind` outside [0, 1]).
+    #[must_use = "with_* returns the changed spectrum"]
+    pub fn with_spreading(mut self, spreading: Spreading) -> Result<Self, Error> {
+        self.spreading = spreading.validate()?;
+        Ok(self)
+    }
+
+    /// Sets Horvath's (2015) swell parameter ξ in [0, 1]: it narrows the cos-2s family of
+    /// spreadings, s += 16 tanh(ω_p/ω) ξ², so long waves line up as swell. No effect on other
+    /// spreadings. Default 0.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `swell` is in [0, 1].
+    #[must_use = "with_* returns the changed spectrum"]
+    pub fn with_swell(mut self, swell: f32) -> Result<Self, Error> {
+        self.swell = error::unit_interval("swell", swell)?;
+        Ok(self)
+    }
+
+    /// Sets Horvath's (2015) spread blend μ in [0, 1]: D = (1 − μ)/(2π) + μ D_spreading, from
+    /// flat (0) to the chosen spreading (1, the default).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `spread_blend` is in [0, 1].
+    #[must_use = "with_* returns the changed spectrum"]
+    pub fn with_spread_blend(mut self, spread_blend: f32) -> Result<Self, Error> {
+        self.spread_blend = error::unit_interval("spread_blend", spread_blend)?;
+        Ok(self)
+    }
+
+    /// Sets the short-wave fade length ℓ in metres (≥ 0): S(k) is multiplied by e^{−k²ℓ²}
+    /// (Tessendorf 2001, eq. 41). Default 0 (no fade).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `length` is finite and ≥ 0.
+    #[must_use = "with_* returns the changed spectrum"]
+    pub fn with_short_wave_length(mut self, length: f32) -> Result<Self, Error> {
+        self.short_wave_length = error::non_negative("short_wave_length", length)?;
+        Ok(self)
+    }
+
+    /// Sets the water depth h in metres: the dispersion becomes finite-depth (or stays
+    /// capillary, at the new depth), and the depth factor, if any, uses h.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `depth` is finite and > 0.
+    #[must_use = "with_* returns the changed spectrum"]
+    pub fn with_depth(mut self, depth: f32) -> Result<Self, Error> {
+        let depth = error::positive("depth", depth)?;
+        self.dispersion = match self.dispersion {
+            Dispersion::Capillary { .. } => Dispersion::Capillary { depth },
+            _ => Dispersion::FiniteDepth { depth },
+        };
+        Ok(self)
+    }
+
+    /// Sets the dispersion relation (deep, finite depth or capillary).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] for a depth that is not finite and > 0.
+    #[must_use = "with_* returns the changed spectrum"]
+    pub fn with_dispersion(mut self, dispersion: Dispersion) -> Result<Self, Error> {
+        dispersion.validate()?;
+        self.dispersion = dispersion;
+        Ok(self)
+    }
+
+    /// Sets the shallow-water depth factor (used only at finite depth).
+    ///
+    /// # Errors
+    /// [`Error::NotApplicable`] on a Phillips spectrum, which is defined on k directly.
+    #[must_use = "with_* returns the changed spectrum"]
+    pub fn with_depth_factor(mut self, depth_factor: DepthFactor) -> Result<Self, Error> {
+        if matches!(self.model, Model::Phillips { .. }) && depth_factor != DepthFactor::None {
+            return Err(Error::NotApplicable {
+                name: "depth_factor",
+                reason: "the Phillips spectrum is defined on k and has no depth factor",
+            });
+        }
+        self.depth_factor = depth_factor;
+        Ok(self)
+    }
+
+    /// Wind speed U in m/s (at 10 m for JONSWAP and TMA).
+    pub fn wind_speed(&self) -> f32 {
+        self.wind_speed
+    }
+
+    /// Fetch F in metres, for spectra built from a fetch.
+    pub fn fetch(&self) -> Option<f32> {
+        self.fetch
+    }
+
+    /// Wind direction θ_w in radians, in [−π, π]: the direction the wind blows toward.
+    pub fn wind_direction(&self) -> f32 {
+        self.wind_direction
+    }
+
+    /// Unit vector (x, z) of the wind direction.
+    pub fn wind_vector(&self) -> Vec2 {
+        Vec2::from_angle(self.wind_direction)
+    }
+
+    /// The directional spreading function in use (evaluate it with
+    /// [`spreading`](Self::spreading)).
+    pub fn spreading_kind(&self) -> Spreading {
+        self.spreading
+    }
+
+    /// Horvath's swell parameter ξ in [0, 1].
+    pub fn swell(&self) -> f32 {
+        self.swell
+    }
+
+    /// Horvath's spread blend μ in [0, 1].
+    pub fn spread_blend(&self) -> f32 {
+        self.spread_blend
+    }
+
+    /// Short-wave fade length ℓ in metres.
+    pub fn short_wave_length(&self) -> f32 {
+        self.short_wave_length
+    }
+
+    /// The dispersion relation ω(k).
+    pub fn dispersion(&self) -> Dispersion {
+        self.dispersion
+    }
+
+    /// Water depth in metres, `None` in deep water.
+    pub fn depth(&self) -> Option<f32> {
+        self.dispersion.depth()
+    }
+
+    /// The shallow-water depth factor.
+    pub fn depth_factor(&self) -> DepthFactor {
+        self.depth_factor
+    }
+
+    /// JONSWAP peak enhancement γ (`None` for Phillips).
+    pub fn gamma(&self) -> Option<f32> {
+        match self.model {
+            Model::Jonswap { gamma, .. } => Some(gamma),
+            Model::Phillips { .. } => None,
+        }
+    }
+
+    /// JONSWAP Phillips constant α, dimensionless (`None` for Phillips).
+    pub fn alpha(&self) -> Option<f32> {
+        match self.model {
+            Model::Jonswap { alpha, .. } => Some(alpha),
+            Model::Phillips { .. } => None,
+        }
+    }
+
+    /// Peak angular frequency ω_p in rad/s.
+    ///
+    /// For JONSWAP, Pierson–Moskowitz and TMA the ω_p parameter of the JONSWAP shape (the
+    /// TMA depth factor moves the actual maximum of S(ω) slightly). For Phillips the maximum
+    /// of its deep-water S(ω), at k = (2/√3)/L_w.
+    #[doc(alias = "Tp")]
+    pub fn peak_omega(&self) -> f32 {
+        self.peak_omega_f64() as f32
+    }
+
+    /// Peak period T_p = 2π/ω_p in seconds.
+    pub fn peak_period(&self) -> f32 {
+        (2.0 * PI / self.peak_omega_f64()) as f32
+    }
+
+    fn peak_omega_f64(&self) -> f64 {
+        match self.model {
+            Model::Jonswap { peak_omega, .. } => f64::from(peak_omega),
+            Model::Phillips { .. } => {
+                let k = 2.0 / (3f64.sqrt() * self.wind_length());
+                (G * k).sqrt()
+            }
+        }
+    }
+
+    /// L_w = U²/g in metres, the Phillips spectrum's largest wave.
+    fn wind_length(&self) -> f64 {
+        let u = f64::from(self.wind_speed);
+        u * u / G
+    }
+
+    fn spreading_params(&self) -> SpreadingParams {
+        SpreadingParams {
+            spreading: self.spreading,
+            peak_omega: self.peak_omega_f64(),
+            wind_speed: f64::from(self.wind_speed),
+            swell: f64::from(self.swell),
+            spread_blend: f64::from(self.spread_blend),
+        }
+    }
+
+    /// Non-directional spectrum S(ω) in m²·s/rad at angular frequency `omega` in rad/s,
+    /// including the depth factor. 0 for ω ≤ 0 or NaN.
+    pub fn omega_spectrum(&self, omega: f32) -> f32 {
+        self.omega_spectrum_f64(f64::from(omega)) as f32
+    }
+
+    fn omega_spectrum_f64(&self, omega: f64) -> f64 {
+        if omega.is_nan() || omega <= 0.0 {
+            return 0.0;
+        }
+        match self.model {
+            Model::Jonswap { .. } => {
+                let depth_factor = match (self.depth_factor, self.dispersion.depth()) {
+                    (DepthFactor::None, _) | (_, None) => 1.0,
+                    (DepthFactor::Kitaigorodskii, Some(h)) => {
+                        omega::kitaigorodskii(omega, f64::from(h))
+                    }
+                    (DepthFactor::ThompsonVincent, Some(h)) => {
+                        omega::thompson_vincent(omega, f64::from(h))
+                    }
+                };
+                self.jonswap_shape(omega) * depth_factor
+            }
+            Model::Phillips { .. } => {
+                // S(ω) = S(k) dk/dω with k = k(ω) of this spectrum's dispersion.
+                let k = self.dispersion.k_from_omega_f64(omega);
+                let group = self.dispersion.d_omega_dk_f64(k);
+                if !(group > 0.0 && group.is_finite()) {
+                    return 0.0;
+                }
+                self.phillips_omni(k) / group
+            }
+        }
+    }
+
+    fn jonswap_shape(&self, omega: f64) -> f64 {
+        match self.model {
+            Model::Jonswap {
+                alpha,
+                peak_omega,
+                gamma,
+            } => omega::jonswap(
+                omega,
+                f64::from(alpha),
+                f64::from(peak_omega),
+                f64::from(gamma),
+            ),
+            Model::Phillips { .. } => 0.0,
+        }
+    }
+
+    fn phillips_omni(&self, k: f64) -> f64 {
+        match self.model {
+            Model::Phillips { amplitude } => {
+                omega::phillips_omni(k, f64::from(amplitude), self.wind_length())
+            }
+            Model::Jonswap { .. } => 0.0,
+        }
+    }
+
+    /// Directional spreading D(ω, θ) in 1/rad at angular frequency `omega` in rad/s and
+    /// direction `theta` in radians relative to the wind (any real angle; it is wrapped),
+    /// including the swell and spread-blend controls. ∫_{−π}^{π} D dθ = 1.
+    pub fn spreading(&self, omega: f32, theta: f32) -> f32 {
+        if !theta.is_finite() {
+            return 0.0;
+        }
+        self.spreading_params()
+            .evaluate(f64::from(omega), wrap_angle(f64::from(theta))) as f32
+    }
+
+    /// Directional wave-number spectrum S(k) in m⁴ at wave vector `k` = (k_x, k_z) in rad/m,
+    /// including the short-wave fade:
+    ///
+    /// ```text
+    /// S(k) = S(ω) · D(ω, θ) · (dω/dk) / k · e^{−k²ℓ²},   ω = ω(|k|), θ = atan2(k_z, k_x) − θ_w
+    /// ```
+    ///
+    /// Its integral over the plane is the surface variance. 0 at k = 0 and for non-finite k.
+    pub fn density(&self, k: Vec2) -> f32 {
+        self.density_f64(f64::from(k.x), f64::from(k.y), &self.spreading_params()) as f32
+    }
+
+    fn density_f64(&self, kx: f64, kz: f64, spreading: &SpreadingParams) -> f64 {
+        let k = kx.hypot(kz);
+        if !(k > 0.0 && k.is_finite()) {
+            return 0.0;
+        }
+        let omni = self.omni_k(k);
+        if omni == 0.0 {
+            return 0.0;
+        }
+        let omega = self.dispersion.omega_f64(k);
+        let theta = wrap_angle(kz.atan2(kx) - f64::from(self.wind_direction));
+        omni * spreading.evaluate(omega, theta) / k
+    }
+
+    /// Omnidirectional wave-number spectrum ∫ S(k) k dθ in m³ at |k| = `k`, with the fade.
+    fn omni_k(&self, k: f64) -> f64 {
+        let fade = if self.short_wave_length > 0.0 {
+            let l = f64::from(self.short_wave_length);
+            (-(k * l) * (k * l)).exp()
+        } else {
+            1.0
+        };
+        if fade == 0.0 {
+            return 0.0;
+        }
+        let value = match self.model {
+            Model::Jonswap { .. } => {
+                let omega = self.dispersion.omega_f64(k);
+                let group = self.dispersion.d_omega_dk_f64(k);
+                let depth_factor = match (self.depth_factor, self.dispersion.depth()) {
+                    (DepthFactor::None, _) | (_, None) => 1.0,
+                    // At finite depth k is known here, so the exact factor needs no Newton
+                    // solve (for capillary dispersion the gravity k is used: the capillary
+                    // correction matters only where Φ = 1).
+                    (DepthFactor::Kitaigorodskii, Some(h)) => match self.dispersion {
+                        Dispersion::FiniteDepth { .. } => {
+                            omega::kitaigorodskii_kh(k * f64::from(h))
+                        }
+                        _ => omega::kitaigorodskii(omega, f64::from(h)),
+                    },
+                    (DepthFactor::ThompsonVincent, Some(h)) => {
+                        omega::thompson_vincent(omega, f64::from(h))
+                    }
+                };
+                self.jonswap_shape(omega) * depth_factor * group
+            }
+            Model::Phillips { .. } => self.phillips_omni(k),
+        };
+        value * fade
+    }
+
+    /// Variance of the surface elevation carried by the wave vectors with
+    /// k_min ≤ |k| < k_max (rad/m), in m²: ∫∫ S(k) d²k over that annulus.
+    ///
+    /// Computed by composite Simpson quadrature in ln k of the omnidirectional spectrum (the
+    /// spreading integrates to 1 over direction), 400 nodes a decade, relative error below
+    /// 1e-6 for the spectra here. `k_max` may be +∞; an empty or invalid band gives 0.
+    pub fn band_variance(&self, k_min: f32, k_max: f32) -> f32 {
+        self.band_variance_f64(f64::from(k_min), f64::from(k_max)) as f32
+    }
+
+    pub(crate) fn band_variance_f64(&self, k_min: f64, k_max: f64) -> f64 {
+        if k_min.is_nan() || k_max.is_nan() || k_max <= k_min {
+            return 0.0;
+        }
+        // The spectra vanish faster than any power below 1e-3 k_p and carry less than
+        // 1e-9 of their energy above 1e6 k_p (tails ∝ k⁻³ or steeper in the integrand S·k).
+        let k_peak = self.dispersion.k_from_omega_f64(self.peak_omega_f64());
+        let lo = k_min.max(1e-3 * k_peak);
+        let hi = k_max.min(1e6 * k_peak);
+        if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
+            return 0.0;
+        }
+        let (a, b) = (lo.ln(), hi.ln());
+        let decades = (b - a) / std::f64::consts::LN_10;
+        let intervals = ((decades * 400.0).ceil() as usize)
+            .max(2)
+            .next_multiple_of(2);
+        let h = (b - a) / intervals as f64;
+        let f = |u: f64| {
+            let k = u.exp();
+            self.omni_k(k) * k
+        };
+        let mut sum = f(a) + f(b);
+        for i in 1..intervals {
+            let weight = if i % 2 == 1 { 4.0 } else { 2.0 };
+            sum += weight * f(a + i as f64 * h);
+        }
+        sum * h / 3.0
+    }
+
+    /// Significant wave height H_s = 4√m0 in metres, m0 the variance of the whole spectrum
+    /// (with the short-wave fade) by quadrature.
+    #[doc(alias = "Hs")]
+    pub fn significant_wave_height(&self) -> f32 {
+        (4.0 * self.band_variance_f64(0.0, f64::INFINITY).sqrt()) as f32
+    }
+}
+
+/// Wraps an angle in radians to [−π, π].
+fn wrap_angle(theta: f64) -> f64 {
+    let wrapped = (theta + PI).rem_euclid(2.0 * PI) - PI;
+    if wrapped < -PI {
+        -PI
+    } else {
+        wrapped
+    }
+}

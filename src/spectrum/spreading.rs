@@ -1,0 +1,269 @@
+//! Directional spreading functions D(ω, θ), each normalised so that ∫_{−π}^{π} D dθ = 1.
+
+use std::f64::consts::{LN_2, PI};
+
+use crate::error::{self, Error};
+
+use super::omega::G;
+
+/// Directional spreading D(ω, θ) in 1/rad: how a frequency's energy is shared among the
+/// directions θ relative to the wind.
+///
+/// Every variant is normalised so that ∫_{−π}^{π} D(ω, θ) dθ = 1 at every ω.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum Spreading {
+    /// Cos-2s with Mitsuyasu et al.'s (1975) frequency-dependent s:
+    ///
+    /// ```text
+    /// s = s_p (ω/ω_p)^5  (ω ≤ ω_p),  s_p (ω/ω_p)^−2.5  (ω > ω_p),  s_p = 11.5 (ω_p U / g)^−2.5
+    /// ```
+    Mitsuyasu,
+    /// Cos-2s with Hasselmann et al.'s (1980) frequency-dependent s:
+    ///
+    /// ```text
+    /// s = 6.97 (ω/ω_p)^4.06  (ω ≤ ω_p),  9.77 (ω/ω_p)^(−2.33 − 1.45 (U ω_p / g − 1.17))  (ω > ω_p)
+    /// ```
+    Hasselmann,
+    /// Cos-2s with a fixed spreading exponent `s` (> 0; larger is narrower).
+    Cos2s {
+        /// The exponent s of |cos(θ/2)|^{2s}, dimensionless, > 0.
+        s: f32,
+    },
+    /// Donelan, Hamilton & Hui (1985) sech² spreading with Banner's (1990) extension above
+    /// 1.6 ω_p: β/(2 tanh(βπ)) sech²(βθ).
+    DonelanBanner,
+    /// Energy in every direction alike: 1/(2π).
+    Flat,
+    /// (2/π) cos²θ for |θ| < π/2 and 0 upwind.
+    Cos2,
+    /// |cos θ|^p with upwind waves (|θ| > π/2) scaled by `upwind`: Tessendorf's (2001) Phillips
+    /// angular factor |k̂·ŵ|^p, with his damping of waves moving against the wind.
+    /// `Cosine { exponent: 2.0, upwind: 1.0 }` is the classic two-way |k̂·ŵ|².
+    Cosine {
+        /// The exponent p, dimensionless, ≥ 0.
+        exponent: f32,
+        /// Energy of upwind waves relative to downwind ones, in [0, 1].
+        upwind: f32,
+    },
+}
+
+impl Spreading {
+    /// Checks the variant's parameters.
+    pub(crate) fn validate(self) -> Result<Self, Error> {
+        match self {
+            Spreading::Cos2s { s } => {
+                error::positive("s", s)?;
+            }
+            Spreading::Cosine { exponent, upwind } => {
+                error::non_negative("exponent", exponent)?;
+                error::unit_interval("upwind", upwind)?;
+            }
+            _ => {}
+        }
+        Ok(self)
+    }
+
+    /// The cos-2s exponent s at `omega` for the cos-2s family, `None` for the other variants.
+    /// `peak_omega` in rad/s, `wind_speed` in m/s.
+    pub(crate) fn cos_2s_exponent(
+        self,
+        omega: f64,
+        peak_omega: f64,
+        wind_speed: f64,
+    ) -> Option<f64> {
+        let r = omega / peak_omega;
+        match self {
+            Spreading::Mitsuyasu => {
+                let s_p = 11.5 * (peak_omega * wind_speed / G).powf(-2.5);
+                Some(if r <= 1.0 {
+                    s_p * r.powi(5)
+                } else {
+                    s_p * r.powf(-2.5)
+                })
+            }
+            Spreading::Hasselmann => Some(if r <= 1.0 {
+                6.97 * r.powf(4.06)
+            } else {
+                let exponent = -2.33 - 1.45 * (wind_speed * peak_omega / G - 1.17);
+                9.77 * r.powf(exponent)
+            }),
+            Spreading::Cos2s { s } => Some(f64::from(s)),
+            _ => None,
+        }
+    }
+}
+
+/// Parameters that the spreading functions share, in f64.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SpreadingParams {
+    pub spreading: Spreading,
+    pub peak_omega: f64,
+    pub wind_speed: f64,
+    /// Horvath's swell ξ in [0, 1].
+    pub swell: f64,
+    /// Horvath's spread blend μ in [0, 1].
+    pub spread_blend: f64,
+}
+
+impl SpreadingParams {
+    /// D(ω, θ) in 1/rad, θ relative to the wind and already wrapped to [−π, π].
+    pub(crate) fn evaluate(&self, omega: f64, theta: f64) -> f64 {
+        let flat = 1.0 / (2.0 * PI);
+        if self.spread_blend == 0.0 {
+            return flat;
+        }
+        let d = self.shaped(omega, theta);
+        flat + self.spread_blend * (d - flat)
+    }
+
+    fn shaped(&self, omega: f64, theta: f64) -> f64 {
+        if omega.is_nan() || omega <= 0.0 {
+            return 1.0 / (2.0 * PI);
+        }
+        if let Some(s) = self
+            .spreading
+            .cos_2s_exponent(omega, self.peak_omega, self.wind_speed)
+        {
+            // Horvath (2015) §5.2: swell narrows the spreading, s += 16 tanh(ω_p/ω) ξ².
+            let s = s + 16.0 * (self.peak_omega / omega).tanh() * self.swell * self.swell;
+            return cos_2s(s, theta);
+        }
+        match self.spreading {
+            Spreading::DonelanBanner => donelan_banner(omega / self.peak_omega, theta),
+            Spreading::Cos2 => {
+                if theta.abs() < 0.5 * PI {
+                    let c = theta.cos();
+                    2.0 / PI * c * c
+                } else {
+                    0.0
+                }
+            }
+            Spreading::Cosine { exponent, upwind } => {
+                cosine_power(f64::from(exponent), f64::from(upwind), theta)
+            }
+            _ => 1.0 / (2.0 * PI),
+        }
+    }
+}
+
+/// Normalisation Q(s) of the cos-2s spreading, computed exactly with log-gamma:
+///
+/// ```text
+/// Q(s) = 2^{2s−1} Γ(s+1)² / (π Γ(2s+1))
+/// ```
+///
+/// (Longuet-Higgins, Cartwright & Smith 1963; Mitsuyasu et al. 1975.)
+pub(crate) fn cos_2s_norm(s: f64) -> f64 {
+    ((2.0 * s - 1.0) * LN_2 + 2.0 * ln_gamma(s + 1.0) - PI.ln() - ln_gamma(2.0 * s + 1.0)).exp()
+}
+
+/// Q(s) |cos(θ/2)|^{2s}, θ in [−π, π].
+pub(crate) fn cos_2s(s: f64, theta: f64) -> f64 {
+    cos_2s_norm(s) * (0.5 * theta).cos().abs().powf(2.0 * s)
+}
+
+/// Donelan–Banner β as a function of r = ω/ω_p (Donelan, Hamilton & Hui 1985; Banner 1990):
+///
+/// ```text
+/// β = 2.61 r^1.3                                  r < 0.95 (used below 0.56 too)
+///     2.28 r^−1.3                                 0.95 ≤ r < 1.6
+///     10^(−0.4 + 0.8393 exp(−0.567 ln(r²)))       r ≥ 1.6
+/// ```
+pub(crate) fn donelan_banner_beta(r: f64) -> f64 {
+    if r < 0.95 {
+        2.61 * r.powf(1.3)
+    } else if r < 1.6 {
+        2.28 * r.powf(-1.3)
+    } else {
+        10f64.powf(-0.4 + 0.8393 * (-0.567 * (r * r).ln()).exp())
+    }
+}
+
+/// β/(2 tanh(βπ)) sech²(βθ).
+pub(crate) fn donelan_banner(r: f64, theta: f64) -> f64 {
+    let beta = donelan_banner_beta(r);
+    // β → 0 (r → 0): the limit is flat, 1/(2π); avoid 0/0.
+    let norm = if beta < 1e-8 {
+        1.0 / (2.0 * PI)
+    } else {
+        beta / (2.0 * (beta * PI).tanh())
+    };
+    let sech = 1.0 / (beta * theta).cosh();
+    norm * sech * sech
+}
+
+/// |cos θ|^p, upwind half scaled by `upwind`, normalised over [−π, π].
+pub(crate) fn cosine_power(exponent: f64, upwind: f64, theta: f64) -> f64 {
+    // ∫_{−π/2}^{π/2} cos^p θ dθ = √π Γ((p+1)/2) / Γ(p/2 + 1).
+    let half =
+        (0.5 * PI.ln() + ln_gamma(0.5 * (exponent + 1.0)) - ln_gamma(0.5 * exponent + 1.0)).exp();
+    let c = theta.cos();
+    let weight = if c >= 0.0 { 1.0 } else { upwind };
+    if weight == 0.0 {
+        return 0.0;
+    }
+    weight * c.abs().powf(exponent) / ((1.0 + upwind) * half)
+}
+
+/// ln Γ(x) for x > 0 by the Lanczos approximation (Lanczos 1964) with g = 7 and nine
+/// coefficients, relative error below 1e-14 over the range used here (x ≥ 0.5).
+pub(crate) fn ln_gamma(x: f64) -> f64 {
+    const COEFFICIENTS: [f64; 9] = [
+        0.999_999_999_999_809_9,
+        676.520_368_121_885_1,
+        -1_259.139_216_722_402_8,
+        771.323_428_777_653_1,
+        -176.615_029_162_140_6,
+        12.507_343_278_686_905,
+        -0.138_571_095_265_720_12,
+        9.984_369_578_019_572e-6,
+        1.505_632_735_149_311_6e-7,
+    ];
+    if x < 0.5 {
+        // Reflection: Γ(x) Γ(1 − x) = π / sin(πx).
+        return (PI / (PI * x).sin()).ln() - ln_gamma(1.0 - x);
+    }
+    let x = x - 1.0;
+    let mut sum = COEFFICIENTS[0];
+    for (i, &c) in COEFFICIENTS.iter().enumerate().skip(1) {
+        sum += c / (x + i as f64);
+    }
+    let t = x + 7.5;
+    0.5 * (2.0 * PI).ln() + (x + 0.5) * t.ln() - t + sum.ln()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ln_gamma_matches_factorials_and_half_integers() {
+        let mut factorial = 1.0_f64;
+        for n in 1..=30 {
+            // Γ(n) = (n − 1)!
+            let expected = factorial.ln();
+            assert!(
+                (ln_gamma(n as f64) - expected).abs() <= 1e-13 * expected.abs().max(1.0),
+                "n = {n}"
+            );
+            factorial *= n as f64;
+        }
+        // Γ(1/2) = √π, Γ(3/2) = √π/2, Γ(5/2) = 3√π/4.
+        let sqrt_pi = PI.sqrt();
+        for (x, g) in [(0.5, sqrt_pi), (1.5, 0.5 * sqrt_pi), (2.5, 0.75 * sqrt_pi)] {
+            assert!((ln_gamma(x) - g.ln()).abs() < 1e-14, "x = {x}");
+        }
+        // Reflection branch: Γ(0.25) = 3.625609908221908...
+        assert!((ln_gamma(0.25) - 3.625_609_908_221_908_f64.ln()).abs() < 1e-13);
+    }
+
+    #[test]
+    fn cos_2s_norm_closed_forms() {
+        // s = 1: Q = 2 Γ(2)² / (π Γ(3)) = 1/π; s = 2: 8·4/(π·24) = 4/(3π).
+        assert!((cos_2s_norm(1.0) - 1.0 / PI).abs() < 1e-14);
+        assert!((cos_2s_norm(2.0) - 4.0 / (3.0 * PI)).abs() < 1e-14);
+        // s → 0: flat 1/(2π).
+        assert!((cos_2s_norm(0.0) - 0.5 / PI).abs() < 1e-14);
+    }
+}
