@@ -114,7 +114,8 @@ impl Dispersion {
     /// inverse of [`omega`](Self::omega).
     ///
     /// Deep water has the closed form k = ω²/g; otherwise a safeguarded Newton iteration on
-    /// the monotonic ω²(k) converges for every ω > 0 and depth > 0. Returns 0 for ω ≤ 0 or NaN.
+    /// the monotonic ω²(k) converges for every ω > 0 and depth > 0. Returns 0 for ω ≤ 0 or NaN
+    /// and +∞ for ω = +∞.
     pub fn k_from_omega(&self, omega: f32) -> f32 {
         self.k_from_omega_f64(f64::from(omega)) as f32
     }
@@ -144,6 +145,9 @@ impl Dispersion {
     pub(crate) fn k_from_omega_f64(&self, omega: f64) -> f64 {
         if omega.is_nan() || omega <= 0.0 {
             return 0.0;
+        }
+        if omega == f64::INFINITY {
+            return f64::INFINITY;
         }
         let target = omega * omega;
         let deep_k = target / G;

@@ -111,9 +111,10 @@ impl Spectrum {
     /// kilometres gives a peak below the Pierson–Moskowitz one.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless both are finite and > 0.
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless both are finite and > 0 and
+    /// `wind_speed` ≤ [`MAX_WIND_SPEED`].
     pub fn jonswap(wind_speed: f32, fetch: f32) -> Result<Self, Error> {
-        let u = error::positive("wind_speed", wind_speed)?;
+        let u = check_wind_speed(wind_speed)?;
         let f = error::positive("fetch", fetch)?;
         let (u64, f64_) = (f64::from(u), f64::from(f));
         let alpha = omega::jonswap_alpha(u64, f64_) as f32;
@@ -160,9 +161,10 @@ impl Spectrum {
     /// wind speed U in m/s: JONSWAP with α = 0.0081, ω_p = 0.877 g/U, γ = 1.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `wind_speed` is finite and > 0.
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `wind_speed` is in
+    /// (0, [`MAX_WIND_SPEED`]].
     pub fn pierson_moskowitz(wind_speed: f32) -> Result<Self, Error> {
-        let u = error::positive("wind_speed", wind_speed)?;
+        let u = check_wind_speed(wind_speed)?;
         let peak_omega = (PIERSON_MOSKOWITZ_PEAK * G / f64::from(u)) as f32;
         let alpha = PIERSON_MOSKOWITZ_ALPHA as f32;
         Self::check_model(alpha, peak_omega)?;
@@ -182,7 +184,8 @@ impl Spectrum {
     /// with finite-depth dispersion for depth h in metres.
     ///
     /// # Errors
-    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless all three are finite and > 0.
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless all three are finite and > 0 and
+    /// `wind_speed` ≤ [`MAX_WIND_SPEED`].
     pub fn tma(wind_speed: f32, fetch: f32, depth: f32) -> Result<Self, Error> {
         Self::jonswap(wind_speed, fetch)?
             .with_depth(depth)?
@@ -197,10 +200,10 @@ impl Spectrum {
     /// ```
     ///
     /// # Errors
-    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `wind_speed` is finite and > 0 and
-    /// `amplitude` finite and ≥ 0.
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `wind_speed` is in
+    /// (0, [`MAX_WIND_SPEED`]] and `amplitude` finite and ≥ 0.
     pub fn phillips(wind_speed: f32, amplitude: f32) -> Result<Self, Error> {
-        let u = error::positive("wind_speed", wind_speed)?;
+        let u = check_wind_speed(wind_speed)?;
         let amplitude = error::non_negative("amplitude", amplitude)?;
         Ok(Self::with_model(Model::Phillips { amplitude }, u, None))
     }
@@ -446,13 +449,13 @@ impl Spectrum {
     }
 
     /// Non-directional spectrum S(ω) in m²·s/rad at angular frequency `omega` in rad/s,
-    /// including the depth factor. 0 for ω ≤ 0 or NaN.
+    /// including the depth factor. 0 for ω ≤ 0 and for non-finite ω.
     pub fn omega_spectrum(&self, omega: f32) -> f32 {
         self.omega_spectrum_f64(f64::from(omega)) as f32
     }
 
     fn omega_spectrum_f64(&self, omega: f64) -> f64 {
-        if omega.is_nan() || omega <= 0.0 {
+        if !omega.is_finite() || omega <= 0.0 {
             return 0.0;
         }
         match self.model {
@@ -625,6 +628,18 @@ impl Spectrum {
     pub fn significant_wave_height(&self) -> f32 {
         (4.0 * self.band_variance_f64(0.0, f64::INFINITY).sqrt()) as f32
     }
+}
+
+/// Largest accepted wind speed, in m/s: above any wind measured at sea, and low enough that
+/// the derived spectra stay well inside f32.
+pub const MAX_WIND_SPEED: f32 = 200.0;
+
+fn check_wind_speed(wind_speed: f32) -> Result<f32, Error> {
+    let u = error::positive("wind_speed", wind_speed)?;
+    if u > MAX_WIND_SPEED {
+        return Err(error::out_of_range("wind_speed", u, "in (0, 200] m/s"));
+    }
+    Ok(u)
 }
 
 /// Wraps an angle in radians to [−π, π].

@@ -64,6 +64,10 @@ pub(crate) fn kitaigorodskii_kh(kh: f64) -> f64 {
     if kh.is_nan() || kh <= 0.0 {
         return 0.0;
     }
+    if kh > 20.0 {
+        // tanh²(20) = 1 − 2e-17 and 40/sinh(40) ~ 1e-16: 1 to f64 precision.
+        return 1.0;
+    }
     let t = kh.tanh();
     // 2kh / sinh(2kh) underflows gracefully to 0 for large kh (sinh → ∞).
     let x = 2.0 * kh;
