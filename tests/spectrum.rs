@@ -402,3 +402,13 @@ fn jonswap_hs_against_the_fetch_law() {
         "Hs {hs} / fetch law {fetch_law} = {ratio}"
     );
 }
+
+#[test]
+fn spectrum_is_plain_shareable_data() {
+    fn assert_send_sync<T: Send + Sync + Clone + PartialEq + std::fmt::Debug>() {}
+    assert_send_sync::<Spectrum>();
+    let a = Spectrum::jonswap(10.0, 1e5).unwrap();
+    let b = a.clone().with_gamma(2.0).unwrap();
+    assert_ne!(a, b);
+    assert_eq!(a, a.clone());
+}

@@ -459,18 +459,7 @@ impl Spectrum {
             return 0.0;
         }
         match self.model {
-            Model::Jonswap { .. } => {
-                let depth_factor = match (self.depth_factor, self.dispersion.depth()) {
-                    (DepthFactor::None, _) | (_, None) => 1.0,
-                    (DepthFactor::Kitaigorodskii, Some(h)) => {
-                        omega::kitaigorodskii(omega, f64::from(h))
-                    }
-                    (DepthFactor::ThompsonVincent, Some(h)) => {
-                        omega::thompson_vincent(omega, f64::from(h))
-                    }
-                };
-                self.jonswap_shape(omega) * depth_factor
-            }
+            Model::Jonswap { .. } => self.jonswap_shape(omega) * self.depth_factor_at(omega, None),
             Model::Phillips { .. } => {
                 // S(ω) = S(k) dk/dω with k = k(ω) of this spectrum's dispersion.
                 let k = self.dispersion.k_from_omega_f64(omega);
@@ -480,6 +469,25 @@ impl Spectrum {
                 }
                 self.phillips_omni(k) / group
             }
+        }
+    }
+
+    /// The depth factor Φ at `omega`; `k`, when given, is ω's wave number under this
+    /// spectrum's dispersion.
+    fn depth_factor_at(&self, omega: f64, k: Option<f64>) -> f64 {
+        let Some(h) = self.dispersion.depth().map(f64::from) else {
+            return 1.0;
+        };
+        match self.depth_factor {
+            DepthFactor::None => 1.0,
+            DepthFactor::ThompsonVincent => omega::thompson_vincent(omega, h),
+            // With finite-depth dispersion a known k is the gravity-wave k(ω, h), so the exact
+            // factor needs no Newton solve. With capillary dispersion the gravity k is solved
+            // for: the capillary correction matters only where Φ = 1 already.
+            DepthFactor::Kitaigorodskii => match (k, self.dispersion) {
+                (Some(k), Dispersion::FiniteDepth { .. }) => omega::kitaigorodskii_kh(k * h),
+                _ => omega::kitaigorodskii(omega, h),
+            },
         }
     }
 
@@ -560,22 +568,7 @@ impl Spectrum {
             Model::Jonswap { .. } => {
                 let omega = self.dispersion.omega_f64(k);
                 let group = self.dispersion.d_omega_dk_f64(k);
-                let depth_factor = match (self.depth_factor, self.dispersion.depth()) {
-                    (DepthFactor::None, _) | (_, None) => 1.0,
-                    // At finite depth k is known here, so the exact factor needs no Newton
-                    // solve (for capillary dispersion the gravity k is used: the capillary
-                    // correction matters only where Φ = 1).
-                    (DepthFactor::Kitaigorodskii, Some(h)) => match self.dispersion {
-                        Dispersion::FiniteDepth { .. } => {
-                            omega::kitaigorodskii_kh(k * f64::from(h))
-                        }
-                        _ => omega::kitaigorodskii(omega, f64::from(h)),
-                    },
-                    (DepthFactor::ThompsonVincent, Some(h)) => {
-                        omega::thompson_vincent(omega, f64::from(h))
-                    }
-                };
-                self.jonswap_shape(omega) * depth_factor * group
+                self.jonswap_shape(omega) * self.depth_factor_at(omega, Some(k)) * group
             }
             Model::Phillips { .. } => self.phillips_omni(k),
         };
