@@ -29,12 +29,17 @@
 //! repository's `docs/theory.md`.
 #![warn(missing_docs)]
 
+mod cascade;
 mod dispersion;
 mod error;
+mod fft2d;
+mod seed;
 mod spectrum;
 
+pub use cascade::{Cascade, CascadeConfig, Field, MAX_TIME};
 pub use dispersion::{Dispersion, GRAVITY, SURFACE_TENSION, WATER_DENSITY};
 pub use error::Error;
+pub use fft2d::Fft2d;
 pub use glam::{Vec2, Vec3};
 pub use num_complex::Complex32;
 pub use spectrum::{DepthFactor, Spectrum, Spreading, DEFAULT_GAMMA, MAX_WIND_SPEED};

@@ -438,7 +438,7 @@ impl Spectrum {
         u * u / G
     }
 
-    fn spreading_params(&self) -> SpreadingParams {
+    pub(crate) fn spreading_params(&self) -> SpreadingParams {
         SpreadingParams {
             spreading: self.spreading,
             peak_omega: self.peak_omega_f64(),
@@ -539,7 +539,7 @@ impl Spectrum {
         self.density_f64(f64::from(k.x), f64::from(k.y), &self.spreading_params()) as f32
     }
 
-    fn density_f64(&self, kx: f64, kz: f64, spreading: &SpreadingParams) -> f64 {
+    pub(crate) fn density_f64(&self, kx: f64, kz: f64, spreading: &SpreadingParams) -> f64 {
         let k = kx.hypot(kz);
         if !(k > 0.0 && k.is_finite()) {
             return 0.0;

@@ -1,0 +1,792 @@
+//! One N×N patch of ocean: h0(k) made once, h̃(k, t) evolved and turned into eight real
+//! fields by four packed complex inverse FFTs on every [`Cascade::update`].
+
+use std::f64::consts::TAU;
+
+use glam::{Vec2, Vec3};
+use num_complex::Complex32;
+use rayon::prelude::*;
+
+use crate::error::{self, Error};
+use crate::fft2d::{RowFft, ROWS_PER_TASK};
+use crate::seed;
+use crate::spectrum::Spectrum;
+use crate::MAX_SIZE;
+
+/// Largest |t| accepted by [`Cascade::update`], in seconds (about 31.7 years). Up to here the
+/// f64 phase ω·t keeps an error below 1e-5 rad.
+pub const MAX_TIME: f64 = 1e9;
+
+/// Smallest and largest accepted patch side, in metres.
+const LENGTH_RANGE: (f32, f32) = (1e-2, 1e7);
+
+/// Largest accepted bound on the outputs' magnitude (see [`Cascade::new`]): far enough below
+/// f32::MAX that squares and cross products of the fields stay finite.
+const AMPLITUDE_LIMIT: f64 = 1e15;
+
+/// Where the displaced surface is vertical or folded (J ≤ 0), the slope's denominator n_y is
+/// kept at least this fraction of |n|, so the slope stays finite (≤ 1e4).
+const MIN_SLOPE_NY: f32 = 1e-4;
+
+/// Parameters of one [`Cascade`]: passive data, validated by [`Cascade::new`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CascadeConfig {
+    /// Grid size N (samples per side): even, 4 ≤ N ≤ [`MAX_SIZE`]; powers of two are fastest.
+    /// Default 256.
+    pub size: usize,
+    /// Side L of the square patch, in metres (Δk = 2π/L). Default 1000 m.
+    pub length: f32,
+    /// Lower band limit in rad/m: wave vectors with |k| < `k_min` are left out. Default 0.
+    pub k_min: f32,
+    /// Upper band limit in rad/m: wave vectors with |k| ≥ `k_max` are left out (may be
+    /// +∞). Default +∞.
+    pub k_max: f32,
+    /// Choppiness λ ≥ 0 (dimensionless): grid points move by λ·D. 1 gives the Gerstner
+    /// profile for a single wave. Default 1.
+    pub choppiness: f32,
+    /// Seed of the random amplitudes; the same seed and L give the same waves at every N.
+    /// Default 0.
+    pub seed: u64,
+    /// Repeat period T in seconds: when set, every ω is rounded down to a multiple of 2π/T,
+    /// so the fields at t and t + T are equal (for looping bakes). Default `None`.
+    pub repeat_period: Option<f32>,
+}
+
+impl Default for CascadeConfig {
+    fn default() -> Self {
+        CascadeConfig {
+            size: 256,
+            length: 1000.0,
+            k_min: 0.0,
+            k_max: f32::INFINITY,
+            choppiness: 1.0,
+            seed: 0,
+            repeat_period: None,
+        }
+    }
+}
+
+/// The eight real fields a cascade synthesises, for [`Cascade::field`]. Each is the inverse
+/// DFT of h̃(k, t) times the multiplier named (k = |k|); the displacement fields are per unit
+/// choppiness.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Field {
+    /// η, height in m (multiplier 1).
+    Height,
+    /// D_x in m (multiplier i k_x/k).
+    DisplacementX,
+    /// D_z in m (multiplier i k_z/k).
+    DisplacementZ,
+    /// ∂η/∂x of the undisplaced surface, dimensionless (multiplier i k_x).
+    SlopeX,
+    /// ∂η/∂z of the undisplaced surface, dimensionless (multiplier i k_z).
+    SlopeZ,
+    /// ∂D_x/∂x, dimensionless (multiplier −k_x²/k).
+    DisplacementXX,
+    /// ∂D_z/∂z, dimensionless (multiplier −k_z²/k).
+    DisplacementZZ,
+    /// ∂D_x/∂z = ∂D_z/∂x, dimensionless (multiplier −k_x k_z/k).
+    DisplacementXZ,
+}
+
+impl Field {
+    /// All eight fields, in packing order.
+    pub const ALL: [Field; 8] = [
+        Field::Height,
+        Field::DisplacementX,
+        Field::DisplacementZ,
+        Field::SlopeX,
+        Field::SlopeZ,
+        Field::DisplacementXX,
+        Field::DisplacementZZ,
+        Field::DisplacementXZ,
+    ];
+
+    /// Which packed transform holds this field and whether it is the imaginary part.
+    /// Transform p holds fields 2p (real part) and 2p + 1 (imaginary part) of [`Field::ALL`].
+    pub fn packing(self) -> (usize, bool) {
+        let index = Field::ALL.iter().position(|&f| f == self).unwrap_or(0);
+        (index / 2, index % 2 == 1)
+    }
+
+    /// The spectral multiplier of this field at wave vector `k` = (k_x, k_z) in rad/m
+    /// (0 at k = 0).
+    pub fn multiplier(self, k: Vec2) -> Complex32 {
+        let (kx, kz) = (k.x, k.y);
+        let len = kx.hypot(kz);
+        if len == 0.0 {
+            return Complex32::new(0.0, 0.0);
+        }
+        match self {
+            Field::Height => Complex32::new(1.0, 0.0),
+            Field::DisplacementX => Complex32::new(0.0, kx / len),
+            Field::DisplacementZ => Complex32::new(0.0, kz / len),
+            Field::SlopeX => Complex32::new(0.0, kx),
+            Field::SlopeZ => Complex32::new(0.0, kz),
+            Field::DisplacementXX => Complex32::new(-kx * kx / len, 0.0),
+            Field::DisplacementZZ => Complex32::new(-kz * kz / len, 0.0),
+            Field::DisplacementXZ => Complex32::new(-kx * kz / len, 0.0),
+        }
+    }
+}
+
+/// One entry of the evolution table, for a wave vector k of the half plane that is evolved
+/// (its partner −k gets the conjugate): h̃(k, t) = p cos φ + q sin φ, φ = 2π·`freq`·t.
+///
+/// From h̃ = h0(k) e^{−iφ} + conj(h0(−k)) e^{iφ}: p = h0(k) + conj(h0(−k)),
+/// q = i (conj(h0(−k)) − h0(k)).
+#[derive(Debug, Clone, Copy, Default)]
+struct Evolution {
+    p: Complex32,
+    q: Complex32,
+    /// ω(k)/2π in Hz (quantised when looping).
+    freq: f64,
+}
+
+/// One N×N patch of ocean surface of side L: the wave amplitudes h0(k) drawn once from a
+/// [`Spectrum`], and after every [`Cascade::update`] the height, horizontal displacement,
+/// slope, normal and Jacobian of the surface at time t.
+///
+/// Buffers are row-major with z as the row: sample (i, j) at x = i·L/N, z = j·L/N is at
+/// index `j * N + i`.
+///
+/// ```
+/// use ocean_fft::{Cascade, CascadeConfig, Spectrum};
+/// let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
+/// let config = CascadeConfig { size: 64, length: 250.0, ..CascadeConfig::default() };
+/// let mut cascade = Cascade::new(&spectrum, config)?;
+/// cascade.update(12.5)?;                          // t in seconds
+/// let eta = cascade.height()[3 * 64 + 5];        // m, at x = 5·L/N, z = 3·L/N
+/// assert!(eta.is_finite());
+/// # Ok::<(), ocean_fft::Error>(())
+/// ```
+pub struct Cascade {
+    config: CascadeConfig,
+    n: usize,
+    dk: f32,
+    time: f64,
+    expected_variance: f64,
+    /// Σ 2|h0| · max(1, k_grid_max): a bound on every synthesised field's magnitude.
+    amplitude_bound: f64,
+    h0: Vec<Complex32>,
+    /// Evolution table, transposed layout: rows are k_x index i in 0..N/2, columns k_z
+    /// index j.
+    evolution: Vec<Evolution>,
+    rows: RowFft,
+    /// Pass-1 buffer, layout [i][transform][j] (k_x row, k_z column → after the FFT, z).
+    spectral: Vec<Complex32>,
+    /// Pass-2 buffer, layout [j][transform][i] (z row, x column) once transformed.
+    spatial: Vec<Complex32>,
+    scratch: Vec<Complex32>,
+    height: Vec<f32>,
+    displacement: Vec<Vec2>,
+    slope: Vec<Vec2>,
+    normal: Vec<Vec3>,
+    jacobian: Vec<f32>,
+}
+
+impl std::fmt::Debug for Cascade {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Cascade")
+            .field("config", &self.config)
+            .field("time", &self.time)
+            .field("expected_variance", &self.expected_variance)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Number of packed complex transforms per update.
+const TRANSFORMS: usize = 4;
+
+/// Checks a grid size: even, at least 4, at most [`MAX_SIZE`].
+pub(crate) fn check_size(size: usize) -> Result<usize, Error> {
+    if size < 4 || size % 2 != 0 || size > MAX_SIZE {
+        return Err(Error::InvalidSize { size });
+    }
+    Ok(size)
+}
+
+/// Signed wave-number index of grid index `i` on an N grid (plain FFT order).
+#[inline]
+pub(crate) fn wave_index(i: usize, n: usize) -> i32 {
+    if i < n / 2 {
+        i as i32
+    } else {
+        i as i32 - n as i32
+    }
+}
+
+impl CascadeConfig {
+    /// Checks every field; the error names the first bad one.
+    pub fn validate(&self) -> Result<(), Error> {
+        check_size(self.size)?;
+        let length = error::positive("length", self.length)?;
+        if length < LENGTH_RANGE.0 || length > LENGTH_RANGE.1 {
+            return Err(error::out_of_range("length", length, "in [0.01, 1e7] m"));
+        }
+        let k_min = error::non_negative("k_min", self.k_min)?;
+        if self.k_max.is_nan() {
+            return Err(Error::NonFinite { name: "k_max" });
+        }
+        if self.k_max <= k_min {
+            return Err(Error::EmptyBand {
+                k_min: f64::from(k_min),
+                k_max: f64::from(self.k_max),
+            });
+        }
+        error::non_negative("choppiness", self.choppiness)?;
+        if let Some(period) = self.repeat_period {
+            error::positive("repeat_period", period)?;
+        }
+        Ok(())
+    }
+}
+
+impl Cascade {
+    /// Draws h0(k) = ½(ξ_r + iξ_i)·√S(k)·Δk for every wave vector of the grid with
+    /// `k_min` ≤ |k| < `k_max` (zero elsewhere, and on k = 0 and the Nyquist row and column),
+    /// ξ standard normals drawn from (seed, m_x, m_z); tabulates ω(k) of the spectrum's
+    /// dispersion; allocates every buffer the updates use. The fields are those of t = 0.
+    ///
+    /// Errors: an invalid config ([`CascadeConfig::validate`]), a band holding no wave vector
+    /// of the grid ([`Error::EmptyBand`]), or a spectrum so large at this grid that the fields
+    /// could overflow f32 ([`Error::OutOfRange`] on `amplitude`).
+    pub fn new(spectrum: &Spectrum, config: CascadeConfig) -> Result<Cascade, Error> {
+        config.validate()?;
+        let n = config.size;
+        let dk64 = TAU / f64::from(config.length);
+        let dk = dk64 as f32;
+        let k_min = f64::from(config.k_min);
+        let k_max = f64::from(config.k_max);
+        let in_band = |i: usize, j: usize| -> Option<(f64, f64)> {
+            if i == n / 2 || j == n / 2 {
+                return None;
+            }
+            let kx = f64::from(wave_index(i, n)) * dk64;
+            let kz = f64::from(wave_index(j, n)) * dk64;
+            let k = kx.hypot(kz);
+            (k > 0.0 && k >= k_min && k < k_max).then_some((kx, kz))
+        };
+        let band_has_vectors = (0..n).any(|j| (0..n).any(|i| in_band(i, j).is_some()));
+        if !band_has_vectors {
+            return Err(Error::EmptyBand { k_min, k_max });
+        }
+
+        // h0 in natural order, rows in parallel; each value depends only on its wave vector.
+        let params = spectrum.spreading_params();
+        let mut h0 = vec![Complex32::default(); n * n];
+        let mut variance_rows = vec![0.0f64; n];
+        h0.par_chunks_mut(n)
+            .zip(variance_rows.par_iter_mut())
+            .enumerate()
+            .for_each(|(j, (row, variance))| {
+                for (i, value) in row.iter_mut().enumerate() {
+                    let Some((kx, kz)) = in_band(i, j) else {
+                        continue;
+                    };
+                    let s = spectrum.density_f64(kx, kz, &params);
+                    if s <= 0.0 {
+                        continue;
+                    }
+                    *variance += s * dk64 * dk64;
+                    let (xr, xi) =
+                        seed::gaussian_pair(config.seed, wave_index(i, n), wave_index(j, n));
+                    let amplitude = 0.5 * s.sqrt() * dk64;
+                    *value = Complex32::new((xr * amplitude) as f32, (xi * amplitude) as f32);
+                }
+            });
+        // Summed in a fixed order: the same result whatever the thread count.
+        let expected_variance: f64 = variance_rows.iter().sum();
+        let abs_sum: f64 = h0.iter().map(|c| f64::from(c.norm())).sum();
+        let k_grid_max = dk64 * (n as f64 / 2.0) * std::f64::consts::SQRT_2;
+        let amplitude_bound = 2.0 * abs_sum * k_grid_max.max(1.0);
+        check_amplitude(amplitude_bound, config.choppiness)?;
+
+        let dispersion = spectrum.dispersion();
+        let looping = config.repeat_period.map(f64::from);
+        let half = n / 2;
+        let mut evolution = vec![Evolution::default(); half * n];
+        evolution
+            .par_chunks_mut(n)
+            .enumerate()
+            .for_each(|(i, row)| {
+                for (j, entry) in row.iter_mut().enumerate() {
+                    let a = h0[j * n + i];
+                    let b = h0[((n - j) % n) * n + (n - i) % n].conj();
+                    let kx = f64::from(wave_index(i, n)) * dk64;
+                    let kz = f64::from(wave_index(j, n)) * dk64;
+                    let omega = dispersion.omega_f64(kx.hypot(kz));
+                    let freq = match looping {
+                        Some(period) => (omega * period / TAU).floor() / period,
+                        None => omega / TAU,
+                    };
+                    *entry = Evolution {
+                        p: a + b,
+                        q: Complex32::i() * (b - a),
+                        freq,
+                    };
+                }
+            });
+
+        let rows = RowFft::new(n);
+        let tasks = n.div_ceil(ROWS_PER_TASK) + half;
+        let mut cascade = Cascade {
+            config,
+            n,
+            dk,
+            time: 0.0,
+            expected_variance,
+            amplitude_bound,
+            h0,
+            evolution,
+            spectral: vec![Complex32::default(); TRANSFORMS * n * n],
+            spatial: vec![Complex32::default(); TRANSFORMS * n * n],
+            scratch: vec![Complex32::default(); tasks * rows.scratch_len()],
+            rows,
+            height: vec![0.0; n * n],
+            displacement: vec![Vec2::ZERO; n * n],
+            slope: vec![Vec2::ZERO; n * n],
+            normal: vec![Vec3::Y; n * n],
+            jacobian: vec![1.0; n * n],
+        };
+        cascade.update(0.0)?;
+        Ok(cascade)
+    }
+
+    /// Evolves the spectrum to time `t` (seconds, f64; any t with |t| ≤ [`MAX_TIME`]) and
+    /// recomputes every output buffer. Allocates nothing; the result does not depend on the
+    /// number of rayon threads.
+    ///
+    /// Errors: non-finite t ([`Error::NonFinite`]) or |t| > [`MAX_TIME`]
+    /// ([`Error::OutOfRange`]); the buffers are left as they were.
+    pub fn update(&mut self, t: f64) -> Result<(), Error> {
+        if !t.is_finite() {
+            return Err(Error::NonFinite { name: "t" });
+        }
+        if t.abs() > MAX_TIME {
+            return Err(Error::OutOfRange {
+                name: "t",
+                value: t,
+                expected: "|t| ≤ 1e9 s",
+            });
+        }
+        self.time = t;
+        // Looping: the phases are integer multiples of t/T, so t mod T gives the same fields
+        // with smaller, more precise phases.
+        let phase_time = match self.config.repeat_period {
+            Some(period) => t.rem_euclid(f64::from(period)),
+            None => t,
+        };
+        self.spectral_pass(phase_time);
+        self.spatial_pass();
+        Ok(())
+    }
+
+    /// Pass 1: builds the four packed spectra row by row (rows are k_x, so a row and its
+    /// Hermitian partner −k are rows i and N − i) and transforms each row along k_z while it
+    /// is in cache.
+    fn spectral_pass(&mut self, t: f64) {
+        let n = self.n;
+        let half = n / 2;
+        let row_len = TRANSFORMS * n;
+        let dk = self.dk;
+        let evolution = &self.evolution;
+        let rows = &self.rows;
+        let s = rows.scratch_len();
+
+        let (row0, rest) = self.spectral.split_at_mut(row_len);
+        let (top, rest) = rest.split_at_mut((half - 1) * row_len);
+        let (nyquist, bottom) = rest.split_at_mut(row_len);
+        let (scratch0, scratch_pairs) = self.scratch.split_at_mut(s);
+
+        rayon::join(
+            || {
+                // Row i = 0 (k_x = 0) is its own partner: (0, j) pairs with (0, N − j).
+                row0.fill(Complex32::default());
+                let table = &evolution[..n];
+                for j in 1..half {
+                    let (plus, minus) =
+                        packed_pair(&table[j], 0.0, wave_index(j, n) as f32 * dk, t);
+                    for f in 0..TRANSFORMS {
+                        row0[f * n + j] = plus[f];
+                        row0[f * n + n - j] = minus[f];
+                    }
+                }
+                rows.process(row0, scratch0);
+                // Row N/2 is the Nyquist column: zero, and so is its transform.
+                nyquist.fill(Complex32::default());
+            },
+            || {
+                top.par_chunks_mut(row_len)
+                    .zip(bottom.par_rchunks_mut(row_len))
+                    .zip(scratch_pairs.par_chunks_mut(s))
+                    .enumerate()
+                    .for_each(|(index, ((upper, lower), scratch))| {
+                        let i = index + 1;
+                        let kx = i as f32 * dk;
+                        let table = &evolution[i * n..(i + 1) * n];
+                        for j in 0..n {
+                            let jm = (n - j) % n;
+                            if j == half {
+                                for f in 0..TRANSFORMS {
+                                    upper[f * n + j] = Complex32::default();
+                                    lower[f * n + j] = Complex32::default();
+                                }
+                                continue;
+                            }
+                            let kz = wave_index(j, n) as f32 * dk;
+                            let (plus, minus) = packed_pair(&table[j], kx, kz, t);
+                            for f in 0..TRANSFORMS {
+                                upper[f * n + j] = plus[f];
+                                lower[f * n + jm] = minus[f];
+                            }
+                        }
+                        rows.process(upper, scratch);
+                        rows.process(lower, scratch);
+                    });
+            },
+        );
+    }
+
+    /// Pass 2: gathers blocks of z rows from the pass-1 buffer (a blocked transpose),
+    /// transforms them along x and turns the four packed results into the output buffers.
+    fn spatial_pass(&mut self) {
+        let n = self.n;
+        let row_len = TRANSFORMS * n;
+        let lambda = self.config.choppiness;
+        let spectral = &self.spectral;
+        let rows = &self.rows;
+        let s = rows.scratch_len();
+        let block = ROWS_PER_TASK * n;
+        (
+            self.spatial.par_chunks_mut(ROWS_PER_TASK * row_len),
+            self.scratch.par_chunks_mut(s),
+            self.height.par_chunks_mut(block),
+            self.displacement.par_chunks_mut(block),
+            self.slope.par_chunks_mut(block),
+            self.normal.par_chunks_mut(block),
+            self.jacobian.par_chunks_mut(block),
+        )
+            .into_par_iter()
+            .enumerate()
+            .for_each(
+                |(b, (spatial, scratch, height, displacement, slope, normal, jacobian))| {
+                    let j0 = b * ROWS_PER_TASK;
+                    let count = spatial.len() / row_len;
+                    // Gather: spatial[r][f][i] = spectral[i][f][j0 + r].
+                    for i in 0..n {
+                        let source = &spectral[i * row_len..(i + 1) * row_len];
+                        for f in 0..TRANSFORMS {
+                            let column = &source[f * n + j0..f * n + j0 + count];
+                            for (r, &value) in column.iter().enumerate() {
+                                spatial[r * row_len + f * n + i] = value;
+                            }
+                        }
+                    }
+                    rows.process(spatial, scratch);
+                    for r in 0..count {
+                        let row = &spatial[r * row_len..(r + 1) * row_len];
+                        let out = r * n..(r + 1) * n;
+                        write_outputs(
+                            row,
+                            n,
+                            lambda,
+                            &mut height[out.clone()],
+                            &mut displacement[out.clone()],
+                            &mut slope[out.clone()],
+                            &mut normal[out.clone()],
+                            &mut jacobian[out],
+                        );
+                    }
+                },
+            );
+    }
+
+    /// The configuration this cascade was built with (choppiness as last set).
+    pub fn config(&self) -> &CascadeConfig {
+        &self.config
+    }
+
+    /// Grid size N.
+    pub fn size(&self) -> usize {
+        self.n
+    }
+
+    /// Side L of the patch in metres.
+    pub fn length(&self) -> f32 {
+        self.config.length
+    }
+
+    /// Grid spacing Δk = 2π/L of the wave vectors, in rad/m.
+    pub fn delta_k(&self) -> f32 {
+        self.dk
+    }
+
+    /// Time in seconds of the last [`Cascade::update`] (0 after construction).
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Changes the choppiness λ (dimensionless, ≥ 0). Takes effect at the next
+    /// [`Cascade::update`].
+    pub fn set_choppiness(&mut self, choppiness: f32) -> Result<(), Error> {
+        let lambda = error::non_negative("choppiness", choppiness)?;
+        check_amplitude(self.amplitude_bound, lambda)?;
+        self.config.choppiness = lambda;
+        Ok(())
+    }
+
+    /// Expected variance of η in m²: Σ S(k) Δk² over the wave vectors of the grid in the
+    /// band. 16 times this is the expected square of the simulated H_s.
+    pub fn expected_variance(&self) -> f64 {
+        self.expected_variance
+    }
+
+    /// Height η in metres at every grid point (undisplaced positions).
+    pub fn height(&self) -> &[f32] {
+        &self.height
+    }
+
+    /// Horizontal displacement λ·(D_x, D_z) in metres: grid point x₀ moves to x₀ + this.
+    pub fn displacement(&self) -> &[Vec2] {
+        &self.displacement
+    }
+
+    /// Slope (∂y/∂x, ∂y/∂z) of the displaced surface at each grid point's displaced position,
+    /// (−n_x/n_y, −n_z/n_y), dimensionless. Where the surface folds (J ≤ 0) n_y is clamped to
+    /// 1e-4·|n| to stay finite.
+    pub fn slope(&self) -> &[Vec2] {
+        &self.slope
+    }
+
+    /// Unit normal of the displaced surface, (T_z × T_x)/|T_z × T_x|; it points down where
+    /// the surface folds over itself (J < 0).
+    pub fn normal(&self) -> &[Vec3] {
+        &self.normal
+    }
+
+    /// Jacobian J = (1 + λD_xx)(1 + λD_zz) − λ²D_xz² of the horizontal displacement map,
+    /// dimensionless: below 1 at crests, negative where the surface folds (foam).
+    pub fn jacobian(&self) -> &[f32] {
+        &self.jacobian
+    }
+
+    /// The initial amplitudes h0(k) in m, in the grid's FFT order (index j·N + i holds
+    /// k = Δk·(m(i), m(j))).
+    pub fn h0(&self) -> &[Complex32] {
+        &self.h0
+    }
+
+    /// The evolved spectrum h̃(k, t) = h0(k)e^{−iωt} + conj(h0(−k))e^{iωt} in m, in the grid's
+    /// FFT order, computed afresh in f64 (for verification and tools; allocates). Non-finite
+    /// t gives zeros.
+    pub fn wave_spectrum(&self, t: f64) -> Vec<Complex32> {
+        let n = self.n;
+        if !t.is_finite() {
+            return vec![Complex32::default(); n * n];
+        }
+        let t = match self.config.repeat_period {
+            Some(period) => t.rem_euclid(f64::from(period)),
+            None => t,
+        };
+        let mut out = vec![Complex32::default(); n * n];
+        for j in 0..n {
+            for i in 0..n {
+                let (entry, conjugate) = self.evolution_entry(i, j);
+                let phase = (entry.freq * t).fract() * TAU;
+                let (sin, cos) = phase.sin_cos();
+                let p = (f64::from(entry.p.re), f64::from(entry.p.im));
+                let q = (f64::from(entry.q.re), f64::from(entry.q.im));
+                let value = Complex32::new(
+                    (p.0 * cos + q.0 * sin) as f32,
+                    (p.1 * cos + q.1 * sin) as f32,
+                );
+                out[j * n + i] = if conjugate { value.conj() } else { value };
+            }
+        }
+        out
+    }
+
+    /// Angular frequency ω(k) in rad/s used for the wave vector at grid index (i, j)
+    /// (quantised when looping). Out-of-grid indices give 0.
+    pub fn omega_at(&self, i: usize, j: usize) -> f64 {
+        if i >= self.n || j >= self.n {
+            return 0.0;
+        }
+        self.evolution_entry(i, j).0.freq * TAU
+    }
+
+    /// The table entry that evolves (i, j), and whether (i, j) is the conjugate partner.
+    fn evolution_entry(&self, i: usize, j: usize) -> (Evolution, bool) {
+        let n = self.n;
+        let half = n / 2;
+        if i == half || j == half {
+            (Evolution::default(), false)
+        } else if i < half {
+            (self.evolution[i * n + j], false)
+        } else {
+            let (pi, pj) = ((n - i) % n, (n - j) % n);
+            (self.evolution[pi * n + pj], true)
+        }
+    }
+
+    /// One of the eight real fields at the last update, in metres or dimensionless as
+    /// [`Field`] says, in buffer order (index j·N + i). Allocates; read straight from the
+    /// packed transforms.
+    pub fn field(&self, field: Field) -> Vec<f32> {
+        let n = self.n;
+        let (transform, imaginary) = field.packing();
+        let mut out = Vec::with_capacity(n * n);
+        for j in 0..n {
+            let row = &self.spatial[(j * TRANSFORMS + transform) * n..][..n];
+            out.extend(row.iter().map(|c| if imaginary { c.im } else { c.re }));
+        }
+        out
+    }
+
+    /// The raw result of packed transform `transform` (0..4) at the last update, in buffer
+    /// order: real part field 2·`transform`, imaginary part field 2·`transform` + 1 of
+    /// [`Field::ALL`]. An index ≥ 4 gives an empty vector.
+    pub fn packed_transform(&self, transform: usize) -> Vec<Complex32> {
+        let n = self.n;
+        if transform >= TRANSFORMS {
+            return Vec::new();
+        }
+        let mut out = Vec::with_capacity(n * n);
+        for j in 0..n {
+            out.extend_from_slice(&self.spatial[(j * TRANSFORMS + transform) * n..][..n]);
+        }
+        out
+    }
+}
+
+fn check_amplitude(bound: f64, choppiness: f32) -> Result<(), Error> {
+    let bound = bound * f64::from(choppiness).max(1.0);
+    if bound.is_nan() || bound > AMPLITUDE_LIMIT {
+        return Err(Error::OutOfRange {
+            name: "amplitude",
+            value: bound,
+            expected: "Σ|h0|·max(1, k)·max(1, λ) ≤ 1e15 (fields would overflow f32)",
+        });
+    }
+    Ok(())
+}
+
+/// sin and cos of 2π·`turns` for `turns` in [−½, ½], to about 1e-7: reduced to a quarter
+/// turn and a short Taylor polynomial on [−π/4, π/4] (truncation error below 4e-9).
+#[inline]
+pub(crate) fn sin_cos_turns(turns: f32) -> (f32, f32) {
+    let quadrant = (turns * 4.0).round();
+    let a = (turns - quadrant * 0.25) * std::f32::consts::TAU;
+    let a2 = a * a;
+    let sin = a
+        * (1.0
+            + a2 * (-1.0 / 6.0
+                + a2 * (1.0 / 120.0 + a2 * (-1.0 / 5040.0 + a2 * (1.0 / 362_880.0)))));
+    let cos = 1.0 + a2 * (-0.5 + a2 * (1.0 / 24.0 + a2 * (-1.0 / 720.0 + a2 * (1.0 / 40_320.0))));
+    match (quadrant as i32) & 3 {
+        0 => (sin, cos),
+        1 => (cos, -sin),
+        2 => (-sin, -cos),
+        _ => (-cos, sin),
+    }
+}
+
+/// The four packed spectral values at k = (`kx`, `kz`) and at −k, from one evolution entry.
+///
+/// Transform p holds A + iB for the field pair (A, B) = (η, D_x), (D_z, η_x), (η_z, D_xx),
+/// (D_zz, D_xz). With A = α h̃, B = β h̃ and Hermitian fields, the value at k is (α + iβ) h̃
+/// and at −k it is (conj α + i conj β) conj h̃.
+#[inline]
+fn packed_pair(entry: &Evolution, kx: f32, kz: f32, t: f64) -> ([Complex32; 4], [Complex32; 4]) {
+    let turns = entry.freq * t;
+    let (sin, cos) = sin_cos_turns((turns - turns.round()) as f32);
+    let h = entry.p * cos + entry.q * sin;
+    let hc = h.conj();
+    let k = (kx * kx + kz * kz).sqrt();
+    let inv_k = if k > 0.0 { 1.0 / k } else { 0.0 };
+    let (ux, uz) = (kx * inv_k, kz * inv_k);
+    let i = Complex32::i();
+    let plus = [
+        h * (1.0 - ux),
+        h * Complex32::new(-kx, uz),
+        h * (i * (kz - kx * ux)),
+        h * Complex32::new(-kz * uz, -kx * uz),
+    ];
+    let minus = [
+        hc * (1.0 + ux),
+        hc * Complex32::new(kx, -uz),
+        hc * (-i * (kz + kx * ux)),
+        hc * Complex32::new(-kz * uz, -kx * uz),
+    ];
+    (plus, minus)
+}
+
+/// Output buffers of one grid row from its four packed, transformed rows.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn write_outputs(
+    row: &[Complex32],
+    n: usize,
+    lambda: f32,
+    height: &mut [f32],
+    displacement: &mut [Vec2],
+    slope: &mut [Vec2],
+    normal: &mut [Vec3],
+    jacobian: &mut [f32],
+) {
+    let (t0, rest) = row.split_at(n);
+    let (t1, rest) = rest.split_at(n);
+    let (t2, t3) = rest.split_at(n);
+    for i in 0..n {
+        let (eta, dx) = (t0[i].re, t0[i].im);
+        let (dz, eta_x) = (t1[i].re, t1[i].im);
+        let (eta_z, dxx) = (t2[i].re, t2[i].im);
+        let (dzz, dxz) = (t3[i].re, t3[i].im);
+        let jxx = 1.0 + lambda * dxx;
+        let jzz = 1.0 + lambda * dzz;
+        let jxz = lambda * dxz;
+        let det = jxx * jzz - jxz * jxz;
+        // n = T_z × T_x with T_x = (jxx, η_x, jxz), T_z = (jxz, η_z, jzz); n_y = J.
+        let raw = Vec3::new(eta_z * jxz - jzz * eta_x, det, jxz * eta_x - eta_z * jxx);
+        let len = raw.length();
+        height[i] = eta;
+        displacement[i] = Vec2::new(lambda * dx, lambda * dz);
+        jacobian[i] = det;
+        if len > 0.0 && len.is_finite() {
+            normal[i] = raw / len;
+            let ny = det.max(MIN_SLOPE_NY * len);
+            slope[i] = Vec2::new(-raw.x / ny, -raw.z / ny);
+        } else {
+            normal[i] = Vec3::Y;
+            slope[i] = Vec2::ZERO;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fast_sin_cos_matches_std_over_a_turn() {
+        let mut worst = 0.0f64;
+        for step in -50_000..=50_000 {
+            let turns = step as f32 / 100_000.0;
+            let (s, c) = sin_cos_turns(turns);
+            let (es, ec) = (f64::from(turns) * TAU).sin_cos();
+            worst = worst
+                .max((f64::from(s) - es).abs())
+                .max((f64::from(c) - ec).abs());
+        }
+        // f32 rounding of the reduced angle and of the polynomial: a few ulps of 1.
+        assert!(worst < 5e-7, "worst error {worst}");
+    }
+
+    #[test]
+    fn wave_index_is_plain_fft_order() {
+        let n = 8;
+        let m: Vec<i32> = (0..n).map(|i| wave_index(i, n)).collect();
+        assert_eq!(m, vec![0, 1, 2, 3, -4, -3, -2, -1]);
+    }
+}
