@@ -33,6 +33,9 @@ mod cascade;
 mod dispersion;
 mod error;
 mod fft2d;
+mod ocean;
+mod presets;
+mod sampling;
 mod seed;
 mod spectrum;
 
@@ -42,6 +45,9 @@ pub use error::Error;
 pub use fft2d::Fft2d;
 pub use glam::{Vec2, Vec3};
 pub use num_complex::Complex32;
+pub use ocean::{FoamConfig, OceanConfig, OceanState, BAND_SPLIT, MAX_STEP};
+pub use presets::SeaState;
+pub use sampling::{SurfaceSample, HEIGHT_AT_MAX_ITERATIONS, HEIGHT_AT_TOLERANCE};
 pub use spectrum::{DepthFactor, Spectrum, Spreading, DEFAULT_GAMMA, MAX_WIND_SPEED};
 
 /// Largest supported grid size N (a cascade holds about 40·N² bytes per field set).

@@ -1,0 +1,119 @@
+//! Named sea states: a spectrum and an ocean configuration that suit it.
+
+use crate::error::Error;
+use crate::ocean::OceanConfig;
+use crate::spectrum::{Spectrum, Spreading};
+
+/// A named sea state, with a Beaufort-like wind and the fetch and depth that go with it.
+///
+/// [`SeaState::build`] gives the spectrum and an [`OceanConfig`] whose cascade lengths suit
+/// the sea's peak wavelength. The significant wave heights and peak periods of every preset
+/// are listed in the guide (`docs/guide.md`).
+///
+/// ```
+/// use ocean_fft::{OceanState, SeaState};
+/// let (spectrum, mut config) = SeaState::FreshBreeze.build()?;
+/// config.size = 64;
+/// let ocean = OceanState::new(spectrum, config)?;
+/// assert_eq!(ocean.cascades().len(), 3);
+/// # Ok::<(), ocean_fft::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum SeaState {
+    /// Beaufort 2, light breeze: U10 = 2.5 m/s over 20 km. Ripples and small wavelets.
+    Calm,
+    /// Beaufort 4: U10 = 6.5 m/s over 100 km. Small waves, fairly frequent white horses.
+    ModerateBreeze,
+    /// Beaufort 5: U10 = 9.5 m/s over 300 km. Moderate waves, many white horses.
+    FreshBreeze,
+    /// Beaufort 10: U10 = 26 m/s over 500 km, choppiness 1.2. High waves, breaking crests.
+    Storm,
+    /// A long, narrow swell from a distant storm: JONSWAP from parameters with T_p = 12 s,
+    /// α = 0.0025, γ = 5, Hasselmann spreading with Horvath's swell control at 1.
+    Swell,
+    /// TMA: U10 = 8 m/s over 15 km in 4 m of water. Short, steep, depth-limited waves.
+    ShallowBay,
+}
+
+impl SeaState {
+    /// Every preset, calmest first (the swell and the bay last).
+    pub const ALL: [SeaState; 6] = [
+        SeaState::Calm,
+        SeaState::ModerateBreeze,
+        SeaState::FreshBreeze,
+        SeaState::Storm,
+        SeaState::Swell,
+        SeaState::ShallowBay,
+    ];
+
+    /// Short lowercase name (for file names and menus).
+    pub fn name(self) -> &'static str {
+        match self {
+            SeaState::Calm => "calm",
+            SeaState::ModerateBreeze => "moderate_breeze",
+            SeaState::FreshBreeze => "fresh_breeze",
+            SeaState::Storm => "storm",
+            SeaState::Swell => "swell",
+            SeaState::ShallowBay => "shallow_bay",
+        }
+    }
+
+    /// Wind speed U10 in m/s at 10 m above the sea (for the swell, the wind its peak implies).
+    pub fn wind_speed(self) -> f32 {
+        match self {
+            SeaState::Calm => 2.5,
+            SeaState::ModerateBreeze => 6.5,
+            SeaState::FreshBreeze => 9.5,
+            SeaState::Storm => 26.0,
+            // The wind speed 0.877 g/ω_p that the swell's peak implies.
+            SeaState::Swell => 16.43,
+            SeaState::ShallowBay => 8.0,
+        }
+    }
+
+    /// The spectrum and ocean configuration of this sea state (size 256, seed 0; change
+    /// them freely).
+    pub fn build(self) -> Result<(Spectrum, OceanConfig), Error> {
+        let u = self.wind_speed();
+        let (spectrum, lengths, choppiness) = match self {
+            SeaState::Calm => (Spectrum::jonswap(u, 20_000.0)?, vec![60.0, 13.8, 3.1], 0.8),
+            SeaState::ModerateBreeze => (
+                Spectrum::jonswap(u, 100_000.0)?,
+                vec![500.0, 115.0, 25.5],
+                1.0,
+            ),
+            SeaState::FreshBreeze => (
+                Spectrum::jonswap(u, 300_000.0)?,
+                vec![1000.0, 230.0, 51.0],
+                1.0,
+            ),
+            SeaState::Storm => (
+                Spectrum::jonswap(u, 500_000.0)?,
+                vec![4000.0, 920.0, 204.0],
+                1.2,
+            ),
+            SeaState::Swell => {
+                let peak_omega = std::f32::consts::TAU / 12.0;
+                (
+                    Spectrum::jonswap_from_parameters(0.0025, peak_omega, 5.0)?
+                        .with_spreading(Spreading::Hasselmann)?
+                        .with_swell(1.0)?,
+                    vec![2000.0, 460.0, 102.0],
+                    0.8,
+                )
+            }
+            SeaState::ShallowBay => (
+                Spectrum::tma(u, 15_000.0, 4.0)?,
+                vec![200.0, 46.0, 10.2],
+                1.0,
+            ),
+        };
+        let config = OceanConfig {
+            lengths,
+            choppiness,
+            ..OceanConfig::default()
+        };
+        Ok((spectrum, config))
+    }
+}

@@ -1,0 +1,207 @@
+//! World-space queries on an [`OceanState`]: periodic bilinear sampling of every cascade,
+//! summed, and the inversion of the horizontal displacement for the water height at a point.
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+use crate::cascade::Cascade;
+use crate::error::Error;
+use crate::ocean::OceanState;
+
+/// Fixed-point iterations of [`OceanState::height_at`] at most.
+pub const HEIGHT_AT_MAX_ITERATIONS: usize = 16;
+
+/// [`OceanState::height_at`] stops once the displaced point is this close to the query, in
+/// metres.
+pub const HEIGHT_AT_TOLERANCE: f32 = 1e-4;
+
+/// The surface at one undisplaced world point, summed over the cascades.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SurfaceSample {
+    /// Height η in metres.
+    pub height: f32,
+    /// Horizontal displacement (x, z) in metres (already × choppiness): the water at the
+    /// undisplaced point sits at that point plus this.
+    pub displacement: Vec2,
+    /// Slope (∂y/∂x, ∂y/∂z) of the displaced surface, dimensionless: the sum of the cascades'
+    /// slopes.
+    pub slope: Vec2,
+    /// Unit normal of the displaced surface, from the summed slope.
+    pub normal: Vec3,
+    /// Foam coverage in [0, 1]: 1 − Π(1 − f_c) over the cascades' foam f_c.
+    pub foam: f32,
+}
+
+/// Bilinear weights and the four sample indices of world point (x, z) on a periodic N×N grid
+/// of side `length`. The wrap is done in f64, so a point a million metres out keeps the grid's
+/// sub-millimetre resolution.
+#[derive(Debug, Clone, Copy)]
+struct Stencil {
+    index: [usize; 4],
+    weight: [f32; 4],
+}
+
+impl Stencil {
+    fn new(x: f64, z: f64, length: f64, n: usize) -> Stencil {
+        let cells = n as f64 / length;
+        let gx = x.rem_euclid(length) * cells;
+        let gz = z.rem_euclid(length) * cells;
+        let (ix, fx) = split(gx, n);
+        let (iz, fz) = split(gz, n);
+        let ix1 = (ix + 1) % n;
+        let iz1 = (iz + 1) % n;
+        Stencil {
+            index: [iz * n + ix, iz * n + ix1, iz1 * n + ix, iz1 * n + ix1],
+            weight: [
+                (1.0 - fx) * (1.0 - fz),
+                fx * (1.0 - fz),
+                (1.0 - fx) * fz,
+                fx * fz,
+            ],
+        }
+    }
+
+    #[inline]
+    fn scalar(&self, values: &[f32]) -> f32 {
+        (0..4).map(|c| values[self.index[c]] * self.weight[c]).sum()
+    }
+
+    #[inline]
+    fn vector(&self, values: &[Vec2]) -> Vec2 {
+        (0..4).map(|c| values[self.index[c]] * self.weight[c]).sum()
+    }
+}
+
+/// Integer cell and fraction of grid coordinate `g` in [0, n]; rounding can give exactly n,
+/// which wraps to cell 0.
+fn split(g: f64, n: usize) -> (usize, f32) {
+    let cell = g.floor();
+    let fraction = (g - cell) as f32;
+    ((cell as usize) % n, fraction)
+}
+
+fn check_point(x: f64, z: f64) -> Result<(), Error> {
+    if !x.is_finite() {
+        return Err(Error::NonFinite { name: "x" });
+    }
+    if !z.is_finite() {
+        return Err(Error::NonFinite { name: "z" });
+    }
+    Ok(())
+}
+
+fn stencil_of(cascade: &Cascade, x: f64, z: f64) -> Stencil {
+    Stencil::new(x, z, f64::from(cascade.length()), cascade.size())
+}
+
+impl OceanState {
+    /// The surface at the undisplaced world point (`x`, `z`) in metres (any finite
+    /// coordinates; every cascade wraps periodically): each cascade sampled bilinearly and
+    /// summed. Errors only for non-finite coordinates.
+    pub fn sample(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
+        check_point(x, z)?;
+        Ok(self.sample_unchecked(x, z))
+    }
+
+    fn sample_unchecked(&self, x: f64, z: f64) -> SurfaceSample {
+        let mut out = SurfaceSample::default();
+        let mut clear = 1.0f32;
+        for (cascade, foam) in self.cascades.iter().zip(&self.foam) {
+            let s = stencil_of(cascade, x, z);
+            out.height += s.scalar(cascade.height());
+            out.displacement += s.vector(cascade.displacement());
+            out.slope += s.vector(cascade.slope());
+            clear *= 1.0 - s.scalar(foam);
+        }
+        out.foam = (1.0 - clear).clamp(0.0, 1.0);
+        out.normal = normal_from_slope(out.slope);
+        out
+    }
+
+    /// Summed horizontal displacement at the undisplaced point, in metres.
+    fn displacement_at(&self, x: f64, z: f64) -> Vec2 {
+        self.cascades
+            .iter()
+            .map(|cascade| stencil_of(cascade, x, z).vector(cascade.displacement()))
+            .sum()
+    }
+
+    /// The undisplaced point x₀ whose water lands on world point (`x`, `z`):
+    /// x₀ + D(x₀) = (x, z), solved by the fixed-point iteration x₀ ← p − D(x₀) (at most
+    /// [`HEIGHT_AT_MAX_ITERATIONS`], stopping within [`HEIGHT_AT_TOLERANCE`]). It converges
+    /// where the surface does not fold (J > 0); returns x₀ and the final miss in metres.
+    pub fn undisplaced_point(&self, x: f64, z: f64) -> Result<([f64; 2], f32), Error> {
+        check_point(x, z)?;
+        Ok(self.undisplaced_unchecked(x, z))
+    }
+
+    fn undisplaced_unchecked(&self, x: f64, z: f64) -> ([f64; 2], f32) {
+        let mut d = self.displacement_at(x, z);
+        let mut x0 = [x - f64::from(d.x), z - f64::from(d.y)];
+        let mut miss = f32::INFINITY;
+        for _ in 0..HEIGHT_AT_MAX_ITERATIONS {
+            d = self.displacement_at(x0[0], x0[1]);
+            let landed = [x0[0] + f64::from(d.x), x0[1] + f64::from(d.y)];
+            let error = [x - landed[0], z - landed[1]];
+            miss = error[0].hypot(error[1]) as f32;
+            if miss < HEIGHT_AT_TOLERANCE {
+                break;
+            }
+            x0 = [x - f64::from(d.x), z - f64::from(d.y)];
+        }
+        (x0, miss)
+    }
+
+    /// The surface at world point (`x`, `z`) after horizontal displacement: the sample of
+    /// the undisplaced point whose water lands there (see [`OceanState::undisplaced_point`]).
+    /// Its height, normal and foam are what a floating object at (x, z) feels.
+    pub fn surface_at(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
+        check_point(x, z)?;
+        let (x0, _) = self.undisplaced_unchecked(x, z);
+        Ok(self.sample_unchecked(x0[0], x0[1]))
+    }
+
+    /// Water height y in metres at world point (`x`, `z`), after horizontal displacement —
+    /// the query buoyancy and gameplay need.
+    pub fn height_at(&self, x: f64, z: f64) -> Result<f32, Error> {
+        self.surface_at(x, z).map(|s| s.height)
+    }
+
+    /// [`OceanState::height_at`] for many world points (x, z) in parallel, into `out`
+    /// (same length as `points`). Errors, before writing anything, on a length mismatch or a
+    /// non-finite coordinate.
+    pub fn heights_at(&self, points: &[[f64; 2]], out: &mut [f32]) -> Result<(), Error> {
+        check_batch(points, out.len())?;
+        out.par_iter_mut().zip(points).for_each(|(y, &[x, z])| {
+            let (x0, _) = self.undisplaced_unchecked(x, z);
+            *y = self.sample_unchecked(x0[0], x0[1]).height;
+        });
+        Ok(())
+    }
+
+    /// [`OceanState::sample`] for many undisplaced world points (x, z) in parallel, into
+    /// `out` (same length as `points`). Errors as [`OceanState::heights_at`].
+    pub fn sample_many(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
+        check_batch(points, out.len())?;
+        out.par_iter_mut()
+            .zip(points)
+            .for_each(|(s, &[x, z])| *s = self.sample_unchecked(x, z));
+        Ok(())
+    }
+}
+
+fn check_batch(points: &[[f64; 2]], out_len: usize) -> Result<(), Error> {
+    if points.len() != out_len {
+        return Err(Error::OutOfRange {
+            name: "out.len()",
+            value: out_len as f64,
+            expected: "equal to points.len()",
+        });
+    }
+    points.iter().try_for_each(|&[x, z]| check_point(x, z))
+}
+
+/// Unit normal (−s_x, 1, −s_z)/|…| of a surface with slope `slope`.
+pub(crate) fn normal_from_slope(slope: Vec2) -> Vec3 {
+    Vec3::new(-slope.x, 1.0, -slope.y).normalize_or(Vec3::Y)
+}
