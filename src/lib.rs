@@ -1,19 +1,39 @@
 //! # ocean-fft
 //!
 //! A pure-CPU simulation of the open-ocean surface with Tessendorf's statistical FFT method and
-//! calibrated oceanographic spectra.
+//! calibrated oceanographic spectra: build an [`OceanState`] once, call
+//! [`OceanState::step`] every frame, then read each cascade's buffers or query the water at a
+//! world point.
 //!
 //! ```
-//! use ocean_fft::{Spectrum, Spreading, Vec2};
+//! use ocean_fft::{OceanConfig, OceanState, Spectrum, Spreading};
 //!
 //! let spectrum = Spectrum::jonswap(10.0, 100_000.0)?   // U10 [m/s], fetch [m]
 //!     .with_wind_direction(0.3)?                       // rad, toward which the wind blows
 //!     .with_spreading(Spreading::DonelanBanner)?;
 //! let hs = spectrum.significant_wave_height();         // m
-//! let s = spectrum.density(Vec2::new(0.1, 0.03));      // S(k) in m⁴
-//! assert!(hs > 2.0 && hs < 2.3 && s > 0.0);
+//! assert!(hs > 2.0 && hs < 2.3);
+//!
+//! let config = OceanConfig { size: 64, ..OceanConfig::default() };   // 3 cascades
+//! let mut ocean = OceanState::new(spectrum, config)?;
+//! for _frame in 0..3 {
+//!     ocean.step(1.0 / 60.0)?;                         // s
+//! }
+//! let heights = ocean.cascades()[0].height();          // m, N×N, index j·N + i
+//! let y = ocean.height_at(25.0, -130.0)?;              // m, water height at world (x, z)
+//! assert!(heights.len() == 64 * 64 && y.abs() < 5.0);
 //! # Ok::<(), ocean_fft::Error>(())
 //! ```
+//!
+//! The parts, in the order data flows through them:
+//!
+//! - [`Spectrum`]: S(k) in m⁴ from JONSWAP, Pierson–Moskowitz, TMA or Phillips with a
+//!   directional [`Spreading`] and a [`Dispersion`]; [`SeaState`] presets.
+//! - [`Cascade`]: one N×N patch; h0(k) drawn once, then every [`Cascade::update`] evolves
+//!   h̃(k, t) and runs four packed complex inverse FFTs for height, displacement, slope,
+//!   normal and Jacobian.
+//! - [`OceanState`]: several cascades on disjoint wave-number bands, the time, foam, and the
+//!   world queries [`OceanState::sample`] and [`OceanState::height_at`].
 //!
 //! # Conventions
 //!
@@ -21,12 +41,24 @@
 //!   [`Vec2`] holding **(x, z)**; 3-vectors are [`Vec3`] (x, y, z).
 //! - Angles in radians. A direction θ is the unit vector (cos θ, sin θ) in (x, z). The wind
 //!   direction is the direction the wind blows **toward**; waves travel downwind.
-//! - SI units: metres, seconds, rad/s, m/s; g = 9.81 m/s² ([`GRAVITY`]).
+//! - SI units: metres, seconds, rad/s, m/s; g = 9.81 m/s² ([`GRAVITY`]). Time is f64.
 //! - Spectra: S(ω) in m²·s/rad, D(ω, θ) in 1/rad with ∫D dθ = 1, S(k) in m⁴ with
-//!   ∫∫S(k) d²k the surface variance and H_s = 4√m0.
+//!   ∫∫S(k) d²k the surface variance and H_s = 4√m0. A cascade's h0 is calibrated so that the
+//!   simulated variance is Σ S(k) Δk².
+//! - Grids: N×N over a patch of side L; sample (i, j) at x = i·L/N, z = j·L/N is at index
+//!   `j * N + i` (z is the row). Spectral index (i, j) holds k = Δk·(m(i), m(j)) in plain FFT
+//!   order.
+//!
+//! # Errors, threads, allocation
+//!
+//! Every constructor, setter and query checks its input and returns [`Error`] rather than
+//! panicking; no NaN reaches an output buffer. The FFT rows, h0 generation and batch queries
+//! run on rayon's pool (or the pool you `install`); results are bit-identical whatever the
+//! number of threads. [`Cascade::update`] and [`OceanState::step`] allocate nothing.
 //!
 //! The formulas, their sources and the choices made where sources differ are in the
-//! repository's `docs/theory.md`.
+//! repository's `docs/theory.md`; how to pick parameters and embed the crate in a game is in
+//! `docs/guide.md`.
 #![warn(missing_docs)]
 
 mod cascade;
