@@ -13,8 +13,7 @@
 
 mod common;
 
-use glam::Vec3;
-use ocean_fft::{OceanState, SeaState, SurfaceSample};
+use ocean_fft::{OceanState, SeaState, SurfaceSample, Vec3};
 
 use common::{out_dir, Canvas, Result};
 
