@@ -180,13 +180,13 @@ fn march(ocean: &OceanState, scene: &Scene, dir: Vec3) -> Option<f32> {
 
 /// Sky radiance in direction `dir` (linear RGB); `with_sun` adds the sun's disc.
 fn sky(dir: Vec3, sun: Vec3, with_sun: bool) -> Vec3 {
-    let horizon = Vec3::new(0.78, 0.84, 0.90);
-    let zenith = Vec3::new(0.18, 0.36, 0.66);
+    let horizon = Vec3::new(0.66, 0.75, 0.84);
+    let zenith = Vec3::new(0.09, 0.22, 0.52);
     let elevation = dir.y.max(0.0);
     let mut colour = horizon.lerp(zenith, elevation.powf(0.45));
     let cosine = dir.dot(sun).max(0.0);
     // Warm glow around the sun.
-    colour += Vec3::new(1.0, 0.78, 0.5) * (0.45 * cosine.powi(12) + 0.35 * cosine.powi(200));
+    colour += Vec3::new(1.0, 0.78, 0.5) * (0.30 * cosine.powi(16) + 0.35 * cosine.powi(300));
     if with_sun && cosine > 0.99985 {
         colour += Vec3::splat(20.0);
     }
@@ -245,7 +245,8 @@ fn shade_water(ocean: &OceanState, scene: &Scene, dir: Vec3, distance: f32) -> V
 
     let mut colour = body * (1.0 - fresnel) + reflection * fresnel + sun_light;
     // Foam: white, lit by the sky and the sun.
-    let foam = (surface.foam * 1.3).clamp(0.0, 1.0) * (1.0 - far);
+    let coverage = ((surface.foam - 0.03) / 0.4).clamp(0.0, 1.0);
+    let foam = coverage * coverage * (3.0 - 2.0 * coverage) * (1.0 - far);
     let foam_light = Vec3::new(0.80, 0.84, 0.88) * (0.55 + 0.45 * normal.dot(scene.sun).max(0.0));
     colour = colour.lerp(foam_light, foam);
 
