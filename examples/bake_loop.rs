@@ -128,12 +128,29 @@ fn main() -> Result<()> {
     }
     let stepped = max_difference(&capture(&ocean), &frames[0]);
     let half = max_difference(&frames[FRAMES / 2], &frames[0]);
+
+    // What the looping costs: ω is rounded down to a multiple of 2π/T, so waves with a
+    // period longer than T stand still. Their share of the largest cascade's variance:
+    let cascade = &ocean.cascades()[0];
+    let (mut frozen, mut total) = (0.0f64, 0.0f64);
+    for (index, h) in cascade.h0().iter().enumerate() {
+        let energy = f64::from(h.norm_sqr());
+        total += energy;
+        if cascade.omega_at(index % SIZE, index / SIZE) == 0.0 {
+            frozen += energy;
+        }
+    }
     println!("max |frame(T) − frame(0)| over η, D_x, D_z: {jumped:.2e} m by set_time(T)");
     println!(
         "max |frame(T) − frame(0)| over η, D_x, D_z: {stepped:.2e} m after {steps} steps of 1/60 s (t = {:.15} s)",
         ocean.time()
     );
     println!("(for comparison max |frame(T/2) − frame(0)| = {half:.3} m)");
+    println!(
+        "looping rounds ω down to multiples of 2π/T: {:.1} % of the largest cascade's wave \
+         energy (periods > {PERIOD} s) stands still; choose a longer T for a more natural loop",
+        100.0 * frozen / total.max(f64::MIN_POSITIVE)
+    );
     if jumped <= TOLERANCE && stepped <= TOLERANCE {
         println!("loop OK: frame at t = T equals frame at t = 0 within {TOLERANCE:.0e} m");
     } else {
