@@ -3,8 +3,9 @@
 //! The default ocean (`Spectrum::jonswap(10.0, 100_000.0)`, `OceanConfig::default()`) is
 //! stepped for 4 s at 30 Hz so that foam builds up. A camera 6 m above the mean surface looks
 //! toward the horizon, slightly off the wind direction, into a low sun. Every pixel casts a
-//! ray, marched against the displaced surface with `OceanState::height_at` (the water height
-//! at a world point after horizontal displacement) and refined by bisection; the hit point is
+//! ray, marched against the displaced surface (the water height at a world point after
+//! horizontal displacement, by two fixed-point steps of `OceanState::sample`; the converged
+//! form is `OceanState::height_at`) and refined by bisection; the hit point is
 //! shaded from `OceanState::surface_at` (normal and foam):
 //!
 //! - sky gradient reflected with Schlick's Fresnel (water n = 1.33, F0 ≈ 0.02);
@@ -72,8 +73,8 @@ fn main() -> Result<()> {
     );
     let right = forward.cross(Vec3::Y).normalize();
     let up = right.cross(forward);
-    let sun_azimuth = yaw - 0.12;
-    let sun_elevation = 0.16f32;
+    let sun_azimuth = yaw + 0.45;
+    let sun_elevation = 0.22f32;
     let sun = Vec3::new(
         sun_elevation.cos() * sun_azimuth.cos(),
         sun_elevation.sin(),
@@ -131,10 +132,23 @@ fn render_pixel(ocean: &OceanState, scene: &Scene, column: usize, row: usize) ->
     }
 }
 
-/// Water height minus ray height at distance `t` along `dir` (negative below the water).
+/// Ray height minus water height at distance `t` along `dir` (negative below the water).
+///
+/// For speed the march uses two fixed-point steps x₀ ← p − D(x₀) with `sample` instead of
+/// `height_at`'s converged iteration (up to 16 steps): the height error is far below a
+/// pixel except on the steepest crests. The hit point is then shaded with the exact
+/// `surface_at`.
 fn gap(ocean: &OceanState, eye: Vec3, dir: Vec3, t: f32) -> f32 {
     let p = eye + dir * t;
-    match ocean.height_at(f64::from(p.x), f64::from(p.z)) {
+    let (x, z) = (f64::from(p.x), f64::from(p.z));
+    let approximate = || -> std::result::Result<f32, ocean_fft::Error> {
+        let d = ocean.sample(x, z)?.displacement;
+        let d = ocean
+            .sample(x - f64::from(d.x), z - f64::from(d.y))?
+            .displacement;
+        Ok(ocean.sample(x - f64::from(d.x), z - f64::from(d.y))?.height)
+    };
+    match approximate() {
         Ok(h) => p.y - h,
         Err(_) => p.y,
     }
@@ -152,13 +166,13 @@ fn march(ocean: &OceanState, scene: &Scene, dir: Vec3) -> Option<f32> {
         // A step that cannot skip a crest much: the vertical gap over the ray's descent plus
         // the steepest slopes, but at least a distance-proportional minimum.
         let f = previous.1.max(0.0);
-        let step = (0.7 * f / (down + 0.6)).max(0.004 * t + 0.02);
+        let step = (0.8 * f / (down + 0.5)).max(0.006 * t + 0.03);
         t = (t + step).min(end);
         let g = gap(ocean, scene.eye, dir, t);
         if g < 0.0 {
             // Bisection between the last point above and this one below.
             let (mut lo, mut hi) = (previous.0, t);
-            for _ in 0..8 {
+            for _ in 0..6 {
                 let mid = 0.5 * (lo + hi);
                 if gap(ocean, scene.eye, dir, mid) > 0.0 {
                     lo = mid;
