@@ -5,7 +5,8 @@
 //!
 //! Each preset is built at size 128 (instead of its default 256) to stay fast, stepped for
 //! 4 s at 30 Hz so that foam builds up, then sampled (`sample_many`, all cascades summed) at
-//! 240×240 undisplaced points of the window. Shading: a low sun from the upper left on the
+//! 720×720 undisplaced points of the window (3×3 per pixel of a 240-pixel tile, averaged to
+//! tame the aliasing of the small waves). Shading: a low sun from the upper left on the
 //! surface normal (hill shading, which shows the slopes of small and large seas alike), a
 //! tint that brightens crests by η/H_s of that preset, and foam blended to white.
 //!
@@ -21,6 +22,8 @@ use common::{out_dir, Canvas, Result};
 const WINDOW: f64 = 200.0;
 /// Tile side in pixels.
 const TILE: usize = 240;
+/// Samples per pixel along each axis (averaged, to tame aliasing of the small waves).
+const SUPER: usize = 3;
 const COLUMNS: usize = 3;
 const PAD: usize = 12;
 const LABEL: usize = 34;
@@ -32,12 +35,13 @@ fn main() -> Result<()> {
     let height = rows * (TILE + LABEL + PAD) + PAD;
     let mut sheet = Canvas::new(width, height, [20, 24, 30]);
 
-    let points: Vec<[f64; 2]> = (0..TILE * TILE)
+    let fine = TILE * SUPER;
+    let points: Vec<[f64; 2]> = (0..fine * fine)
         .map(|p| {
-            let (i, j) = (p % TILE, p / TILE);
+            let (i, j) = (p % fine, p / fine);
             [
-                (i as f64 + 0.5) * WINDOW / TILE as f64,
-                (j as f64 + 0.5) * WINDOW / TILE as f64,
+                (i as f64 + 0.5) * WINDOW / fine as f64,
+                (j as f64 + 0.5) * WINDOW / fine as f64,
             ]
         })
         .collect();
@@ -76,7 +80,18 @@ fn main() -> Result<()> {
         }
         ocean.sample_many(&points, &mut samples)?;
 
-        let tile: Vec<u8> = samples.iter().flat_map(|s| shade(s, sun, hs)).collect();
+        let tile: Vec<u8> = (0..TILE * TILE)
+            .flat_map(|p| {
+                let (i, j) = (p % TILE, p / TILE);
+                let mut sum = Vec3::ZERO;
+                for dj in 0..SUPER {
+                    for di in 0..SUPER {
+                        sum += shade(&samples[(j * SUPER + dj) * fine + i * SUPER + di], sun, hs);
+                    }
+                }
+                to_srgb(sum / (SUPER * SUPER) as f32)
+            })
+            .collect();
         let x0 = PAD + (index % COLUMNS) * (TILE + PAD);
         let y0 = PAD + (index / COLUMNS) * (TILE + LABEL + PAD);
         sheet.text(x0 as i64, y0 as i64, state.name(), 2, [235, 235, 235]);
@@ -96,15 +111,19 @@ fn main() -> Result<()> {
     Ok(())
 }
 
-/// Colour of one top-view pixel: hill shading from the normal, crests tinted by η/H_s,
-/// foam blended to white.
-fn shade(sample: &SurfaceSample, sun: Vec3, hs: f32) -> [u8; 3] {
+/// Linear colour of one top-view sample: hill shading from the normal, crests tinted by
+/// η/H_s, foam blended to white.
+fn shade(sample: &SurfaceSample, sun: Vec3, hs: f32) -> Vec3 {
     let deep = Vec3::new(0.01, 0.07, 0.14);
     let crest = Vec3::new(0.06, 0.30, 0.36);
     let lit = sample.normal.dot(sun).max(0.0);
     let relative = (sample.height / hs.max(1e-6)).clamp(-0.5, 0.5) + 0.5;
     let water = deep.lerp(crest, relative) * (0.15 + 2.2 * lit * lit);
-    let colour = water.lerp(Vec3::splat(0.95), sample.foam.clamp(0.0, 1.0));
+    water.lerp(Vec3::splat(0.95), sample.foam.clamp(0.0, 1.0))
+}
+
+/// Linear colour to 8-bit with gamma 2.2.
+fn to_srgb(colour: Vec3) -> [u8; 3] {
     colour
         .to_array()
         .map(|c| (c.clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0).round() as u8)
