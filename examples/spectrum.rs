@@ -4,9 +4,10 @@
 //!
 //! Run with `cargo run --release --example spectrum`.
 
+mod common;
+
 use std::f32::consts::PI;
-use std::fs::File;
-use std::io::BufWriter;
+use std::path::Path;
 
 use ocean_fft::{Spectrum, Spreading};
 
@@ -72,16 +73,8 @@ impl Canvas {
         self.curve(panel, &[(0.0, 0.0), (0.0, 1.0)], grey);
     }
 
-    fn save(&self, path: &str) -> Result<(), Box<dyn std::error::Error>> {
-        let mut encoder = png::Encoder::new(
-            BufWriter::new(File::create(path)?),
-            WIDTH as u32,
-            HEIGHT as u32,
-        );
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        encoder.write_header()?.write_image_data(&self.pixels)?;
-        Ok(())
+    fn save(&self, path: &str) -> common::Result<()> {
+        common::save_rgb8(Path::new(path), WIDTH, HEIGHT, &self.pixels)
     }
 }
 

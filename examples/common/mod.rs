@@ -1,0 +1,268 @@
+//! Helpers shared by the examples: PNG writing (8- and 16-bit, gray and RGB), a small RGB
+//! canvas with lines and a 3×5 bitmap font, and the `out/` folder.
+//!
+//! Each example includes this with `mod common;`; not every example uses every helper.
+#![allow(dead_code)]
+
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+
+/// The error type of the examples' `main`: library errors, I/O and PNG errors alike.
+pub type Result<T> = std::result::Result<T, Box<dyn std::error::Error>>;
+
+/// Creates `out/` (and `out/<sub>` when `sub` is not empty) and returns its path.
+pub fn out_dir(sub: &str) -> Result<PathBuf> {
+    let dir = if sub.is_empty() {
+        PathBuf::from("out")
+    } else {
+        Path::new("out").join(sub)
+    };
+    std::fs::create_dir_all(&dir)?;
+    Ok(dir)
+}
+
+/// Writes raw PNG image data (`data` already in PNG byte order: 16-bit samples big-endian).
+fn write_png(
+    path: &Path,
+    width: usize,
+    height: usize,
+    color: png::ColorType,
+    depth: png::BitDepth,
+    data: &[u8],
+) -> Result<()> {
+    let mut encoder = png::Encoder::new(
+        BufWriter::new(File::create(path)?),
+        u32::try_from(width)?,
+        u32::try_from(height)?,
+    );
+    encoder.set_color(color);
+    encoder.set_depth(depth);
+    encoder.write_header()?.write_image_data(data)?;
+    Ok(())
+}
+
+/// Writes an 8-bit grayscale PNG (`pixels` row-major, `width * height` values).
+pub fn save_gray8(path: &Path, width: usize, height: usize, pixels: &[u8]) -> Result<()> {
+    write_png(
+        path,
+        width,
+        height,
+        png::ColorType::Grayscale,
+        png::BitDepth::Eight,
+        pixels,
+    )
+}
+
+/// Writes a 16-bit grayscale PNG (`pixels` row-major, `width * height` values).
+pub fn save_gray16(path: &Path, width: usize, height: usize, pixels: &[u16]) -> Result<()> {
+    let bytes: Vec<u8> = pixels.iter().flat_map(|v| v.to_be_bytes()).collect();
+    write_png(
+        path,
+        width,
+        height,
+        png::ColorType::Grayscale,
+        png::BitDepth::Sixteen,
+        &bytes,
+    )
+}
+
+/// Writes an 8-bit RGB PNG (`pixels` row-major, 3 bytes per pixel).
+pub fn save_rgb8(path: &Path, width: usize, height: usize, pixels: &[u8]) -> Result<()> {
+    write_png(
+        path,
+        width,
+        height,
+        png::ColorType::Rgb,
+        png::BitDepth::Eight,
+        pixels,
+    )
+}
+
+/// Writes a 16-bit RGB PNG (`pixels` row-major, 3 values per pixel).
+pub fn save_rgb16(path: &Path, width: usize, height: usize, pixels: &[u16]) -> Result<()> {
+    let bytes: Vec<u8> = pixels.iter().flat_map(|v| v.to_be_bytes()).collect();
+    write_png(
+        path,
+        width,
+        height,
+        png::ColorType::Rgb,
+        png::BitDepth::Sixteen,
+        &bytes,
+    )
+}
+
+/// Maps `value` linearly from [−`range`, `range`] to [0, 65535], clamping outside.
+pub fn to_u16(value: f32, range: f32) -> u16 {
+    let unit = (0.5 + 0.5 * value / range).clamp(0.0, 1.0);
+    (unit * 65535.0).round() as u16
+}
+
+/// Maps `value` linearly from [0, 1] to [0, 255], clamping outside.
+pub fn to_u8(value: f32) -> u8 {
+    (value.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// An 8-bit RGB image to draw on: pixels, lines and text.
+pub struct Canvas {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// Row-major RGB bytes.
+    pub pixels: Vec<u8>,
+}
+
+impl Canvas {
+    /// A canvas filled with `background`.
+    pub fn new(width: usize, height: usize, background: [u8; 3]) -> Self {
+        Canvas {
+            width,
+            height,
+            pixels: background
+                .iter()
+                .copied()
+                .cycle()
+                .take(width * height * 3)
+                .collect(),
+        }
+    }
+
+    /// Sets one pixel; points outside the canvas are ignored.
+    pub fn set(&mut self, x: i64, y: i64, color: [u8; 3]) {
+        if x >= 0 && y >= 0 && (x as usize) < self.width && (y as usize) < self.height {
+            let i = (y as usize * self.width + x as usize) * 3;
+            self.pixels[i..i + 3].copy_from_slice(&color);
+        }
+    }
+
+    /// A `size`×`size` square with its top-left corner at (x, y).
+    pub fn dot(&mut self, x: i64, y: i64, size: i64, color: [u8; 3]) {
+        for dy in 0..size {
+            for dx in 0..size {
+                self.set(x + dx, y + dy, color);
+            }
+        }
+    }
+
+    /// A straight line from `a` to `b` (pixel coordinates), `width` pixels thick.
+    pub fn line(&mut self, a: (f32, f32), b: (f32, f32), width: i64, color: [u8; 3]) {
+        let steps = ((b.0 - a.0).abs().max((b.1 - a.1).abs()).ceil() as usize).max(1);
+        for s in 0..=steps {
+            let t = s as f32 / steps as f32;
+            let x = a.0 + t * (b.0 - a.0);
+            let y = a.1 + t * (b.1 - a.1);
+            self.dot(x as i64, y as i64, width, color);
+        }
+    }
+
+    /// A polyline through `points` (pixel coordinates).
+    pub fn polyline(&mut self, points: &[(f32, f32)], width: i64, color: [u8; 3]) {
+        for pair in points.windows(2) {
+            self.line(pair[0], pair[1], width, color);
+        }
+    }
+
+    /// A filled rectangle.
+    pub fn fill_rect(&mut self, x: i64, y: i64, w: i64, h: i64, color: [u8; 3]) {
+        for yy in y..y + h {
+            for xx in x..x + w {
+                self.set(xx, yy, color);
+            }
+        }
+    }
+
+    /// Writes `text` with the 3×5 font at (x, y) (top-left), each font pixel `scale`×`scale`.
+    /// Letters are drawn upper case; characters without a glyph are left blank.
+    pub fn text(&mut self, x: i64, y: i64, text: &str, scale: i64, color: [u8; 3]) {
+        for (index, c) in text.chars().enumerate() {
+            let bits = glyph(c);
+            let left = x + index as i64 * 4 * scale;
+            for row in 0..5 {
+                for col in 0..3 {
+                    if bits >> (14 - (row * 3 + col)) & 1 == 1 {
+                        self.dot(left + col * scale, y + row * scale, scale, color);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Width in pixels of `text` drawn at `scale`.
+    pub fn text_width(text: &str, scale: i64) -> i64 {
+        (text.chars().count() as i64 * 4 - 1).max(0) * scale
+    }
+
+    /// Copies `tile` (an RGB image of `w`×`h`) with its top-left corner at (x, y).
+    pub fn blit(&mut self, x: i64, y: i64, w: usize, h: usize, tile: &[u8]) {
+        for ty in 0..h {
+            for tx in 0..w {
+                let i = (ty * w + tx) * 3;
+                self.set(
+                    x + tx as i64,
+                    y + ty as i64,
+                    [tile[i], tile[i + 1], tile[i + 2]],
+                );
+            }
+        }
+    }
+
+    /// Writes the canvas as an 8-bit RGB PNG.
+    pub fn save(&self, path: &Path) -> Result<()> {
+        save_rgb8(path, self.width, self.height, &self.pixels)
+    }
+}
+
+/// The 3×5 glyph of `c`: 15 bits, top row first, leftmost pixel the most significant.
+fn glyph(c: char) -> u16 {
+    let rows: [u8; 5] = match c.to_ascii_uppercase() {
+        'A' => [0b010, 0b101, 0b111, 0b101, 0b101],
+        'B' => [0b110, 0b101, 0b110, 0b101, 0b110],
+        'C' => [0b011, 0b100, 0b100, 0b100, 0b011],
+        'D' => [0b110, 0b101, 0b101, 0b101, 0b110],
+        'E' => [0b111, 0b100, 0b110, 0b100, 0b111],
+        'F' => [0b111, 0b100, 0b110, 0b100, 0b100],
+        'G' => [0b011, 0b100, 0b101, 0b101, 0b011],
+        'H' => [0b101, 0b101, 0b111, 0b101, 0b101],
+        'I' => [0b111, 0b010, 0b010, 0b010, 0b111],
+        'J' => [0b001, 0b001, 0b001, 0b101, 0b010],
+        'K' => [0b101, 0b101, 0b110, 0b101, 0b101],
+        'L' => [0b100, 0b100, 0b100, 0b100, 0b111],
+        'M' => [0b101, 0b111, 0b111, 0b101, 0b101],
+        'N' => [0b110, 0b101, 0b101, 0b101, 0b101],
+        'O' => [0b010, 0b101, 0b101, 0b101, 0b010],
+        'P' => [0b110, 0b101, 0b110, 0b100, 0b100],
+        'Q' => [0b010, 0b101, 0b101, 0b110, 0b011],
+        'R' => [0b110, 0b101, 0b110, 0b101, 0b101],
+        'S' => [0b011, 0b100, 0b010, 0b001, 0b110],
+        'T' => [0b111, 0b010, 0b010, 0b010, 0b010],
+        'U' => [0b101, 0b101, 0b101, 0b101, 0b111],
+        'V' => [0b101, 0b101, 0b101, 0b101, 0b010],
+        'W' => [0b101, 0b101, 0b111, 0b111, 0b101],
+        'X' => [0b101, 0b101, 0b010, 0b101, 0b101],
+        'Y' => [0b101, 0b101, 0b010, 0b010, 0b010],
+        'Z' => [0b111, 0b001, 0b010, 0b100, 0b111],
+        '0' => [0b111, 0b101, 0b101, 0b101, 0b111],
+        '1' => [0b010, 0b110, 0b010, 0b010, 0b111],
+        '2' => [0b110, 0b001, 0b010, 0b100, 0b111],
+        '3' => [0b110, 0b001, 0b010, 0b001, 0b110],
+        '4' => [0b101, 0b101, 0b111, 0b001, 0b001],
+        '5' => [0b111, 0b100, 0b110, 0b001, 0b110],
+        '6' => [0b011, 0b100, 0b111, 0b101, 0b111],
+        '7' => [0b111, 0b001, 0b010, 0b010, 0b010],
+        '8' => [0b111, 0b101, 0b111, 0b101, 0b111],
+        '9' => [0b111, 0b101, 0b111, 0b001, 0b110],
+        '.' => [0b000, 0b000, 0b000, 0b000, 0b010],
+        ',' => [0b000, 0b000, 0b000, 0b010, 0b100],
+        '-' => [0b000, 0b000, 0b111, 0b000, 0b000],
+        '+' => [0b000, 0b010, 0b111, 0b010, 0b000],
+        '_' => [0b000, 0b000, 0b000, 0b000, 0b111],
+        '=' => [0b000, 0b111, 0b000, 0b111, 0b000],
+        ':' => [0b000, 0b010, 0b000, 0b010, 0b000],
+        '/' => [0b001, 0b001, 0b010, 0b100, 0b100],
+        '(' => [0b010, 0b100, 0b100, 0b100, 0b010],
+        ')' => [0b010, 0b001, 0b001, 0b001, 0b010],
+        _ => [0; 5],
+    };
+    rows.iter().fold(0u16, |acc, &r| (acc << 3) | u16::from(r))
+}
