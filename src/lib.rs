@@ -80,7 +80,9 @@ pub use num_complex::Complex32;
 pub use ocean::{FoamConfig, OceanConfig, OceanState, BAND_SPLIT, MAX_STEP};
 pub use presets::SeaState;
 pub use sampling::{SurfaceSample, HEIGHT_AT_MAX_ITERATIONS, HEIGHT_AT_TOLERANCE};
-pub use spectrum::{DepthFactor, Spectrum, Spreading, DEFAULT_GAMMA, MAX_WIND_SPEED};
+pub use spectrum::{
+    DepthFactor, Spectrum, Spreading, DEFAULT_GAMMA, FULLY_DEVELOPED_FETCH, MAX_WIND_SPEED,
+};
 
 /// Largest supported grid size N (a cascade holds about 40·N² bytes per field set).
 pub const MAX_SIZE: usize = 4096;

@@ -21,18 +21,23 @@ use crate::spectrum::{Spectrum, Spreading};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum SeaState {
-    /// Beaufort 2, light breeze: U10 = 2.5 m/s over 20 km. Ripples and small wavelets.
+    /// Beaufort 2, light breeze: U10 = 2.5 m/s, fully developed (H_s 0.17 m, T_p 1.8 s).
+    /// Small wavelets.
     Calm,
-    /// Beaufort 4: U10 = 6.5 m/s over 100 km. Small waves, fairly frequent white horses.
+    /// Beaufort 4: U10 = 6.5 m/s, fully developed (H_s 1.2 m, T_p 4.8 s). Small waves,
+    /// fairly frequent white horses.
     ModerateBreeze,
-    /// Beaufort 5: U10 = 9.5 m/s over 300 km. Moderate waves, many white horses.
+    /// Beaufort 5: U10 = 9.5 m/s, fully developed (H_s 2.5 m, T_p 6.9 s). Moderate waves,
+    /// many white horses.
     FreshBreeze,
-    /// Beaufort 10: U10 = 26 m/s over 500 km, choppiness 1.2. High waves, breaking crests.
+    /// Beaufort 10: U10 = 26 m/s over 500 km, choppiness 1.2 (H_s 12.2 m, T_p 14.7 s). High
+    /// waves, breaking crests.
     Storm,
     /// A long, narrow swell from a distant storm: JONSWAP from parameters with T_p = 12 s,
-    /// α = 0.0025, γ = 5, Hasselmann spreading with Horvath's swell control at 1.
+    /// α = 0.0025, γ = 5, Hasselmann spreading with Horvath's swell control at 1 (H_s 4.4 m).
     Swell,
-    /// TMA: U10 = 8 m/s over 15 km in 4 m of water. Short, steep, depth-limited waves.
+    /// TMA: U10 = 8 m/s over 15 km in 4 m of water (H_s 0.55 m, T_p 3.1 s). Short, steep,
+    /// depth-limited waves.
     ShallowBay,
 }
 

@@ -412,3 +412,35 @@ fn spectrum_is_plain_shareable_data() {
     assert_ne!(a, b);
     assert_eq!(a, a.clone());
 }
+
+#[test]
+fn fetch_is_capped_at_full_development() {
+    for u in [5.0f32, 10.0, 25.0] {
+        let pm = Spectrum::pierson_moskowitz(u).unwrap();
+        let full = ocean_fft::FULLY_DEVELOPED_FETCH * u * u / 9.81;
+        // At and beyond the cap the JONSWAP peak is the Pierson–Moskowitz peak 0.877 g/U.
+        for factor in [1.0f32, 3.0, 100.0] {
+            let s = Spectrum::jonswap(u, full * factor).unwrap();
+            let ratio = s.peak_omega() / pm.peak_omega();
+            assert!(
+                (ratio - 1.0).abs() < 1e-3,
+                "U {u}, F {factor}× cap: ω_p ratio {ratio}"
+            );
+            assert!(s.fetch().unwrap() <= full * 1.0001);
+        }
+        // Below the cap the fetch law holds as written: ω_p = 22 (g²/(UF))^(1/3).
+        let f = 0.3 * full;
+        let s = Spectrum::jonswap(u, f).unwrap();
+        let expected = 22.0 * (9.81f64 * 9.81 / (f64::from(u) * f64::from(f))).cbrt();
+        assert!((f64::from(s.peak_omega()) / expected - 1.0).abs() < 1e-5);
+        assert_eq!(s.fetch(), Some(f));
+        // Hs grows with fetch up to the cap and not beyond.
+        let hs = |fetch: f32| {
+            Spectrum::jonswap(u, fetch)
+                .unwrap()
+                .significant_wave_height()
+        };
+        assert!(hs(0.3 * full) < hs(0.9 * full));
+        assert_eq!(hs(full * 2.0), hs(full * 50.0));
+    }
+}

@@ -15,6 +15,11 @@ pub use spreading::Spreading;
 use omega::{G, PIERSON_MOSKOWITZ_ALPHA, PIERSON_MOSKOWITZ_PEAK};
 use spreading::SpreadingParams;
 
+/// Dimensionless fetch gF/U² at which the JONSWAP peak 22 (g²/(UF))^(1/3) reaches the
+/// Pierson–Moskowitz peak 0.877 g/U of a fully developed sea: (22/0.877)³ ≈ 15 786.
+/// [`Spectrum::jonswap`] caps the fetch there.
+pub const FULLY_DEVELOPED_FETCH: f32 = 15_786.0;
+
 /// Default JONSWAP peak enhancement γ (Hasselmann et al. 1973).
 pub const DEFAULT_GAMMA: f32 = 3.3;
 
@@ -107,8 +112,11 @@ impl Spectrum {
     /// α = 0.076 (U² / (F g))^0.22,   ω_p = 22 (g² / (U F))^(1/3)
     /// ```
     ///
-    /// The fetch law is not capped at full development: a fetch beyond a few hundred
-    /// kilometres gives a peak below the Pierson–Moskowitz one.
+    /// A fetch-limited sea cannot outgrow a fully developed one, so the dimensionless fetch
+    /// gF/U² is capped at [`FULLY_DEVELOPED_FETCH`], where this ω_p reaches the
+    /// Pierson–Moskowitz peak 0.877 g/U (α is then 0.0091): beyond about 16 000 U²/g metres
+    /// (160 km at 10 m/s) more fetch changes nothing. [`Spectrum::fetch`] returns the fetch
+    /// used.
     ///
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless both are finite and > 0 and
@@ -116,6 +124,8 @@ impl Spectrum {
     pub fn jonswap(wind_speed: f32, fetch: f32) -> Result<Self, Error> {
         let u = check_wind_speed(wind_speed)?;
         let f = error::positive("fetch", fetch)?;
+        let full = FULLY_DEVELOPED_FETCH * u * u / G as f32;
+        let f = f.min(full);
         let (u64, f64_) = (f64::from(u), f64::from(f));
         let alpha = omega::jonswap_alpha(u64, f64_) as f32;
         let peak_omega = omega::jonswap_peak_omega(u64, f64_) as f32;
@@ -340,7 +350,8 @@ impl Spectrum {
         self.wind_speed
     }
 
-    /// Fetch F in metres, for spectra built from a fetch.
+    /// Fetch F in metres used by the fetch law, for spectra built from a fetch: the given
+    /// fetch, capped at full development (see [`Spectrum::jonswap`]).
     pub fn fetch(&self) -> Option<f32> {
         self.fetch
     }
