@@ -79,7 +79,7 @@ pub use glam::{Vec2, Vec3};
 pub use num_complex::Complex32;
 pub use ocean::{FoamConfig, OceanConfig, OceanState, BAND_SPLIT, MAX_STEP};
 pub use presets::SeaState;
-pub use sampling::{SurfaceSample, HEIGHT_AT_MAX_ITERATIONS, HEIGHT_AT_TOLERANCE};
+pub use sampling::{SurfaceSample, HEIGHT_AT_MAX_ITERATIONS, HEIGHT_AT_TOLERANCE, PARALLEL_BATCH};
 pub use spectrum::{
     DepthFactor, Spectrum, Spreading, DEFAULT_GAMMA, FULLY_DEVELOPED_FETCH, MAX_WIND_SPEED,
 };

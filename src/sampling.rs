@@ -167,26 +167,57 @@ impl OceanState {
         self.surface_at(x, z).map(|s| s.height)
     }
 
-    /// [`OceanState::height_at`] for many world points (x, z) in parallel, into `out`
-    /// (same length as `points`). Errors, before writing anything, on a length mismatch or a
-    /// non-finite coordinate.
+    /// [`OceanState::height_at`] for many world points (x, z), into `out` (same length as
+    /// `points`), in parallel from [`PARALLEL_BATCH`] points on. Errors, before writing
+    /// anything, on a length mismatch or a non-finite coordinate.
     pub fn heights_at(&self, points: &[[f64; 2]], out: &mut [f32]) -> Result<(), Error> {
         check_batch(points, out.len())?;
-        out.par_iter_mut().zip(points).for_each(|(y, &[x, z])| {
+        for_each_point(points, out, |[x, z]| {
             let (x0, _) = self.undisplaced_unchecked(x, z);
-            *y = self.sample_unchecked(x0[0], x0[1]).height;
+            self.sample_unchecked(x0[0], x0[1]).height
         });
         Ok(())
     }
 
-    /// [`OceanState::sample`] for many undisplaced world points (x, z) in parallel, into
-    /// `out` (same length as `points`). Errors as [`OceanState::heights_at`].
+    /// [`OceanState::surface_at`] for many world points (x, z): height, normal, slope and
+    /// foam where the water is, into `out`. Errors as [`OceanState::heights_at`].
+    pub fn surfaces_at(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
+        check_batch(points, out.len())?;
+        for_each_point(points, out, |[x, z]| {
+            let (x0, _) = self.undisplaced_unchecked(x, z);
+            self.sample_unchecked(x0[0], x0[1])
+        });
+        Ok(())
+    }
+
+    /// [`OceanState::sample`] for many undisplaced world points (x, z), into `out` (same
+    /// length as `points`). Errors as [`OceanState::heights_at`].
     pub fn sample_many(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
+        for_each_point(points, out, |[x, z]| self.sample_unchecked(x, z));
+        Ok(())
+    }
+}
+
+/// Batches of at least this many points are spread over rayon's threads; smaller ones (a
+/// boat's few hull points) run on the calling thread, where handing them to the pool would
+/// cost more than it saves.
+pub const PARALLEL_BATCH: usize = 64;
+
+fn for_each_point<T: Send>(
+    points: &[[f64; 2]],
+    out: &mut [T],
+    query: impl Fn([f64; 2]) -> T + Sync,
+) {
+    if points.len() < PARALLEL_BATCH {
+        for (value, &point) in out.iter_mut().zip(points) {
+            *value = query(point);
+        }
+    } else {
         out.par_iter_mut()
             .zip(points)
-            .for_each(|(s, &[x, z])| *s = self.sample_unchecked(x, z));
-        Ok(())
+            .with_min_len(PARALLEL_BATCH / 2)
+            .for_each(|(value, &point)| *value = query(point));
     }
 }
 

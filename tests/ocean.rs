@@ -268,13 +268,20 @@ fn batch_queries_equal_single_queries() {
             ]
         })
         .collect();
-    let mut heights = vec![0.0; points.len()];
-    let mut samples = vec![SurfaceSample::default(); points.len()];
-    state.heights_at(&points, &mut heights).unwrap();
-    state.sample_many(&points, &mut samples).unwrap();
-    for ((p, h), s) in points.iter().zip(&heights).zip(&samples) {
-        assert_eq!(h.to_bits(), state.height_at(p[0], p[1]).unwrap().to_bits());
-        assert_eq!(*s, state.sample(p[0], p[1]).unwrap());
+    // 500 points go through the pool, 5 through the calling thread.
+    for count in [500, 5] {
+        let points = &points[..count];
+        let mut heights = vec![0.0; count];
+        let mut samples = vec![SurfaceSample::default(); count];
+        let mut surfaces = vec![SurfaceSample::default(); count];
+        state.heights_at(points, &mut heights).unwrap();
+        state.sample_many(points, &mut samples).unwrap();
+        state.surfaces_at(points, &mut surfaces).unwrap();
+        for (((p, h), s), w) in points.iter().zip(&heights).zip(&samples).zip(&surfaces) {
+            assert_eq!(h.to_bits(), state.height_at(p[0], p[1]).unwrap().to_bits());
+            assert_eq!(*s, state.sample(p[0], p[1]).unwrap());
+            assert_eq!(*w, state.surface_at(p[0], p[1]).unwrap());
+        }
     }
 }
 
