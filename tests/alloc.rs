@@ -13,9 +13,9 @@
 //! - A parallel call made from a thread *outside* the pool is injected into the pool's global
 //!   `crossbeam_deque::Injector`, which allocates a new 63-slot block (and frees the old one)
 //!   every 63 injections. A cascade update makes two such top-level calls (measured: 11
-//!   blocks of 1520 B in 323 updates, net growth 0), so on the global pool, called from the main thread, an update
-//!   allocates ~1/30 of a 1.5 KB block on average: rayon's queue, not the crate, and no net
-//!   growth. Inside `ThreadPool::install` every call is made from a worker and nothing is
+//!   blocks of 1520 B in 323 updates, net growth 0), so on the global pool, called from the
+//!   main thread, an update allocates ~1/30 of a 1.5 KB block on average: rayon's queue, not
+//!   the crate, and no net growth. Inside `ThreadPool::install` every call is made from a worker and nothing is
 //!   injected: there the count is exactly zero.
 
 use std::alloc::{GlobalAlloc, Layout, System};
