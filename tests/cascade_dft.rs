@@ -415,3 +415,80 @@ fn looping_cascade_fields_equal_naive_dft_of_its_wave_spectrum() {
         }
     }
 }
+
+#[test]
+fn omega_follows_finite_depth_and_capillary_dispersion() {
+    // ω² = g k tanh(k h) (TMA, depth 5 m) and ω² = (g k + (σ/ρ) k³) tanh(k h) (capillary,
+    // σ = 0.074 N/m, ρ = 1000 kg/m³, depth 50 m), evaluated here in f64 on a fine grid
+    // (L = 2 m, N = 32: k up to 70 rad/m, where the capillary term is 40 % of gk).
+    let g = f64::from(GRAVITY);
+    // σ/ρ from the crate's f32 constants (0.074 as f32 is 0.0740000009…): the literal would
+    // differ by 1.3e-8 relative.
+    let tension = f64::from(ocean_fft::SURFACE_TENSION) / f64::from(ocean_fft::WATER_DENSITY);
+    assert!((tension - 0.074 / 1000.0).abs() < 1e-8 * tension);
+    type Omega = Box<dyn Fn(f64) -> f64>;
+    let cases: [(Spectrum, f32, Omega); 2] = [
+        (
+            Spectrum::tma(10.0, 100_000.0, 5.0).unwrap(),
+            200.0,
+            Box::new(move |k: f64| (g * k * (k * 5.0).tanh()).sqrt()),
+        ),
+        (
+            jonswap(0.4)
+                .with_dispersion(ocean_fft::Dispersion::Capillary { depth: 50.0 })
+                .unwrap(),
+            2.0,
+            Box::new(move |k: f64| ((g * k + tension * k * k * k) * (k * 50.0).tanh()).sqrt()),
+        ),
+    ];
+    for (spectrum, length, omega_of) in cases {
+        let n = 32;
+        let cascade = Cascade::new(
+            &spectrum,
+            CascadeConfig {
+                size: n,
+                length,
+                ..CascadeConfig::default()
+            },
+        )
+        .unwrap();
+        let dk = TAU / f64::from(length);
+        for j in 0..n {
+            for i in 0..n {
+                if i == n / 2 || j == n / 2 || (i == 0 && j == 0) {
+                    continue;
+                }
+                let k = dk * (m(i, n) as f64).hypot(m(j, n) as f64);
+                let expected = omega_of(k);
+                let omega = cascade.omega_at(i, j);
+                // Both in f64 from the same constants: only rounding differs.
+                assert!(
+                    (omega - expected).abs() <= 1e-10 * expected,
+                    "L={length} ({i},{j}) k={k}: ω {omega} vs {expected}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn crate_multipliers_agree_with_the_design_table() {
+    // Field::multiplier (public API, f32) against the table written out in common/mod.rs.
+    for &(kx, kz) in &[
+        (0.3f32, -0.7f32),
+        (-2.0, 0.0),
+        (0.0, 5.5),
+        (1e-3, 2e-3),
+        (0.0, 0.0),
+    ] {
+        for field in FIELDS {
+            let got = to64(field.multiplier(ocean_fft::Vec2::new(kx, kz)));
+            let want = multiplier(field, f64::from(kx), f64::from(kz));
+            let scale = cabs(want).max(1e-30);
+            assert!(
+                (got.0 - want.0).abs() <= 1e-6 * scale && (got.1 - want.1).abs() <= 1e-6 * scale,
+                "{field:?} at ({kx}, {kz}): {got:?} vs {want:?}"
+            );
+        }
+    }
+}
