@@ -492,3 +492,65 @@ fn crate_multipliers_agree_with_the_design_table() {
         }
     }
 }
+
+#[test]
+fn fields_at_larger_sizes_equal_a_separable_f64_dft() {
+    // The reference at sizes beyond the naive O(N⁴) DFT's reach: the same sums evaluated
+    // separably (common::separable_idft), itself checked against the naive form at N = 24.
+    {
+        let cascade = cascade(&jonswap(0.4), 24);
+        let h = cascade.wave_spectrum(3.0);
+        let c = field_spectrum(&h, 24, f64::from(LENGTH), ocean_fft::Field::DisplacementXZ);
+        let (a, b) = (naive_idft(&c, 24), separable_idft(&c, 24));
+        let scale = a.iter().fold(0.0f64, |s, v| s.max(cabs(*v)));
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x.0 - y.0).hypot(x.1 - y.1) < 1e-12 * scale);
+        }
+    }
+    // 50 and 66: not multiples of the 16-row task blocks (and 66/2 = 33 odd); 130: N/2 odd;
+    // 256: the default size. Larger N also has larger k, so the slope fields are no longer
+    // the small member of their packed pair.
+    for (n, length, times) in [
+        (50usize, 300.0f32, &[0.0, 41.7][..]),
+        (66, 300.0, &[12.25][..]),
+        (130, 600.0, &[5.5][..]),
+        (256, 1000.0, &[100.0][..]),
+    ] {
+        for spectrum in [jonswap(0.4), phillips(-1.1)] {
+            let mut cascade = Cascade::new(
+                &spectrum,
+                CascadeConfig {
+                    size: n,
+                    length,
+                    choppiness: LAMBDA,
+                    seed: 5,
+                    ..CascadeConfig::default()
+                },
+            )
+            .unwrap();
+            for &t in times {
+                cascade.update(t).unwrap();
+                let h = cascade.wave_spectrum(t);
+                let mut worst = 0.0f64;
+                for field in FIELDS {
+                    let c = field_spectrum(&h, n, f64::from(length), field);
+                    let reference: Vec<f64> = separable_idft(&c, n).iter().map(|v| v.0).collect();
+                    let got = cascade.field(field);
+                    let scale = max_abs(&reference);
+                    let err = got
+                        .iter()
+                        .zip(&reference)
+                        .fold(0.0f64, |a, (&g, &r)| a.max((f64::from(g) - r).abs()));
+                    worst = worst.max(err / scale);
+                    // Same error model as tolerance() (ε·log2 N of the packed pair's norm).
+                    assert!(
+                        err <= tolerance(n) * scale,
+                        "N={n} t={t} {field:?}: error {err:e} = {:e} of max {scale:e}",
+                        err / scale
+                    );
+                }
+                println!("N={n} t={t}: worst field error {worst:.2e} of max |value|");
+            }
+        }
+    }
+}

@@ -179,3 +179,43 @@ pub fn to_f64(v: &[f32]) -> Vec<f64> {
 pub fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |a, &x| a.max(x.abs()))
 }
+
+/// The same inverse DFT as [`naive_idft`] evaluated separably in f64, O(N³): first along x
+/// (for every k_z row), then along z. Every sum is still a direct sum of N terms with
+/// exponentials from the table (no FFT), so it serves as an independent reference at sizes
+/// where the O(N⁴) form is too slow.
+pub fn separable_idft(c: &[C64], n: usize) -> Vec<C64> {
+    let table: Vec<C64> = (0..n)
+        .map(|r| {
+            let a = TAU * r as f64 / n as f64;
+            (a.cos(), a.sin())
+        })
+        .collect();
+    // rows[q][i] = Σ_p c(p, q) e^{2πi p i/N}
+    let mut rows = vec![(0.0, 0.0); n * n];
+    for q in 0..n {
+        for i in 0..n {
+            let (mut re, mut im) = (0.0, 0.0);
+            for p in 0..n {
+                let v = c[q * n + p];
+                let e = table[(p * i) % n];
+                re += v.0 * e.0 - v.1 * e.1;
+                im += v.0 * e.1 + v.1 * e.0;
+            }
+            rows[q * n + i] = (re, im);
+        }
+    }
+    // out[j][i] = Σ_q rows[q][i] e^{2πi q j/N}
+    let mut out = vec![(0.0, 0.0); n * n];
+    for j in 0..n {
+        for q in 0..n {
+            let e = table[(q * j) % n];
+            let row = &rows[q * n..(q + 1) * n];
+            for (o, v) in out[j * n..(j + 1) * n].iter_mut().zip(row) {
+                o.0 += v.0 * e.0 - v.1 * e.1;
+                o.1 += v.0 * e.1 + v.1 * e.0;
+            }
+        }
+    }
+    out
+}
