@@ -121,3 +121,39 @@ fn outputs_are_bit_identical_for_1_2_and_3_threads() {
         }
     }
 }
+
+#[test]
+fn cascade_can_move_to_and_be_shared_with_other_threads() {
+    fn send_sync<T: Send + Sync>() {}
+    send_sync::<Cascade>();
+    send_sync::<CascadeConfig>();
+    // Built on one thread, updated on another, read from two at once: same bits as at home.
+    let spectrum = jonswap(0.4);
+    let config = CascadeConfig {
+        size: 32,
+        length: 200.0,
+        ..CascadeConfig::default()
+    };
+    let mut home = Cascade::new(&spectrum, config).unwrap();
+    home.update(3.0).unwrap();
+    let away = std::thread::spawn(move || {
+        let mut cascade = Cascade::new(&spectrum, config).unwrap();
+        cascade.update(3.0).unwrap();
+        cascade
+    })
+    .join()
+    .unwrap();
+    std::thread::scope(|s| {
+        let a = s.spawn(|| away.height().to_vec());
+        let b = s.spawn(|| away.jacobian().to_vec());
+        let (a, b) = (a.join().unwrap(), b.join().unwrap());
+        assert!(a
+            .iter()
+            .zip(home.height())
+            .all(|(x, y)| x.to_bits() == y.to_bits()));
+        assert!(b
+            .iter()
+            .zip(home.jacobian())
+            .all(|(x, y)| x.to_bits() == y.to_bits()));
+    });
+}
