@@ -8,7 +8,7 @@ use num_complex::Complex32;
 use rayon::prelude::*;
 
 use crate::error::{self, Error};
-use crate::fft2d::{RowFft, ROWS_PER_TASK};
+use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
 use crate::seed;
 use crate::spectrum::Spectrum;
 use crate::MAX_SIZE;
@@ -517,14 +517,15 @@ impl Cascade {
                     let j0 = b * ROWS_PER_TASK;
                     let count = spatial.len() / row_len;
                     // Gather: spatial[r][f][i] = spectral[i][f][j0 + r].
-                    for i in 0..n {
-                        let source = &spectral[i * row_len..(i + 1) * row_len];
-                        for f in 0..TRANSFORMS {
-                            let column = &source[f * n + j0..f * n + j0 + count];
-                            for (r, &value) in column.iter().enumerate() {
-                                spatial[r * row_len + f * n + i] = value;
-                            }
-                        }
+                    for f in 0..TRANSFORMS {
+                        transpose_into(
+                            &spectral[f * n + j0..],
+                            row_len,
+                            &mut spatial[f * n..],
+                            row_len,
+                            count,
+                            n,
+                        );
                     }
                     rows.process(spatial, scratch);
                     for r in 0..count {
@@ -796,7 +797,7 @@ fn packed_pair(
 
 /// Fills spectral rows i (`upper`, k_x > 0) and N − i (`lower`, its Hermitian partner), each
 /// four packed transforms of N, from table row i: (i, j) pairs with (N − i, N − j).
-#[inline]
+#[inline(never)]
 fn evolve_row_pair(
     table: EvolutionRow<'_>,
     kx: f32,
@@ -828,7 +829,7 @@ fn evolve_row_pair(
 
 /// Output buffers of one grid row from its four packed, transformed rows.
 #[allow(clippy::too_many_arguments)]
-#[inline]
+#[inline(never)]
 fn write_outputs(
     row: &[Complex32],
     n: usize,
@@ -842,11 +843,63 @@ fn write_outputs(
     let (t0, rest) = row.split_at(n);
     let (t1, rest) = rest.split_at(n);
     let (t2, t3) = rest.split_at(n);
-    // Equal lengths up front, so that the loop has no bounds checks and vectorises.
-    let t3 = &t3[..n];
-    let (height, jacobian) = (&mut height[..n], &mut jacobian[..n]);
-    let (displacement, slope, normal) = (&mut displacement[..n], &mut slope[..n], &mut normal[..n]);
-    for i in 0..n {
+    // Blocks of OUTPUT_BLOCK: the arithmetic runs into plain f32 arrays (so that it
+    // vectorises; stores of Vec3 in the same loop keep it scalar), then the normals and
+    // slopes are copied out.
+    const OUTPUT_BLOCK: usize = 64;
+    let mut nx = [0.0f32; OUTPUT_BLOCK];
+    let mut ny = [0.0f32; OUTPUT_BLOCK];
+    let mut nz = [0.0f32; OUTPUT_BLOCK];
+    let mut sx = [0.0f32; OUTPUT_BLOCK];
+    let mut sz = [0.0f32; OUTPUT_BLOCK];
+    for start in (0..n).step_by(OUTPUT_BLOCK) {
+        let len = OUTPUT_BLOCK.min(n - start);
+        let range = start..start + len;
+        output_block(
+            [
+                &t0[range.clone()],
+                &t1[range.clone()],
+                &t2[range.clone()],
+                &t3[range.clone()],
+            ],
+            lambda,
+            &mut height[range.clone()],
+            &mut jacobian[range.clone()],
+            &mut displacement[range.clone()],
+            [&mut nx[..len], &mut ny[..len], &mut nz[..len]],
+            [&mut sx[..len], &mut sz[..len]],
+        );
+        for (i, (normal, slope)) in normal[range.clone()]
+            .iter_mut()
+            .zip(&mut slope[range])
+            .enumerate()
+        {
+            *normal = Vec3::new(nx[i], ny[i], nz[i]);
+            *slope = Vec2::new(sx[i], sz[i]);
+        }
+    }
+}
+
+/// The arithmetic of [`write_outputs`] on one block, with the normals and slopes into plain
+/// f32 arrays. A function of its own, with every slice an argument (no aliasing, equal
+/// lengths), so that the loop vectorises.
+#[inline(never)]
+fn output_block(
+    [t0, t1, t2, t3]: [&[Complex32]; 4],
+    lambda: f32,
+    height: &mut [f32],
+    jacobian: &mut [f32],
+    displacement: &mut [Vec2],
+    [nx, ny, nz]: [&mut [f32]; 3],
+    [sx, sz]: [&mut [f32]; 2],
+) {
+    let len = t0.len();
+    let (t1, t2, t3) = (&t1[..len], &t2[..len], &t3[..len]);
+    let (height, jacobian) = (&mut height[..len], &mut jacobian[..len]);
+    let displacement = &mut displacement[..len];
+    let (nx, ny, nz) = (&mut nx[..len], &mut ny[..len], &mut nz[..len]);
+    let (sx, sz) = (&mut sx[..len], &mut sz[..len]);
+    for i in 0..len {
         let (eta, dx) = (t0[i].re, t0[i].im);
         let (dz, eta_x) = (t1[i].re, t1[i].im);
         let (eta_z, dxx) = (t2[i].re, t2[i].im);
@@ -857,24 +910,19 @@ fn write_outputs(
         let det = jxx * jzz - jxz * jxz;
         // n = T_z × T_x with T_x = (jxx, η_x, jxz), T_z = (jxz, η_z, jzz); n_y = J.
         let (rx, rz) = (eta_z * jxz - jzz * eta_x, jxz * eta_x - eta_z * jxx);
-        let len = (rx * rx + det * det + rz * rz).sqrt();
-        // Branch-free (selects), so that the loop vectorises; false for NaN too.
-        let valid = len > 0.0 && len < f32::INFINITY;
-        let inv_len = 1.0 / len;
-        let inv_ny = 1.0 / det.max(MIN_SLOPE_NY * len);
+        let norm = (rx * rx + det * det + rz * rz).sqrt();
+        // Branch-free (selects); false for NaN too.
+        let valid = (norm > 0.0) & (norm < f32::INFINITY);
+        let inv_len = 1.0 / norm;
+        let inv_ny = 1.0 / det.max(MIN_SLOPE_NY * norm);
         height[i] = eta;
         displacement[i] = Vec2::new(lambda * dx, lambda * dz);
         jacobian[i] = det;
-        normal[i] = if valid {
-            Vec3::new(rx * inv_len, det * inv_len, rz * inv_len)
-        } else {
-            Vec3::Y
-        };
-        slope[i] = if valid {
-            Vec2::new(-rx * inv_ny, -rz * inv_ny)
-        } else {
-            Vec2::ZERO
-        };
+        nx[i] = if valid { rx * inv_len } else { 0.0 };
+        ny[i] = if valid { det * inv_len } else { 1.0 };
+        nz[i] = if valid { rz * inv_len } else { 0.0 };
+        sx[i] = if valid { -rx * inv_ny } else { 0.0 };
+        sz[i] = if valid { -rz * inv_ny } else { 0.0 };
     }
 }
 
