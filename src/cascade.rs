@@ -197,6 +197,16 @@ struct EvolutionRow<'a> {
     freq: &'a [f64],
 }
 
+impl EvolutionRow<'_> {
+    fn get(&self, j: usize) -> Evolution {
+        Evolution {
+            p: Complex32::new(self.p_re[j], self.p_im[j]),
+            q: Complex32::new(self.q_re[j], self.q_im[j]),
+            freq: self.freq[j],
+        }
+    }
+}
+
 /// One N×N patch of ocean surface of side L: the wave amplitudes h0(k) drawn once from a
 /// [`Spectrum`], and after every [`Cascade::update`] the height, horizontal displacement,
 /// slope, normal and Jacobian of the surface at time t.
@@ -465,7 +475,8 @@ impl Cascade {
                 row0.fill(Complex32::default());
                 let table = evolution.get_row(0, n);
                 for j in 1..half {
-                    let (plus, minus) = packed_pair(&table, j, 0.0, kz[j], t);
+                    let e = table.get(j);
+                    let (plus, minus) = packed_pair(fract_turns(e.freq * t), e.p, e.q, 0.0, kz[j]);
                     for f in 0..TRANSFORMS {
                         row0[f * n + j] = plus[f];
                         row0[f * n + n - j] = minus[f];
@@ -756,25 +767,22 @@ pub(crate) fn sin_cos_turns(turns: f32) -> (f32, f32) {
     )
 }
 
-/// The four packed spectral values at k = (`kx`, `kz`) and at −k, from evolution entry `j`
-/// of `table`.
+/// The four packed spectral values at k = (`kx`, `kz`) and at −k, from an evolution entry's
+/// p and q and its phase in `turns` (reduced, see [`fract_turns`]).
 ///
 /// Transform p holds A + iB for the field pair (A, B) = (η, D_x), (D_z, η_x), (η_z, D_xx),
 /// (D_zz, D_xz). With A = α h̃, B = β h̃ and Hermitian fields, the value at k is (α + iβ) h̃
 /// and at −k it is (conj α + i conj β) conj h̃.
 #[inline(always)]
 fn packed_pair(
-    table: &EvolutionRow<'_>,
-    j: usize,
+    turns: f32,
+    p: Complex32,
+    q: Complex32,
     kx: f32,
     kz: f32,
-    t: f64,
 ) -> ([Complex32; 4], [Complex32; 4]) {
-    let (sin, cos) = sin_cos_turns(fract_turns(table.freq[j] * t));
-    let h = Complex32::new(
-        table.p_re[j] * cos + table.q_re[j] * sin,
-        table.p_im[j] * cos + table.q_im[j] * sin,
-    );
+    let (sin, cos) = sin_cos_turns(turns);
+    let h = Complex32::new(p.re * cos + q.re * sin, p.im * cos + q.im * sin);
     let hc = h.conj();
     let k = (kx * kx + kz * kz).sqrt();
     let inv_k = if k > 0.0 { 1.0 / k } else { 0.0 };
@@ -816,14 +824,63 @@ fn evolve_row_pair(
     let (u3, l3) = (&mut u3[..n], &mut l3[..n]);
     // Column 0 pairs with itself; the rest pair j with N − j. (The Nyquist column's table
     // entries are zero, so it comes out zero.)
-    let (plus, minus) = packed_pair(&table, 0, kx, kz[0], t);
+    let e = table.get(0);
+    let (plus, minus) = packed_pair(fract_turns(e.freq * t), e.p, e.q, kx, kz[0]);
     (u0[0], u1[0], u2[0], u3[0]) = (plus[0], plus[1], plus[2], plus[3]);
     (l0[0], l1[0], l2[0], l3[0]) = (minus[0], minus[1], minus[2], minus[3]);
-    for j in 1..n {
-        let (plus, minus) = packed_pair(&table, j, kx, kz[j], t);
-        let jm = n - j;
-        (u0[j], u1[j], u2[j], u3[j]) = (plus[0], plus[1], plus[2], plus[3]);
-        (l0[jm], l1[jm], l2[jm], l3[jm]) = (minus[0], minus[1], minus[2], minus[3]);
+    // Blocks of EVOLVE_BLOCK columns: the f64 phase reduction first (2 lanes per SSE
+    // vector), then the f32 work (4 lanes), each loop vectorising at its own width.
+    const EVOLVE_BLOCK: usize = 64;
+    let mut turns = [0.0f32; EVOLVE_BLOCK];
+    let mut parts = [[0.0f32; EVOLVE_BLOCK]; 16];
+    let mut start = 1;
+    while start < n {
+        let len = EVOLVE_BLOCK.min(n - start);
+        let range = start..start + len;
+        let turns = &mut turns[..len];
+        for (turns, &freq) in turns.iter_mut().zip(&table.freq[range.clone()]) {
+            *turns = fract_turns(freq * t);
+        }
+        let (p_re, p_im) = (&table.p_re[range.clone()], &table.p_im[range.clone()]);
+        let (q_re, q_im) = (&table.q_re[range.clone()], &table.q_im[range.clone()]);
+        let kz = &kz[range.clone()];
+        // The arithmetic into struct-of-arrays buffers (real and imaginary parts of the four
+        // values at +k, then at −k), which vectorises (all stores at index b: a mirrored
+        // index here keeps LLVM from proving the stores independent)...
+        let [r0, i0, r1, i1, r2, i2, r3, i3, rm0, im0, rm1, im1, rm2, im2, rm3, im3] = &mut parts;
+        for b in 0..len {
+            let p = Complex32::new(p_re[b], p_im[b]);
+            let q = Complex32::new(q_re[b], q_im[b]);
+            let (plus, minus) = packed_pair(turns[b], p, q, kx, kz[b]);
+            (r0[b], i0[b], r1[b], i1[b]) = (plus[0].re, plus[0].im, plus[1].re, plus[1].im);
+            (r2[b], i2[b], r3[b], i3[b]) = (plus[2].re, plus[2].im, plus[3].re, plus[3].im);
+            (rm0[b], im0[b], rm1[b], im1[b]) = (minus[0].re, minus[0].im, minus[1].re, minus[1].im);
+            (rm2[b], im2[b], rm3[b], im3[b]) = (minus[2].re, minus[2].im, minus[3].re, minus[3].im);
+        }
+        // ... then interleaved into the rows: columns j of the block, and N − j (running
+        // backwards from N − start).
+        for (row, re, im) in [
+            (&mut u0[range.clone()], &*r0, &*i0),
+            (&mut u1[range.clone()], &*r1, &*i1),
+            (&mut u2[range.clone()], &*r2, &*i2),
+            (&mut u3[range.clone()], &*r3, &*i3),
+        ] {
+            for ((value, &re), &im) in row.iter_mut().zip(re).zip(im) {
+                *value = Complex32::new(re, im);
+            }
+        }
+        let mirror = n + 1 - start - len..n + 1 - start;
+        for (row, re, im) in [
+            (&mut l0[mirror.clone()], &*rm0, &*im0),
+            (&mut l1[mirror.clone()], &*rm1, &*im1),
+            (&mut l2[mirror.clone()], &*rm2, &*im2),
+            (&mut l3[mirror.clone()], &*rm3, &*im3),
+        ] {
+            for ((value, &re), &im) in row.iter_mut().rev().zip(re).zip(im) {
+                *value = Complex32::new(re, im);
+            }
+        }
+        start += len;
     }
 }
 
