@@ -971,7 +971,10 @@ fn output_block(
         // Branch-free (selects); false for NaN too.
         let valid = (norm > 0.0) & (norm < f32::INFINITY);
         let inv_len = 1.0 / norm;
-        let inv_ny = 1.0 / det.max(MIN_SLOPE_NY * norm);
+        // A plain compare rather than f32::max (which handles NaN, at a cost): a NaN here
+        // only comes with a NaN norm, where `valid` is false anyway.
+        let min_ny = MIN_SLOPE_NY * norm;
+        let inv_ny = 1.0 / if det > min_ny { det } else { min_ny };
         height[i] = eta;
         displacement[i] = Vec2::new(lambda * dx, lambda * dz);
         jacobian[i] = det;

@@ -1,7 +1,7 @@
 //! Batched complex 2D inverse FFTs on the CPU: one rustfft plan, scratch made once per task,
 //! rows in parallel with rayon and a cache-blocked parallel transpose between the passes.
 //!
-//! The building blocks ([`RowFft`], [`transpose_blocked`]) are shared with the cascade, which
+//! The building blocks ([`RowFft`], [`transpose_into`]) are shared with the cascade, which
 //! fuses them with its own spectral and output passes; [`Fft2d`] strings them together plainly
 //! and is the speed baseline the benches compare a cascade update with.
 
@@ -99,23 +99,9 @@ pub(crate) fn transpose_into(
     }
 }
 
-/// `dst[j][i] = src[i][j]` for N×N arrays, in parallel over blocks of [`ROWS_PER_TASK`]
-/// destination rows, each moved in cache-line tiles by [`transpose_into`].
-pub(crate) fn transpose_blocked(src: &[Complex32], dst: &mut [Complex32], n: usize) {
-    debug_assert_eq!(src.len(), n * n);
-    debug_assert_eq!(dst.len(), n * n);
-    dst.par_chunks_mut(n * ROWS_PER_TASK)
-        .enumerate()
-        .for_each(|(block, rows)| {
-            let j0 = block * ROWS_PER_TASK;
-            let height = rows.len() / n;
-            transpose_into(&src[j0..], n, rows, n, height, n);
-        });
-}
-
 /// `count` unnormalised inverse complex 2D FFTs of N×N arrays, done the way a cascade does
-/// its transforms: the rows of all arrays in parallel, a blocked parallel transpose, the rows
-/// again. Plans, scratch and the intermediate buffer are made once in [`Fft2d::new`];
+/// its transforms: the rows of all arrays in parallel, then in parallel blocks of
+/// [`ROWS_PER_TASK`] rows, a tiled transpose of the block and its rows again while in cache. Plans, scratch and the intermediate buffer are made once in [`Fft2d::new`];
 /// [`Fft2d::process`] allocates nothing.
 ///
 /// The result is left **transposed** (`result[a][x][z]` for input `[a][k_z][k_x]`), as in the
@@ -151,7 +137,8 @@ impl Fft2d {
             ));
         }
         let rows = RowFft::new(size);
-        let tasks = (count * size).div_ceil(ROWS_PER_TASK);
+        // The first pass runs (count·N)/ROWS_PER_TASK tasks, the second count·⌈N/ROWS_PER_TASK⌉.
+        let tasks = count * size.div_ceil(ROWS_PER_TASK);
         Ok(Fft2d {
             n: size,
             count,
@@ -178,16 +165,27 @@ impl Fft2d {
         data.par_chunks_mut(n * ROWS_PER_TASK)
             .zip(self.scratch.par_chunks_mut(s))
             .for_each(|(chunk, scratch)| rows.process(chunk, scratch));
-        for (src, dst) in data
-            .chunks_exact(n * n)
-            .zip(self.transposed.chunks_exact_mut(n * n))
-        {
-            transpose_blocked(src, dst, n);
-        }
+        // Second pass: each task gathers a block of rows of one array (the transpose) and
+        // transforms them while they are in cache, as a cascade does.
+        let blocks = n.div_ceil(ROWS_PER_TASK);
+        let data = &*data;
         self.transposed
-            .par_chunks_mut(n * ROWS_PER_TASK)
-            .zip(self.scratch.par_chunks_mut(s))
-            .for_each(|(chunk, scratch)| rows.process(chunk, scratch));
+            .par_chunks_mut(n * n)
+            .zip(self.scratch.par_chunks_mut(blocks * s))
+            .enumerate()
+            .for_each(|(a, (array, scratch))| {
+                let src = &data[a * n * n..(a + 1) * n * n];
+                array
+                    .par_chunks_mut(n * ROWS_PER_TASK)
+                    .zip(scratch.par_chunks_mut(s))
+                    .enumerate()
+                    .for_each(|(block, (rows_out, scratch))| {
+                        let j0 = block * ROWS_PER_TASK;
+                        let height = rows_out.len() / n;
+                        transpose_into(&src[j0..], n, rows_out, n, height, n);
+                        rows.process(rows_out, scratch);
+                    });
+            });
         Ok(&self.transposed)
     }
 }
@@ -203,10 +201,45 @@ mod tests {
                 .map(|v| Complex32::new(v as f32, -(v as f32)))
                 .collect();
             let mut dst = vec![Complex32::default(); n * n];
-            transpose_blocked(&src, &mut dst, n);
+            transpose_into(&src, n, &mut dst, n, n, n);
             for i in 0..n {
                 for j in 0..n {
                     assert_eq!(dst[j * n + i], src[i * n + j]);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn fft2d_matches_a_naive_inverse_dft() {
+        for n in [4, 6, 8, 34] {
+            let count = 2;
+            let input: Vec<Complex32> = (0..count * n * n)
+                .map(|v| Complex32::new(((v * 7) % 11) as f32 - 5.0, ((v * 3) % 5) as f32))
+                .collect();
+            let mut fft = Fft2d::new(n, count).unwrap();
+            let mut data = input.clone();
+            let out = fft.process(&mut data).unwrap().to_vec();
+            let tau = std::f64::consts::TAU;
+            for a in 0..count {
+                for x in 0..n {
+                    for z in 0..n {
+                        // result[a][x][z] = Σ input[a][kz][kx] e^{+i 2π (kx x + kz z)/N}
+                        let (mut re, mut im) = (0.0f64, 0.0f64);
+                        for kz in 0..n {
+                            for kx in 0..n {
+                                let v = input[a * n * n + kz * n + kx];
+                                let phase = tau * ((kx * x + kz * z) % n) as f64 / n as f64;
+                                let (s, c) = phase.sin_cos();
+                                re += f64::from(v.re) * c - f64::from(v.im) * s;
+                                im += f64::from(v.re) * s + f64::from(v.im) * c;
+                            }
+                        }
+                        let got = out[a * n * n + x * n + z];
+                        let scale = (n * n) as f64 * 8.0;
+                        assert!((f64::from(got.re) - re).abs() < 1e-5 * scale, "n {n}");
+                        assert!((f64::from(got.im) - im).abs() < 1e-5 * scale, "n {n}");
+                    }
                 }
             }
         }
