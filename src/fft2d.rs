@@ -78,13 +78,13 @@ pub(crate) fn transpose_into(
         for r0 in (0..rows).step_by(TILE) {
             let height = TILE.min(rows - r0);
             if width == TILE && height == TILE {
-                let mut tile = [[Complex32::default(); TILE]; TILE];
-                for (k, line) in tile.iter_mut().enumerate() {
-                    line.copy_from_slice(&src[(c0 + k) * src_stride + r0..][..TILE]);
-                }
+                let lines: [&[Complex32; TILE]; TILE] = std::array::from_fn(|k| {
+                    let start = (c0 + k) * src_stride + r0;
+                    src[start..start + TILE].try_into().expect("TILE values")
+                });
                 for r in 0..TILE {
                     let out = &mut dst[(r0 + r) * dst_stride + c0..][..TILE];
-                    for (value, line) in out.iter_mut().zip(&tile) {
+                    for (value, line) in out.iter_mut().zip(&lines) {
                         *value = line[r];
                     }
                 }
