@@ -830,7 +830,7 @@ fn evolve_row_pair(
     (l0[0], l1[0], l2[0], l3[0]) = (minus[0], minus[1], minus[2], minus[3]);
     // Blocks of EVOLVE_BLOCK columns: the f64 phase reduction first (2 lanes per SSE
     // vector), then the f32 work (4 lanes), each loop vectorising at its own width.
-    const EVOLVE_BLOCK: usize = 64;
+    const EVOLVE_BLOCK: usize = 32;
     let mut turns = [0.0f32; EVOLVE_BLOCK];
     let mut parts = [[0.0f32; EVOLVE_BLOCK]; 16];
     let mut start = 1;
