@@ -198,6 +198,16 @@ struct EvolutionRow<'a> {
 }
 
 impl EvolutionRow<'_> {
+    fn slice(&self, range: std::ops::Range<usize>) -> EvolutionRow<'_> {
+        EvolutionRow {
+            p_re: &self.p_re[range.clone()],
+            p_im: &self.p_im[range.clone()],
+            q_re: &self.q_re[range.clone()],
+            q_im: &self.q_im[range.clone()],
+            freq: &self.freq[range],
+        }
+    }
+
     fn get(&self, j: usize) -> Evolution {
         Evolution {
             p: Complex32::new(self.p_re[j], self.p_im[j]),
@@ -832,7 +842,6 @@ fn evolve_row_pair(
     // vector), then the f32 work (4 lanes), each loop vectorising at its own width.
     const EVOLVE_BLOCK: usize = 32;
     let mut turns = [0.0f32; EVOLVE_BLOCK];
-    let mut parts = [[0.0f32; EVOLVE_BLOCK]; 16];
     let mut start = 1;
     while start < n {
         let len = EVOLVE_BLOCK.min(n - start);
@@ -841,46 +850,68 @@ fn evolve_row_pair(
         for (turns, &freq) in turns.iter_mut().zip(&table.freq[range.clone()]) {
             *turns = fract_turns(freq * t);
         }
-        let (p_re, p_im) = (&table.p_re[range.clone()], &table.p_im[range.clone()]);
-        let (q_re, q_im) = (&table.q_re[range.clone()], &table.q_im[range.clone()]);
-        let kz = &kz[range.clone()];
-        // The arithmetic into struct-of-arrays buffers (real and imaginary parts of the four
-        // values at +k, then at −k), which vectorises (all stores at index b: a mirrored
-        // index here keeps LLVM from proving the stores independent)...
-        let [r0, i0, r1, i1, r2, i2, r3, i3, rm0, im0, rm1, im1, rm2, im2, rm3, im3] = &mut parts;
-        for b in 0..len {
-            let p = Complex32::new(p_re[b], p_im[b]);
-            let q = Complex32::new(q_re[b], q_im[b]);
-            let (plus, minus) = packed_pair(turns[b], p, q, kx, kz[b]);
-            (r0[b], i0[b], r1[b], i1[b]) = (plus[0].re, plus[0].im, plus[1].re, plus[1].im);
-            (r2[b], i2[b], r3[b], i3[b]) = (plus[2].re, plus[2].im, plus[3].re, plus[3].im);
-            (rm0[b], im0[b], rm1[b], im1[b]) = (minus[0].re, minus[0].im, minus[1].re, minus[1].im);
-            (rm2[b], im2[b], rm3[b], im3[b]) = (minus[2].re, minus[2].im, minus[3].re, minus[3].im);
-        }
-        // ... then interleaved into the rows: columns j of the block, and N − j (running
-        // backwards from N − start).
-        for (row, re, im) in [
-            (&mut u0[range.clone()], &*r0, &*i0),
-            (&mut u1[range.clone()], &*r1, &*i1),
-            (&mut u2[range.clone()], &*r2, &*i2),
-            (&mut u3[range.clone()], &*r3, &*i3),
-        ] {
-            for ((value, &re), &im) in row.iter_mut().zip(re).zip(im) {
-                *value = Complex32::new(re, im);
-            }
-        }
         let mirror = n + 1 - start - len..n + 1 - start;
-        for (row, re, im) in [
-            (&mut l0[mirror.clone()], &*rm0, &*im0),
-            (&mut l1[mirror.clone()], &*rm1, &*im1),
-            (&mut l2[mirror.clone()], &*rm2, &*im2),
-            (&mut l3[mirror.clone()], &*rm3, &*im3),
-        ] {
-            for ((value, &re), &im) in row.iter_mut().rev().zip(re).zip(im) {
-                *value = Complex32::new(re, im);
-            }
-        }
+        evolve_block(
+            turns,
+            table.slice(range.clone()),
+            kx,
+            &kz[range.clone()],
+            [
+                &mut u0[range.clone()],
+                &mut u1[range.clone()],
+                &mut u2[range.clone()],
+                &mut u3[range],
+            ],
+            [
+                &mut l0[mirror.clone()],
+                &mut l1[mirror.clone()],
+                &mut l2[mirror.clone()],
+                &mut l3[mirror],
+            ],
+        );
         start += len;
+    }
+}
+
+/// The four packed values of a block of columns j (`plus`, at the block's columns) and of
+/// their partners N − j (`minus`, in reverse order), from the block's reduced phases and
+/// table entries. A function of its own, every slice an argument, so that the loop
+/// vectorises (within `evolve_row_pair` LLVM cannot tell the row slices apart and leaves it
+/// scalar).
+#[inline(never)]
+fn evolve_block(
+    turns: &[f32],
+    table: EvolutionRow<'_>,
+    kx: f32,
+    kz: &[f32],
+    plus: [&mut [Complex32]; 4],
+    minus: [&mut [Complex32]; 4],
+) {
+    let len = turns.len();
+    let (p_re, p_im) = (&table.p_re[..len], &table.p_im[..len]);
+    let (q_re, q_im) = (&table.q_re[..len], &table.q_im[..len]);
+    let kz = &kz[..len];
+    let [u0, u1, u2, u3] = plus;
+    let (u0, u1, u2, u3) = (
+        &mut u0[..len],
+        &mut u1[..len],
+        &mut u2[..len],
+        &mut u3[..len],
+    );
+    let [l0, l1, l2, l3] = minus;
+    let (l0, l1, l2, l3) = (
+        &mut l0[..len],
+        &mut l1[..len],
+        &mut l2[..len],
+        &mut l3[..len],
+    );
+    for b in 0..len {
+        let p = Complex32::new(p_re[b], p_im[b]);
+        let q = Complex32::new(q_re[b], q_im[b]);
+        let (plus, minus) = packed_pair(turns[b], p, q, kx, kz[b]);
+        (u0[b], u1[b], u2[b], u3[b]) = (plus[0], plus[1], plus[2], plus[3]);
+        let m = len - 1 - b;
+        (l0[m], l1[m], l2[m], l3[m]) = (minus[0], minus[1], minus[2], minus[3]);
     }
 }
 
