@@ -8,7 +8,7 @@ use num_complex::Complex32;
 use rayon::prelude::*;
 
 use crate::error::{self, Error};
-use crate::fft2d::{RowFft, ROWS_PER_TASK};
+use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
 use crate::seed;
 use crate::spectrum::Spectrum;
 use crate::MAX_SIZE;
@@ -143,6 +143,80 @@ struct Evolution {
     freq: f64,
 }
 
+/// The evolution table in struct-of-arrays layout (so the evolution loop reads each
+/// component contiguously and vectorises), transposed: index `i * N + j` holds the
+/// [`Evolution`] of k_x index i in 0..N/2 and k_z index j.
+#[derive(Debug, Default)]
+struct EvolutionTable {
+    p_re: Vec<f32>,
+    p_im: Vec<f32>,
+    q_re: Vec<f32>,
+    q_im: Vec<f32>,
+    freq: Vec<f64>,
+}
+
+impl EvolutionTable {
+    fn from_entries(entries: &[Evolution]) -> Self {
+        EvolutionTable {
+            p_re: entries.iter().map(|e| e.p.re).collect(),
+            p_im: entries.iter().map(|e| e.p.im).collect(),
+            q_re: entries.iter().map(|e| e.q.re).collect(),
+            q_im: entries.iter().map(|e| e.q.im).collect(),
+            freq: entries.iter().map(|e| e.freq).collect(),
+        }
+    }
+
+    fn get(&self, index: usize) -> Evolution {
+        Evolution {
+            p: Complex32::new(self.p_re[index], self.p_im[index]),
+            q: Complex32::new(self.q_re[index], self.q_im[index]),
+            freq: self.freq[index],
+        }
+    }
+
+    /// Row `i` (k_x index) of an N-wide table.
+    fn get_row(&self, i: usize, n: usize) -> EvolutionRow<'_> {
+        let range = i * n..(i + 1) * n;
+        EvolutionRow {
+            p_re: &self.p_re[range.clone()],
+            p_im: &self.p_im[range.clone()],
+            q_re: &self.q_re[range.clone()],
+            q_im: &self.q_im[range.clone()],
+            freq: &self.freq[range],
+        }
+    }
+}
+
+/// One row of an [`EvolutionTable`].
+#[derive(Clone, Copy)]
+struct EvolutionRow<'a> {
+    p_re: &'a [f32],
+    p_im: &'a [f32],
+    q_re: &'a [f32],
+    q_im: &'a [f32],
+    freq: &'a [f64],
+}
+
+impl EvolutionRow<'_> {
+    fn slice(&self, range: std::ops::Range<usize>) -> EvolutionRow<'_> {
+        EvolutionRow {
+            p_re: &self.p_re[range.clone()],
+            p_im: &self.p_im[range.clone()],
+            q_re: &self.q_re[range.clone()],
+            q_im: &self.q_im[range.clone()],
+            freq: &self.freq[range],
+        }
+    }
+
+    fn get(&self, j: usize) -> Evolution {
+        Evolution {
+            p: Complex32::new(self.p_re[j], self.p_im[j]),
+            q: Complex32::new(self.q_re[j], self.q_im[j]),
+            freq: self.freq[j],
+        }
+    }
+}
+
 /// One N×N patch of ocean surface of side L: the wave amplitudes h0(k) drawn once from a
 /// [`Spectrum`], and after every [`Cascade::update`] the height, horizontal displacement,
 /// slope, normal and Jacobian of the surface at time t.
@@ -171,7 +245,9 @@ pub struct Cascade {
     h0: Vec<Complex32>,
     /// Evolution table, transposed layout: rows are k_x index i in 0..N/2, columns k_z
     /// index j.
-    evolution: Vec<Evolution>,
+    evolution: EvolutionTable,
+    /// k_z = Δk·m(j) of spectral column j.
+    kz: Vec<f32>,
     rows: RowFft,
     /// Pass-1 buffer, layout [i][transform][j] (k_x row, k_z column → after the FFT, z).
     spectral: Vec<Complex32>,
@@ -328,6 +404,8 @@ impl Cascade {
                 }
             });
 
+        let evolution = EvolutionTable::from_entries(&evolution);
+        let kz = (0..n).map(|j| wave_index(j, n) as f32 * dk).collect();
         let rows = RowFft::new(n);
         let tasks = n.div_ceil(ROWS_PER_TASK) + half;
         let mut cascade = Cascade {
@@ -339,6 +417,7 @@ impl Cascade {
             amplitude_bound,
             h0,
             evolution,
+            kz,
             spectral: vec![Complex32::default(); TRANSFORMS * n * n],
             spatial: vec![Complex32::default(); TRANSFORMS * n * n],
             scratch: vec![Complex32::default(); tasks * rows.scratch_len()],
@@ -399,14 +478,15 @@ impl Cascade {
         let (nyquist, bottom) = rest.split_at_mut(row_len);
         let (scratch0, scratch_pairs) = self.scratch.split_at_mut(s);
 
+        let kz = &self.kz;
         rayon::join(
             || {
                 // Row i = 0 (k_x = 0) is its own partner: (0, j) pairs with (0, N − j).
                 row0.fill(Complex32::default());
-                let table = &evolution[..n];
+                let table = evolution.get_row(0, n);
                 for j in 1..half {
-                    let (plus, minus) =
-                        packed_pair(&table[j], 0.0, wave_index(j, n) as f32 * dk, t);
+                    let e = table.get(j);
+                    let (plus, minus) = packed_pair(fract_turns(e.freq * t), e.p, e.q, 0.0, kz[j]);
                     for f in 0..TRANSFORMS {
                         row0[f * n + j] = plus[f];
                         row0[f * n + n - j] = minus[f];
@@ -424,23 +504,7 @@ impl Cascade {
                     .for_each(|(index, ((upper, lower), scratch))| {
                         let i = index + 1;
                         let kx = i as f32 * dk;
-                        let table = &evolution[i * n..(i + 1) * n];
-                        for j in 0..n {
-                            let jm = (n - j) % n;
-                            if j == half {
-                                for f in 0..TRANSFORMS {
-                                    upper[f * n + j] = Complex32::default();
-                                    lower[f * n + j] = Complex32::default();
-                                }
-                                continue;
-                            }
-                            let kz = wave_index(j, n) as f32 * dk;
-                            let (plus, minus) = packed_pair(&table[j], kx, kz, t);
-                            for f in 0..TRANSFORMS {
-                                upper[f * n + j] = plus[f];
-                                lower[f * n + jm] = minus[f];
-                            }
-                        }
+                        evolve_row_pair(evolution.get_row(i, n), kx, kz, t, upper, lower);
                         rows.process(upper, scratch);
                         rows.process(lower, scratch);
                     });
@@ -474,14 +538,15 @@ impl Cascade {
                     let j0 = b * ROWS_PER_TASK;
                     let count = spatial.len() / row_len;
                     // Gather: spatial[r][f][i] = spectral[i][f][j0 + r].
-                    for i in 0..n {
-                        let source = &spectral[i * row_len..(i + 1) * row_len];
-                        for f in 0..TRANSFORMS {
-                            let column = &source[f * n + j0..f * n + j0 + count];
-                            for (r, &value) in column.iter().enumerate() {
-                                spatial[r * row_len + f * n + i] = value;
-                            }
-                        }
+                    for f in 0..TRANSFORMS {
+                        transpose_into(
+                            &spectral[f * n + j0..],
+                            row_len,
+                            &mut spatial[f * n..],
+                            row_len,
+                            count,
+                            n,
+                        );
                     }
                     rows.process(spatial, scratch);
                     for r in 0..count {
@@ -623,10 +688,10 @@ impl Cascade {
         if i == half || j == half {
             (Evolution::default(), false)
         } else if i < half {
-            (self.evolution[i * n + j], false)
+            (self.evolution.get(i * n + j), false)
         } else {
             let (pi, pj) = ((n - i) % n, (n - j) % n);
-            (self.evolution[pi * n + pj], true)
+            (self.evolution.get(pi * n + pj), true)
         }
     }
 
@@ -672,11 +737,29 @@ fn check_amplitude(bound: f64, choppiness: f32) -> Result<(), Error> {
     Ok(())
 }
 
-/// sin and cos of 2π·`turns` for `turns` in [−½, ½], to about 1e-7: reduced to a quarter
-/// turn and a short Taylor polynomial on [−π/4, π/4] (truncation error below 4e-9).
-#[inline]
+/// 1.5·2^52: adding and subtracting it rounds an f64 of magnitude below 2^51 to an integer
+/// (ties to even) with plain arithmetic, which vectorises (`f64::round` is a libm call on
+/// baseline x86-64).
+const ROUND_F64: f64 = 6_755_399_441_055_744.0;
+/// 1.5·2^23, the same for f32 below 2^22; the low mantissa bits of `x + ROUND_F32` are then
+/// the rounded integer in two's complement.
+const ROUND_F32: f32 = 12_582_912.0;
+
+/// `turns` minus the nearest integer, in [−½, ½] for |turns| < 2^51 (larger values give an
+/// integer, which [`sin_cos_turns`] also handles).
+#[inline(always)]
+fn fract_turns(turns: f64) -> f32 {
+    (turns - ((turns + ROUND_F64) - ROUND_F64)) as f32
+}
+
+/// sin and cos of 2π·`turns` for `turns` in [−½, ½] (any |turns| < 2^20 works), to about
+/// 1e-7: reduced to a quarter turn and a short Taylor polynomial on [−π/4, π/4] (truncation
+/// error below 4e-9). Branch-free, so that loops over it vectorise.
+#[inline(always)]
 pub(crate) fn sin_cos_turns(turns: f32) -> (f32, f32) {
-    let quadrant = (turns * 4.0).round();
+    let shifted = turns * 4.0 + ROUND_F32;
+    let quadrant = shifted - ROUND_F32;
+    let q = shifted.to_bits();
     let a = (turns - quadrant * 0.25) * std::f32::consts::TAU;
     let a2 = a * a;
     let sin = a
@@ -684,24 +767,32 @@ pub(crate) fn sin_cos_turns(turns: f32) -> (f32, f32) {
             + a2 * (-1.0 / 6.0
                 + a2 * (1.0 / 120.0 + a2 * (-1.0 / 5040.0 + a2 * (1.0 / 362_880.0)))));
     let cos = 1.0 + a2 * (-0.5 + a2 * (1.0 / 24.0 + a2 * (-1.0 / 720.0 + a2 * (1.0 / 40_320.0))));
-    match (quadrant as i32) & 3 {
-        0 => (sin, cos),
-        1 => (cos, -sin),
-        2 => (-sin, -cos),
-        _ => (-cos, sin),
-    }
+    // Quadrant q: (sin, cos) → (s, c), (c, −s), (−s, −c), (−c, s).
+    let (x, y) = if q & 1 == 0 { (sin, cos) } else { (cos, sin) };
+    let sin_sign = (q & 2) << 30;
+    let cos_sign = (q.wrapping_add(1) & 2) << 30;
+    (
+        f32::from_bits(x.to_bits() ^ sin_sign),
+        f32::from_bits(y.to_bits() ^ cos_sign),
+    )
 }
 
-/// The four packed spectral values at k = (`kx`, `kz`) and at −k, from one evolution entry.
+/// The four packed spectral values at k = (`kx`, `kz`) and at −k, from an evolution entry's
+/// p and q and its phase in `turns` (reduced, see [`fract_turns`]).
 ///
 /// Transform p holds A + iB for the field pair (A, B) = (η, D_x), (D_z, η_x), (η_z, D_xx),
 /// (D_zz, D_xz). With A = α h̃, B = β h̃ and Hermitian fields, the value at k is (α + iβ) h̃
 /// and at −k it is (conj α + i conj β) conj h̃.
-#[inline]
-fn packed_pair(entry: &Evolution, kx: f32, kz: f32, t: f64) -> ([Complex32; 4], [Complex32; 4]) {
-    let turns = entry.freq * t;
-    let (sin, cos) = sin_cos_turns((turns - turns.round()) as f32);
-    let h = entry.p * cos + entry.q * sin;
+#[inline(always)]
+fn packed_pair(
+    turns: f32,
+    p: Complex32,
+    q: Complex32,
+    kx: f32,
+    kz: f32,
+) -> ([Complex32; 4], [Complex32; 4]) {
+    let (sin, cos) = sin_cos_turns(turns);
+    let h = Complex32::new(p.re * cos + q.re * sin, p.im * cos + q.im * sin);
     let hc = h.conj();
     let k = (kx * kx + kz * kz).sqrt();
     let inv_k = if k > 0.0 { 1.0 / k } else { 0.0 };
@@ -722,9 +813,111 @@ fn packed_pair(entry: &Evolution, kx: f32, kz: f32, t: f64) -> ([Complex32; 4], 
     (plus, minus)
 }
 
+/// Fills spectral rows i (`upper`, k_x > 0) and N − i (`lower`, its Hermitian partner), each
+/// four packed transforms of N, from table row i: (i, j) pairs with (N − i, N − j).
+#[inline(never)]
+fn evolve_row_pair(
+    table: EvolutionRow<'_>,
+    kx: f32,
+    kz: &[f32],
+    t: f64,
+    upper: &mut [Complex32],
+    lower: &mut [Complex32],
+) {
+    let n = kz.len();
+    let (u0, rest) = upper.split_at_mut(n);
+    let (u1, rest) = rest.split_at_mut(n);
+    let (u2, u3) = rest.split_at_mut(n);
+    let (l0, rest) = lower.split_at_mut(n);
+    let (l1, rest) = rest.split_at_mut(n);
+    let (l2, l3) = rest.split_at_mut(n);
+    let (u3, l3) = (&mut u3[..n], &mut l3[..n]);
+    // Column 0 pairs with itself; the rest pair j with N − j. (The Nyquist column's table
+    // entries are zero, so it comes out zero.)
+    let e = table.get(0);
+    let (plus, minus) = packed_pair(fract_turns(e.freq * t), e.p, e.q, kx, kz[0]);
+    (u0[0], u1[0], u2[0], u3[0]) = (plus[0], plus[1], plus[2], plus[3]);
+    (l0[0], l1[0], l2[0], l3[0]) = (minus[0], minus[1], minus[2], minus[3]);
+    // Blocks of EVOLVE_BLOCK columns: the f64 phase reduction first (2 lanes per SSE
+    // vector), then the f32 work (4 lanes), each loop vectorising at its own width.
+    const EVOLVE_BLOCK: usize = 32;
+    let mut turns = [0.0f32; EVOLVE_BLOCK];
+    let mut start = 1;
+    while start < n {
+        let len = EVOLVE_BLOCK.min(n - start);
+        let range = start..start + len;
+        let turns = &mut turns[..len];
+        for (turns, &freq) in turns.iter_mut().zip(&table.freq[range.clone()]) {
+            *turns = fract_turns(freq * t);
+        }
+        let mirror = n + 1 - start - len..n + 1 - start;
+        evolve_block(
+            turns,
+            table.slice(range.clone()),
+            kx,
+            &kz[range.clone()],
+            [
+                &mut u0[range.clone()],
+                &mut u1[range.clone()],
+                &mut u2[range.clone()],
+                &mut u3[range],
+            ],
+            [
+                &mut l0[mirror.clone()],
+                &mut l1[mirror.clone()],
+                &mut l2[mirror.clone()],
+                &mut l3[mirror],
+            ],
+        );
+        start += len;
+    }
+}
+
+/// The four packed values of a block of columns j (`plus`, at the block's columns) and of
+/// their partners N − j (`minus`, in reverse order), from the block's reduced phases and
+/// table entries. A function of its own, every slice an argument, so that the loop
+/// vectorises (within `evolve_row_pair` LLVM cannot tell the row slices apart and leaves it
+/// scalar).
+#[inline(never)]
+fn evolve_block(
+    turns: &[f32],
+    table: EvolutionRow<'_>,
+    kx: f32,
+    kz: &[f32],
+    plus: [&mut [Complex32]; 4],
+    minus: [&mut [Complex32]; 4],
+) {
+    let len = turns.len();
+    let (p_re, p_im) = (&table.p_re[..len], &table.p_im[..len]);
+    let (q_re, q_im) = (&table.q_re[..len], &table.q_im[..len]);
+    let kz = &kz[..len];
+    let [u0, u1, u2, u3] = plus;
+    let (u0, u1, u2, u3) = (
+        &mut u0[..len],
+        &mut u1[..len],
+        &mut u2[..len],
+        &mut u3[..len],
+    );
+    let [l0, l1, l2, l3] = minus;
+    let (l0, l1, l2, l3) = (
+        &mut l0[..len],
+        &mut l1[..len],
+        &mut l2[..len],
+        &mut l3[..len],
+    );
+    for b in 0..len {
+        let p = Complex32::new(p_re[b], p_im[b]);
+        let q = Complex32::new(q_re[b], q_im[b]);
+        let (plus, minus) = packed_pair(turns[b], p, q, kx, kz[b]);
+        (u0[b], u1[b], u2[b], u3[b]) = (plus[0], plus[1], plus[2], plus[3]);
+        let m = len - 1 - b;
+        (l0[m], l1[m], l2[m], l3[m]) = (minus[0], minus[1], minus[2], minus[3]);
+    }
+}
+
 /// Output buffers of one grid row from its four packed, transformed rows.
 #[allow(clippy::too_many_arguments)]
-#[inline]
+#[inline(never)]
 fn write_outputs(
     row: &[Complex32],
     n: usize,
@@ -738,7 +931,63 @@ fn write_outputs(
     let (t0, rest) = row.split_at(n);
     let (t1, rest) = rest.split_at(n);
     let (t2, t3) = rest.split_at(n);
-    for i in 0..n {
+    // Blocks of OUTPUT_BLOCK: the arithmetic runs into plain f32 arrays (so that it
+    // vectorises; stores of Vec3 in the same loop keep it scalar), then the normals and
+    // slopes are copied out.
+    const OUTPUT_BLOCK: usize = 64;
+    let mut nx = [0.0f32; OUTPUT_BLOCK];
+    let mut ny = [0.0f32; OUTPUT_BLOCK];
+    let mut nz = [0.0f32; OUTPUT_BLOCK];
+    let mut sx = [0.0f32; OUTPUT_BLOCK];
+    let mut sz = [0.0f32; OUTPUT_BLOCK];
+    for start in (0..n).step_by(OUTPUT_BLOCK) {
+        let len = OUTPUT_BLOCK.min(n - start);
+        let range = start..start + len;
+        output_block(
+            [
+                &t0[range.clone()],
+                &t1[range.clone()],
+                &t2[range.clone()],
+                &t3[range.clone()],
+            ],
+            lambda,
+            &mut height[range.clone()],
+            &mut jacobian[range.clone()],
+            &mut displacement[range.clone()],
+            [&mut nx[..len], &mut ny[..len], &mut nz[..len]],
+            [&mut sx[..len], &mut sz[..len]],
+        );
+        for (i, (normal, slope)) in normal[range.clone()]
+            .iter_mut()
+            .zip(&mut slope[range])
+            .enumerate()
+        {
+            *normal = Vec3::new(nx[i], ny[i], nz[i]);
+            *slope = Vec2::new(sx[i], sz[i]);
+        }
+    }
+}
+
+/// The arithmetic of [`write_outputs`] on one block, with the normals and slopes into plain
+/// f32 arrays. A function of its own, with every slice an argument (no aliasing, equal
+/// lengths), so that the loop vectorises.
+#[inline(never)]
+fn output_block(
+    [t0, t1, t2, t3]: [&[Complex32]; 4],
+    lambda: f32,
+    height: &mut [f32],
+    jacobian: &mut [f32],
+    displacement: &mut [Vec2],
+    [nx, ny, nz]: [&mut [f32]; 3],
+    [sx, sz]: [&mut [f32]; 2],
+) {
+    let len = t0.len();
+    let (t1, t2, t3) = (&t1[..len], &t2[..len], &t3[..len]);
+    let (height, jacobian) = (&mut height[..len], &mut jacobian[..len]);
+    let displacement = &mut displacement[..len];
+    let (nx, ny, nz) = (&mut nx[..len], &mut ny[..len], &mut nz[..len]);
+    let (sx, sz) = (&mut sx[..len], &mut sz[..len]);
+    for i in 0..len {
         let (eta, dx) = (t0[i].re, t0[i].im);
         let (dz, eta_x) = (t1[i].re, t1[i].im);
         let (eta_z, dxx) = (t2[i].re, t2[i].im);
@@ -748,19 +997,23 @@ fn write_outputs(
         let jxz = lambda * dxz;
         let det = jxx * jzz - jxz * jxz;
         // n = T_z × T_x with T_x = (jxx, η_x, jxz), T_z = (jxz, η_z, jzz); n_y = J.
-        let raw = Vec3::new(eta_z * jxz - jzz * eta_x, det, jxz * eta_x - eta_z * jxx);
-        let len = raw.length();
+        let (rx, rz) = (eta_z * jxz - jzz * eta_x, jxz * eta_x - eta_z * jxx);
+        let norm = (rx * rx + det * det + rz * rz).sqrt();
+        // Branch-free (selects); false for NaN too.
+        let valid = (norm > 0.0) & (norm < f32::INFINITY);
+        let inv_len = 1.0 / norm;
+        // A plain compare rather than f32::max (which handles NaN, at a cost): a NaN here
+        // only comes with a NaN norm, where `valid` is false anyway.
+        let min_ny = MIN_SLOPE_NY * norm;
+        let inv_ny = 1.0 / if det > min_ny { det } else { min_ny };
         height[i] = eta;
         displacement[i] = Vec2::new(lambda * dx, lambda * dz);
         jacobian[i] = det;
-        if len > 0.0 && len.is_finite() {
-            normal[i] = raw / len;
-            let ny = det.max(MIN_SLOPE_NY * len);
-            slope[i] = Vec2::new(-raw.x / ny, -raw.z / ny);
-        } else {
-            normal[i] = Vec3::Y;
-            slope[i] = Vec2::ZERO;
-        }
+        nx[i] = if valid { rx * inv_len } else { 0.0 };
+        ny[i] = if valid { det * inv_len } else { 1.0 };
+        nz[i] = if valid { rz * inv_len } else { 0.0 };
+        sx[i] = if valid { -rx * inv_ny } else { 0.0 };
+        sz[i] = if valid { -rz * inv_ny } else { 0.0 };
     }
 }
 
@@ -781,6 +1034,35 @@ mod tests {
         }
         // f32 rounding of the reduced angle and of the polynomial: a few ulps of 1.
         assert!(worst < 5e-7, "worst error {worst}");
+    }
+
+    #[test]
+    fn fast_sin_cos_handles_quadrant_ties_and_whole_turns() {
+        // Exact quadrant boundaries (ties of the rounding) and values beyond half a turn.
+        for step in -12..=12 {
+            let turns = step as f32 / 8.0;
+            let (s, c) = sin_cos_turns(turns);
+            let (es, ec) = (f64::from(turns) * TAU).sin_cos();
+            assert!((f64::from(s) - es).abs() < 1e-6, "sin at {turns}");
+            assert!((f64::from(c) - ec).abs() < 1e-6, "cos at {turns}");
+        }
+    }
+
+    #[test]
+    fn fract_turns_reduces_large_phases_exactly() {
+        for (turns, expected) in [
+            (0.25, 0.25),
+            (-0.25, -0.25),
+            (3.75, -0.25),
+            (-7.125, -0.125),
+            (1e12 + 0.375, 0.375),
+            (-(2f64.powi(40)) - 0.0625, -0.0625),
+        ] {
+            assert_eq!(fract_turns(turns), expected, "turns {turns}");
+        }
+        // Beyond 2^52 every f64 is an integer: the phase is a whole number of turns.
+        let (s, c) = sin_cos_turns(fract_turns(2f64.powi(60) + 4096.0));
+        assert!(s.abs() < 1e-7 && (c - 1.0).abs() < 1e-7);
     }
 
     #[test]

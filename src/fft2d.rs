@@ -1,7 +1,7 @@
 //! Batched complex 2D inverse FFTs on the CPU: one rustfft plan, scratch made once per task,
 //! rows in parallel with rayon and a cache-blocked parallel transpose between the passes.
 //!
-//! The building blocks ([`RowFft`], [`transpose_blocked`]) are shared with the cascade, which
+//! The building blocks ([`RowFft`], [`transpose_into`]) are shared with the cascade, which
 //! fuses them with its own spectral and output passes; [`Fft2d`] strings them together plainly
 //! and is the speed baseline the benches compare a cascade update with.
 
@@ -13,9 +13,11 @@ use rustfft::{Fft, FftPlanner};
 
 use crate::error::Error;
 
-/// Rows handled by one parallel task (a tile side of the transpose, too). 16 rows of a
-/// 512-point complex transform are 64 KiB: they stay in a core's L2 cache while they are
-/// worked on, and a 512² grid still gives 32 tasks to balance over the threads.
+/// Rows handled by one parallel task of the second pass (the rows a task gathers by a
+/// transpose and transforms). 16 rows of a 512-point complex transform are 64 KiB (256 KiB
+/// for a cascade's four packed transforms): they stay in a core's L2 cache while they are
+/// worked on, and a 512² grid still gives 32 tasks to balance over the threads. (8 and 32
+/// measured no better at N = 256 and 512.)
 pub(crate) const ROWS_PER_TASK: usize = 16;
 
 /// An inverse complex FFT of length N applied to many rows, with scratch for a fixed number
@@ -54,31 +56,54 @@ impl std::fmt::Debug for RowFft {
     }
 }
 
-/// `dst[j][i] = src[i][j]` for N×N arrays, in parallel over blocks of destination rows and
-/// in square tiles of [`ROWS_PER_TASK`] so that both sides are read and written a cache line
-/// at a time.
-pub(crate) fn transpose_blocked(src: &[Complex32], dst: &mut [Complex32], n: usize) {
-    debug_assert_eq!(src.len(), n * n);
-    debug_assert_eq!(dst.len(), n * n);
-    dst.par_chunks_mut(n * ROWS_PER_TASK)
-        .enumerate()
-        .for_each(|(block, rows)| {
-            let j0 = block * ROWS_PER_TASK;
-            let height = rows.len() / n;
-            for i0 in (0..n).step_by(ROWS_PER_TASK) {
-                for i in i0..(i0 + ROWS_PER_TASK).min(n) {
-                    let column = &src[i * n + j0..i * n + j0 + height];
-                    for (r, &value) in column.iter().enumerate() {
-                        rows[r * n + i] = value;
+/// Side of the square tiles [`transpose_into`] moves at once: 8 complex values are one 64-byte
+/// cache line.
+const TILE: usize = 8;
+
+/// `dst[r * dst_stride + c] = src[c * src_stride + r]` for `r < rows`, `c < cols`.
+///
+/// Works in [`TILE`]×[`TILE`] tiles: a tile's source rows are read and its destination rows
+/// written a whole cache line at a time, so the few lines in flight stay in L1 even when
+/// the strides are powers of two (a column-at-a-time copy with a 4 KiB stride keeps missing
+/// L1 as all its lines fall into the same cache set; at N = 128 that made the transpose cost
+/// three times the row FFTs).
+pub(crate) fn transpose_into(
+    src: &[Complex32],
+    src_stride: usize,
+    dst: &mut [Complex32],
+    dst_stride: usize,
+    rows: usize,
+    cols: usize,
+) {
+    for c0 in (0..cols).step_by(TILE) {
+        let width = TILE.min(cols - c0);
+        for r0 in (0..rows).step_by(TILE) {
+            let height = TILE.min(rows - r0);
+            if width == TILE && height == TILE {
+                let lines: [&[Complex32; TILE]; TILE] = std::array::from_fn(|k| {
+                    let start = (c0 + k) * src_stride + r0;
+                    src[start..start + TILE].try_into().expect("TILE values")
+                });
+                for r in 0..TILE {
+                    let out = &mut dst[(r0 + r) * dst_stride + c0..][..TILE];
+                    for (value, line) in out.iter_mut().zip(&lines) {
+                        *value = line[r];
+                    }
+                }
+            } else {
+                for c in c0..c0 + width {
+                    for r in r0..r0 + height {
+                        dst[r * dst_stride + c] = src[c * src_stride + r];
                     }
                 }
             }
-        });
+        }
+    }
 }
 
 /// `count` unnormalised inverse complex 2D FFTs of N×N arrays, done the way a cascade does
-/// its transforms: the rows of all arrays in parallel, a blocked parallel transpose, the rows
-/// again. Plans, scratch and the intermediate buffer are made once in [`Fft2d::new`];
+/// its transforms: the rows of all arrays in parallel, then in parallel blocks of
+/// [`ROWS_PER_TASK`] rows, a tiled transpose of the block and its rows again while in cache. Plans, scratch and the intermediate buffer are made once in [`Fft2d::new`];
 /// [`Fft2d::process`] allocates nothing.
 ///
 /// The result is left **transposed** (`result[a][x][z]` for input `[a][k_z][k_x]`), as in the
@@ -114,7 +139,8 @@ impl Fft2d {
             ));
         }
         let rows = RowFft::new(size);
-        let tasks = (count * size).div_ceil(ROWS_PER_TASK);
+        // The first pass runs (count·N)/ROWS_PER_TASK tasks, the second count·⌈N/ROWS_PER_TASK⌉.
+        let tasks = count * size.div_ceil(ROWS_PER_TASK);
         Ok(Fft2d {
             n: size,
             count,
@@ -141,16 +167,27 @@ impl Fft2d {
         data.par_chunks_mut(n * ROWS_PER_TASK)
             .zip(self.scratch.par_chunks_mut(s))
             .for_each(|(chunk, scratch)| rows.process(chunk, scratch));
-        for (src, dst) in data
-            .chunks_exact(n * n)
-            .zip(self.transposed.chunks_exact_mut(n * n))
-        {
-            transpose_blocked(src, dst, n);
-        }
+        // Second pass: each task gathers a block of rows of one array (the transpose) and
+        // transforms them while they are in cache, as a cascade does.
+        let blocks = n.div_ceil(ROWS_PER_TASK);
+        let data = &*data;
         self.transposed
-            .par_chunks_mut(n * ROWS_PER_TASK)
-            .zip(self.scratch.par_chunks_mut(s))
-            .for_each(|(chunk, scratch)| rows.process(chunk, scratch));
+            .par_chunks_mut(n * n)
+            .zip(self.scratch.par_chunks_mut(blocks * s))
+            .enumerate()
+            .for_each(|(a, (array, scratch))| {
+                let src = &data[a * n * n..(a + 1) * n * n];
+                array
+                    .par_chunks_mut(n * ROWS_PER_TASK)
+                    .zip(scratch.par_chunks_mut(s))
+                    .enumerate()
+                    .for_each(|(block, (rows_out, scratch))| {
+                        let j0 = block * ROWS_PER_TASK;
+                        let height = rows_out.len() / n;
+                        transpose_into(&src[j0..], n, rows_out, n, height, n);
+                        rows.process(rows_out, scratch);
+                    });
+            });
         Ok(&self.transposed)
     }
 }
@@ -166,10 +203,45 @@ mod tests {
                 .map(|v| Complex32::new(v as f32, -(v as f32)))
                 .collect();
             let mut dst = vec![Complex32::default(); n * n];
-            transpose_blocked(&src, &mut dst, n);
+            transpose_into(&src, n, &mut dst, n, n, n);
             for i in 0..n {
                 for j in 0..n {
                     assert_eq!(dst[j * n + i], src[i * n + j]);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn fft2d_matches_a_naive_inverse_dft() {
+        for n in [4, 6, 8, 34] {
+            let count = 2;
+            let input: Vec<Complex32> = (0..count * n * n)
+                .map(|v| Complex32::new(((v * 7) % 11) as f32 - 5.0, ((v * 3) % 5) as f32))
+                .collect();
+            let mut fft = Fft2d::new(n, count).unwrap();
+            let mut data = input.clone();
+            let out = fft.process(&mut data).unwrap().to_vec();
+            let tau = std::f64::consts::TAU;
+            for a in 0..count {
+                for x in 0..n {
+                    for z in 0..n {
+                        // result[a][x][z] = Σ input[a][kz][kx] e^{+i 2π (kx x + kz z)/N}
+                        let (mut re, mut im) = (0.0f64, 0.0f64);
+                        for kz in 0..n {
+                            for kx in 0..n {
+                                let v = input[a * n * n + kz * n + kx];
+                                let phase = tau * ((kx * x + kz * z) % n) as f64 / n as f64;
+                                let (s, c) = phase.sin_cos();
+                                re += f64::from(v.re) * c - f64::from(v.im) * s;
+                                im += f64::from(v.re) * s + f64::from(v.im) * c;
+                            }
+                        }
+                        let got = out[a * n * n + x * n + z];
+                        let scale = (n * n) as f64 * 8.0;
+                        assert!((f64::from(got.re) - re).abs() < 1e-5 * scale, "n {n}");
+                        assert!((f64::from(got.im) - im).abs() < 1e-5 * scale, "n {n}");
+                    }
                 }
             }
         }
