@@ -238,10 +238,13 @@ impl OceanState {
             });
         }
         let t = self.time + dt;
-        self.update_cascades(t)?;
-        self.time = t;
-        self.advance_foam(dt as f32);
-        Ok(())
+        // One job handed to rayon per step (see `Cascade::update`).
+        rayon::scope(|_| {
+            self.update_cascades(t)?;
+            self.time = t;
+            self.advance_foam(dt as f32);
+            Ok(())
+        })
     }
 
     /// Jumps to time `t` in seconds (|t| ≤ [`crate::MAX_TIME`]) and updates every cascade.
