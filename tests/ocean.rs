@@ -287,7 +287,10 @@ fn batch_queries_equal_single_queries() {
 
 #[test]
 fn parallel_and_sequential_cascade_updates_agree_bit_for_bit() {
-    let mut a = ocean(small_config());
+    let mut a = ocean(OceanConfig {
+        parallel_cascades: false,
+        ..small_config()
+    });
     let mut b = ocean(OceanConfig {
         parallel_cascades: true,
         ..small_config()
