@@ -102,9 +102,9 @@ pub(crate) fn transpose_into(
 }
 
 /// `count` unnormalised inverse complex 2D FFTs of N×N arrays, done the way a cascade does
-/// its transforms: the rows of all arrays in parallel, then in parallel blocks of
-/// [`ROWS_PER_TASK`] rows, a tiled transpose of the block and its rows again while in cache. Plans, scratch and the intermediate buffer are made once in [`Fft2d::new`];
-/// [`Fft2d::process`] allocates nothing.
+/// its transforms: the rows of all arrays in parallel, then, in parallel blocks of 16 rows, a
+/// tiled transpose of the block and its rows again while in cache. Plans, scratch and the
+/// intermediate buffer are made once in [`Fft2d::new`]; [`Fft2d::process`] allocates nothing.
 ///
 /// The result is left **transposed** (`result[a][x][z]` for input `[a][k_z][k_x]`), as in the
 /// cascade, which lays its spectra out so that no transpose back is needed.
