@@ -448,3 +448,26 @@ fn outputs_stay_finite_in_a_folding_storm() {
     let y = state.height_at(100.0, 100.0).unwrap();
     assert!(y.is_finite());
 }
+
+#[test]
+fn ocean_state_can_be_shared_between_threads() {
+    fn send_sync<T: Send + Sync>() {}
+    send_sync::<OceanState>();
+    send_sync::<SurfaceSample>();
+    // Queries from several threads at once agree with the same queries on this thread.
+    let mut state = ocean(small_config());
+    state.step(1.5).unwrap();
+    let here: Vec<f32> = (0..4)
+        .map(|i| state.height_at(f64::from(i) * 10.0, 5.0).unwrap())
+        .collect();
+    let there: Vec<f32> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..4)
+            .map(|i| {
+                let state = &state;
+                scope.spawn(move || state.height_at(f64::from(i) * 10.0, 5.0).unwrap())
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    assert_eq!(here, there);
+}
