@@ -599,10 +599,16 @@ impl Cascade {
     /// Changes the choppiness λ (dimensionless, ≥ 0). Takes effect at the next
     /// [`Cascade::update`].
     pub fn set_choppiness(&mut self, choppiness: f32) -> Result<(), Error> {
-        let lambda = error::non_negative("choppiness", choppiness)?;
-        check_amplitude(self.amplitude_bound, lambda)?;
+        let lambda = self.check_choppiness(choppiness)?;
         self.config.choppiness = lambda;
         Ok(())
+    }
+
+    /// The checks of [`Cascade::set_choppiness`] without the change.
+    pub(crate) fn check_choppiness(&self, choppiness: f32) -> Result<f32, Error> {
+        let lambda = error::non_negative("choppiness", choppiness)?;
+        check_amplitude(self.amplitude_bound, lambda)?;
+        Ok(lambda)
     }
 
     /// Expected variance of η in m²: Σ S(k) Δk² over the wave vectors of the grid in the

@@ -331,11 +331,9 @@ impl OceanState {
     /// Sets the choppiness λ ≥ 0 of every cascade (takes effect at the next step).
     pub fn set_choppiness(&mut self, choppiness: f32) -> Result<(), Error> {
         let lambda = error::non_negative("choppiness", choppiness)?;
-        // Check every cascade before changing any.
+        // Check every cascade before changing any, so an error leaves them all as they were.
         for cascade in &self.cascades {
-            let mut probe = *cascade.config();
-            probe.choppiness = lambda;
-            probe.validate()?;
+            cascade.check_choppiness(lambda)?;
         }
         for cascade in &mut self.cascades {
             cascade.set_choppiness(lambda)?;

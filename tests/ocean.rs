@@ -471,3 +471,29 @@ fn ocean_state_can_be_shared_between_threads() {
     });
     assert_eq!(here, there);
 }
+
+#[test]
+fn a_refused_choppiness_changes_no_cascade() {
+    // λ = 1e12 would let the fields overflow f32 (the amplitude bound): refused, and every
+    // cascade keeps its choppiness.
+    let spectrum = Spectrum::phillips(30.0, 1e3).unwrap();
+    let mut state = OceanState::new(spectrum, small_config()).unwrap();
+    let before: Vec<f32> = state
+        .cascades()
+        .iter()
+        .map(|c| c.config().choppiness)
+        .collect();
+    assert!(state.set_choppiness(1e12).is_err());
+    let after: Vec<f32> = state
+        .cascades()
+        .iter()
+        .map(|c| c.config().choppiness)
+        .collect();
+    assert_eq!(before, after);
+    assert_eq!(state.config().choppiness, 1.0);
+    state.set_choppiness(0.5).unwrap();
+    assert!(state
+        .cascades()
+        .iter()
+        .all(|c| c.config().choppiness == 0.5));
+}
