@@ -81,6 +81,8 @@ mod ocean;
 mod presets;
 mod sampling;
 mod seed;
+#[cfg(feature = "serde")]
+mod serde_support;
 mod spectrum;
 
 pub use cascade::{Cascade, CascadeConfig, Field, MAX_TIME};
