@@ -69,7 +69,7 @@ pub struct OceanConfig {
     /// Lower limit of the whole band in rad/m. Default 0.
     pub k_min: f32,
     /// Upper limit of the whole band in rad/m (may be +∞; the smallest cascade's Nyquist
-    /// wave number πN/L caps it). Default +∞.
+    /// wave number πN/L caps it). Default +∞ (saved as `null` with the `serde` feature).
     #[cfg_attr(
         feature = "serde",
         serde(
