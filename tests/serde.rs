@@ -432,3 +432,81 @@ fn configs_are_passive_data_checked_by_the_constructors() {
     let spectrum = Spectrum::jonswap(10.0, 100_000.0).unwrap();
     assert!(OceanState::new(spectrum, config).is_err());
 }
+
+/// A loaded spectrum's parameters need not be related as the constructors relate them (the
+/// wind and ω_p of a JONSWAP without fetch are independent in the file); any combination that
+/// loads still evaluates without NaN.
+#[test]
+fn loaded_combinations_no_constructor_makes_evaluate_finite() {
+    let base = valid("Jonswap");
+    // A sea more than fully developed (ω_p U/g < 0.877) is refused: no constructor makes one,
+    // and the Mitsuyasu spreading's s would overflow.
+    for (wind, peak) in [(1e-30, 1e-3), (200.0, 1e-6), (10.0, 0.8)] {
+        let mut value = base.clone();
+        value["fetch"] = Value::Null;
+        value["wind_speed"] = json!(wind);
+        value["model"]["Jonswap"]["peak_omega"] = json!(peak);
+        let message = rejected(&value);
+        assert!(message.contains("`peak_omega`"), "{message}");
+    }
+    let mut value = base.clone();
+    value["model"]["Jonswap"]["peak_omega"] = json!(1e-3);
+    assert!(rejected(&value).contains("`peak_omega`"));
+    for (wind, peak) in [(1e30, 100.0), (0.5, 50.0), (10.0, 0.861), (1e-3, 1e4)] {
+        for spreading in [
+            json!("Mitsuyasu"),
+            json!("Hasselmann"),
+            json!("DonelanBanner"),
+            json!({ "Cos2s": { "s": 1e-6 } }),
+        ] {
+            let mut value = base.clone();
+            value["fetch"] = Value::Null;
+            value["wind_speed"] = json!(wind);
+            value["model"]["Jonswap"]["peak_omega"] = json!(peak);
+            value["spreading"] = spreading;
+            value["swell"] = json!(1.0);
+            let spectrum: Spectrum = serde_json::from_value(value.clone()).unwrap();
+            for k in [1e-4f32, 0.01, 0.3, 2.0, 50.0] {
+                for angle in [0.0f32, 1.0, 3.0, -2.0] {
+                    let density = spectrum.density(ocean_fft::Vec2::from_angle(angle) * k);
+                    assert!(density.is_finite() && density >= 0.0, "{value} k {k}");
+                    let d = spectrum.spreading(k, angle);
+                    assert!(d.is_finite() && d >= 0.0, "{value} ω {k}");
+                }
+            }
+            assert!(spectrum.significant_wave_height().is_finite(), "{value}");
+        }
+    }
+}
+
+/// Whatever a constructor accepts, even at the ends of its ranges, saves and loads unchanged.
+#[test]
+fn every_constructible_spectrum_loads() {
+    let winds = [1e-6f32, 0.01, 0.5, 10.0, 60.0, 200.0];
+    let lengths = [1e-6f32, 1.0, 1e3, 1e6, 1e12, 3e38];
+    let mut spectra = Vec::new();
+    for u in winds {
+        spectra.push(Spectrum::pierson_moskowitz(u));
+        spectra.push(Spectrum::phillips(u, 1e-3));
+        for f in lengths {
+            spectra.push(Spectrum::jonswap(u, f));
+            spectra.push(Spectrum::tma(u, f, f));
+        }
+    }
+    for alpha in [1e-30f32, 1e-3, 1.0, 1e30] {
+        for peak in [1e-30f32, 1e-6, 0.1, 10.0, 1e6, 1e30] {
+            for gamma in [1e-6f32, 1.0, 1e6] {
+                spectra.push(Spectrum::jonswap_from_parameters(alpha, peak, gamma));
+            }
+        }
+    }
+    let mut built = 0;
+    for spectrum in spectra.into_iter().flatten() {
+        for spreading in [Spreading::Mitsuyasu, Spreading::Hasselmann] {
+            let spectrum = spectrum.clone().with_spreading(spreading).unwrap();
+            assert_eq!(round_trip(&spectrum), spectrum);
+            built += 1;
+        }
+    }
+    assert!(built > 200, "{built}");
+}

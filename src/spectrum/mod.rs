@@ -239,9 +239,10 @@ impl Spectrum {
     /// wraps the wind direction to [−π, π] as [`with_wind_direction`](Self::with_wind_direction)
     /// does: the gate for spectra assembled from stored fields (deserialisation).
     ///
-    /// The parameters are checked one by one, not for consistency with each other (α and ω_p
-    /// need not follow the fetch law of the stored wind and fetch): any combination that passes
-    /// evaluates without NaN, as one from [`Spectrum::jonswap_from_parameters`] does.
+    /// The parameters are checked one by one, plus the one relation every constructor keeps
+    /// and evaluation relies on (ω_p U/g ≥ 0.877, a sea at most fully developed); α and ω_p
+    /// need not follow the fetch law of the stored wind and fetch, as they need not for
+    /// [`Spectrum::jonswap_from_parameters`].
     #[cfg_attr(not(feature = "serde"), allow(dead_code))]
     pub(crate) fn validate(mut self) -> Result<Self, Error> {
         match self.model {
@@ -262,6 +263,18 @@ impl Spectrum {
                     None => {
                         error::positive("wind_speed", self.wind_speed)?;
                     }
+                }
+                // Every constructor gives a sea at most fully developed, ω_p U/g ≥ 0.877 (the
+                // fetch law is capped there; Pierson–Moskowitz and jonswap_from_parameters sit
+                // on it). The Mitsuyasu spreading's s_p = 11.5 (ω_p U/g)^−2.5 relies on it:
+                // far below, s overflows the cos-2s normalisation into NaN.
+                let developed = f64::from(peak_omega) * f64::from(self.wind_speed) / G;
+                if developed < PIERSON_MOSKOWITZ_PEAK * (1.0 - 1e-4) {
+                    return Err(error::out_of_range(
+                        "peak_omega",
+                        peak_omega,
+                        ">= 0.877 g / wind_speed (a sea at most fully developed)",
+                    ));
                 }
             }
             Model::Phillips { amplitude } => {
