@@ -30,6 +30,7 @@ const MIN_SLOPE_NY: f32 = 1e-4;
 
 /// Parameters of one [`Cascade`]: passive data, validated by [`Cascade::new`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CascadeConfig {
     /// Grid size N (samples per side): even, 4 ≤ N ≤ [`MAX_SIZE`]; powers of two are fastest.
     /// Default 256.
@@ -40,6 +41,13 @@ pub struct CascadeConfig {
     pub k_min: f32,
     /// Upper band limit in rad/m: wave vectors with |k| ≥ `k_max` are left out (may be
     /// +∞). Default +∞.
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            with = "crate::serde_support::band_limit",
+            default = "crate::serde_support::band_limit::infinite"
+        )
+    )]
     pub k_max: f32,
     /// Choppiness λ ≥ 0 (dimensionless): grid points move by λ·D. 1 gives the Gerstner
     /// profile for a single wave. Default 1.

@@ -26,8 +26,14 @@ const TENSION: f64 = SURFACE_TENSION as f64 / WATER_DENSITY as f64;
 /// spectra for computer graphics", §4.) The variants' fields are public so that a value can be
 /// matched on; build one with [`Dispersion::finite_depth`] or [`Dispersion::capillary`] to have
 /// the depth checked. An unchecked depth that is not finite and positive is treated as deep
-/// water, so evaluation never yields NaN.
+/// water, so evaluation never yields NaN. With the `serde` feature, deserialising checks the
+/// depth as [`Dispersion::finite_depth`] does.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(try_from = "DispersionData", into = "DispersionData")
+)]
 pub enum Dispersion {
     /// Deep water: ω = √(g k).
     #[default]
@@ -42,6 +48,46 @@ pub enum Dispersion {
         /// Water depth h, in metres.
         depth: f32,
     },
+}
+
+/// The serialised form of [`Dispersion`], checked by `TryFrom` on the way in.
+#[cfg(feature = "serde")]
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(rename = "Dispersion")]
+enum DispersionData {
+    Deep,
+    FiniteDepth { depth: crate::serde_support::Float },
+    Capillary { depth: crate::serde_support::Float },
+}
+
+#[cfg(feature = "serde")]
+impl From<Dispersion> for DispersionData {
+    fn from(dispersion: Dispersion) -> Self {
+        match dispersion {
+            Dispersion::Deep => DispersionData::Deep,
+            Dispersion::FiniteDepth { depth } => DispersionData::FiniteDepth {
+                depth: depth.into(),
+            },
+            Dispersion::Capillary { depth } => DispersionData::Capillary {
+                depth: depth.into(),
+            },
+        }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl TryFrom<DispersionData> for Dispersion {
+    type Error = Error;
+
+    fn try_from(data: DispersionData) -> Result<Self, Error> {
+        let dispersion = match data {
+            DispersionData::Deep => Dispersion::Deep,
+            DispersionData::FiniteDepth { depth } => Dispersion::FiniteDepth { depth: depth.0 },
+            DispersionData::Capillary { depth } => Dispersion::Capillary { depth: depth.0 },
+        };
+        dispersion.validate()?;
+        Ok(dispersion)
+    }
 }
 
 impl Dispersion {

@@ -66,7 +66,36 @@
 //!
 //! # Features
 //!
-//! None yet: the crate always builds the whole simulation, with rayon for threads.
+//! The crate always builds the whole simulation, with rayon for threads. One optional
+//! feature, off by default:
+//!
+//! - **`serde`**: `Serialize` and `Deserialize` for [`Spectrum`], [`Spreading`],
+//!   [`DepthFactor`], [`Dispersion`], [`CascadeConfig`], [`OceanConfig`], [`FoamConfig`] and
+//!   [`SeaState`], to save and load sea configurations. Deserialising a [`Spectrum`] (or a
+//!   [`Dispersion`] or [`Spreading`]) re-runs the checks of its constructors and `with_*`
+//!   setters, so a loaded spectrum is as valid as a built one; invalid data (a negative wind,
+//!   NaN, γ ≤ 0, swell outside [0, 1], a depth ≤ 0, …) is a deserialisation error naming the
+//!   parameter. In human-readable formats those three also read `null` or a string such as
+//!   `"NaN"` as the non-finite number, only to reject it by name. The configs are passive
+//!   data, loaded as they are and checked by [`Cascade::new`] and [`OceanState::new`] like
+//!   any other. Their `k_max` may be +∞, which JSON cannot hold: +∞ is written as `null`
+//!   (and a missing `k_max` reads as +∞); a NaN or −∞ `k_max` cannot be saved.
+//!
+//! ```
+//! # #[cfg(feature = "serde")] {
+//! use ocean_fft::{OceanConfig, SeaState, Spectrum};
+//!
+//! let (spectrum, config) = SeaState::FreshBreeze.build()?;
+//! let saved = serde_json::to_string(&(&spectrum, &config)).unwrap();
+//! let loaded: (Spectrum, OceanConfig) = serde_json::from_str(&saved).unwrap();
+//! assert_eq!(loaded, (spectrum, config));
+//!
+//! let tampered = saved.replace("\"swell\":0.0", "\"swell\":2.0");
+//! let error = serde_json::from_str::<(Spectrum, OceanConfig)>(&tampered).unwrap_err();
+//! assert!(error.to_string().contains("parameter `swell` = 2 is out of range"));
+//! # }
+//! # Ok::<(), ocean_fft::Error>(())
+//! ```
 //!
 //! The formulas, their sources and the choices made where sources differ are in the
 //! repository's `docs/theory.md`; how to pick parameters and embed the crate in a game is in
@@ -81,6 +110,8 @@ mod ocean;
 mod presets;
 mod sampling;
 mod seed;
+#[cfg(feature = "serde")]
+mod serde_support;
 mod spectrum;
 
 pub use cascade::{Cascade, CascadeConfig, Field, MAX_TIME};

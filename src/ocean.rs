@@ -22,6 +22,7 @@ pub const BAND_SPLIT: f32 = 0.5;
 /// s = `injection`·max(0, `bias` − J); over a step the exact solution for J held at its new
 /// value is used, so the result barely depends on the frame rate and never leaves [0, 1].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FoamConfig {
     /// Jacobian threshold (dimensionless): foam is injected where J < `bias`. Default 0.8
     /// (a look control: about 1 % of a fresh breeze's grid points lie below it).
@@ -54,6 +55,7 @@ impl FoamConfig {
 
 /// Parameters of an [`OceanState`]: passive data, validated by [`OceanState::new`].
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct OceanConfig {
     /// Side L of each cascade's patch in metres, strictly decreasing. Default
     /// `[1000, 230, 51]`: non-integer ratios hide the tiling.
@@ -67,7 +69,14 @@ pub struct OceanConfig {
     /// Lower limit of the whole band in rad/m. Default 0.
     pub k_min: f32,
     /// Upper limit of the whole band in rad/m (may be +∞; the smallest cascade's Nyquist
-    /// wave number πN/L caps it). Default +∞.
+    /// wave number πN/L caps it). Default +∞ (saved as `null` with the `serde` feature).
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            with = "crate::serde_support::band_limit",
+            default = "crate::serde_support::band_limit::infinite"
+        )
+    )]
     pub k_max: f32,
     /// Foam injection and decay.
     pub foam: FoamConfig,

@@ -19,6 +19,7 @@ use crate::spectrum::{Spectrum, Spreading};
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum SeaState {
     /// Beaufort 2, light breeze: U10 = 2.5 m/s, fully developed (H_s 0.17 m, T_p 1.8 s).

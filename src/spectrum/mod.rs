@@ -1,6 +1,8 @@
 //! The directional wave spectrum: what a [`Cascade`](crate) turns into waves.
 
 mod omega;
+#[cfg(feature = "serde")]
+mod serde_data;
 mod spreading;
 
 use std::f64::consts::PI;
@@ -25,6 +27,7 @@ pub const DEFAULT_GAMMA: f32 = 3.3;
 
 /// How the shallow-water depth factor Φ(ω, h) of the TMA spectrum is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum DepthFactor {
     /// No depth factor: Φ = 1 (JONSWAP, Pierson–Moskowitz and Phillips by default).
     #[default]
@@ -68,7 +71,21 @@ enum Model {
 ///
 /// The default spreading is [`Spreading::DonelanBanner`] for the oceanographic spectra and
 /// `Spreading::Cosine { exponent: 2.0, upwind: 1.0 }` (Tessendorf's |k̂·ŵ|²) for Phillips.
+///
+/// With the `serde` feature a spectrum serialises as its stored parameters (the model's α,
+/// ω_p and γ or amplitude, the wind, fetch, spreading, swell, blend, short-wave length,
+/// dispersion and depth factor), and deserialising re-runs the checks of the constructors and
+/// setters on every one of them: invalid data gives a deserialisation error naming the
+/// parameter, never an invalid spectrum.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(
+        try_from = "serde_data::SpectrumData",
+        into = "serde_data::SpectrumData"
+    )
+)]
 pub struct Spectrum {
     model: Model,
     wind_speed: f32,
@@ -216,6 +233,73 @@ impl Spectrum {
         let u = check_wind_speed(wind_speed)?;
         let amplitude = error::non_negative("amplitude", amplitude)?;
         Ok(Self::with_model(Model::Phillips { amplitude }, u, None))
+    }
+
+    /// Checks every stored parameter with the checks of the constructors and setters, and
+    /// wraps the wind direction to [−π, π] as [`with_wind_direction`](Self::with_wind_direction)
+    /// does: the gate for spectra assembled from stored fields (deserialisation).
+    ///
+    /// The parameters are checked one by one, plus the one relation every constructor keeps
+    /// and evaluation relies on (ω_p U/g ≥ 0.877, a sea at most fully developed); α and ω_p
+    /// need not follow the fetch law of the stored wind and fetch, as they need not for
+    /// [`Spectrum::jonswap_from_parameters`].
+    #[cfg_attr(not(feature = "serde"), allow(dead_code))]
+    pub(crate) fn validate(mut self) -> Result<Self, Error> {
+        match self.model {
+            Model::Jonswap {
+                alpha,
+                peak_omega,
+                gamma,
+            } => {
+                Self::check_model(alpha, peak_omega)?;
+                error::positive("gamma", gamma)?;
+                // The fetch law caps the wind at MAX_WIND_SPEED; jonswap_from_parameters
+                // derives it from ω_p, which has no upper bound.
+                match self.fetch {
+                    Some(fetch) => {
+                        check_wind_speed(self.wind_speed)?;
+                        error::positive("fetch", fetch)?;
+                    }
+                    None => {
+                        error::positive("wind_speed", self.wind_speed)?;
+                    }
+                }
+                // Every constructor gives a sea at most fully developed, ω_p U/g ≥ 0.877 (the
+                // fetch law is capped there; Pierson–Moskowitz and jonswap_from_parameters sit
+                // on it). The Mitsuyasu spreading's s_p = 11.5 (ω_p U/g)^−2.5 relies on it:
+                // far below, s overflows the cos-2s normalisation into NaN.
+                let developed = f64::from(peak_omega) * f64::from(self.wind_speed) / G;
+                if developed < PIERSON_MOSKOWITZ_PEAK * (1.0 - 1e-4) {
+                    return Err(error::out_of_range(
+                        "peak_omega",
+                        peak_omega,
+                        ">= 0.877 g / wind_speed (a sea at most fully developed)",
+                    ));
+                }
+            }
+            Model::Phillips { amplitude } => {
+                check_wind_speed(self.wind_speed)?;
+                error::non_negative("amplitude", amplitude)?;
+                if self.fetch.is_some() {
+                    return Err(Error::NotApplicable {
+                        name: "fetch",
+                        reason: "the Phillips spectrum is not built from a fetch",
+                    });
+                }
+            }
+        }
+        let wind_direction = error::finite("wind_direction", self.wind_direction)?;
+        if wind_direction.abs() > std::f32::consts::PI {
+            self = self.with_wind_direction(wind_direction)?;
+        }
+        self.spreading = self.spreading.validate()?;
+        let (swell, blend, length) = (self.swell, self.spread_blend, self.short_wave_length);
+        let (dispersion, depth_factor) = (self.dispersion, self.depth_factor);
+        self.with_swell(swell)?
+            .with_spread_blend(blend)?
+            .with_short_wave_length(length)?
+            .with_dispersion(dispersion)?
+            .with_depth_factor(depth_factor)
     }
 
     fn check_model(alpha: f32, peak_omega: f32) -> Result<(), Error> {

@@ -10,7 +10,15 @@ use super::omega::G;
 /// directions θ relative to the wind.
 ///
 /// Every variant is normalised so that ∫_{−π}^{π} D(ω, θ) dθ = 1 at every ω.
+///
+/// With the `serde` feature, deserialising checks the variant's parameters as
+/// [`Spectrum::with_spreading`](crate::Spectrum::with_spreading) does.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(try_from = "SpreadingData", into = "SpreadingData")
+)]
 #[non_exhaustive]
 pub enum Spreading {
     /// Cos-2s with Mitsuyasu et al.'s (1975) frequency-dependent s:
@@ -46,6 +54,64 @@ pub enum Spreading {
         /// Energy of upwind waves relative to downwind ones, in [0, 1].
         upwind: f32,
     },
+}
+
+/// The serialised form of [`Spreading`], checked by `TryFrom` on the way in.
+#[cfg(feature = "serde")]
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(rename = "Spreading")]
+enum SpreadingData {
+    Mitsuyasu,
+    Hasselmann,
+    Cos2s {
+        s: crate::serde_support::Float,
+    },
+    DonelanBanner,
+    Flat,
+    Cos2,
+    Cosine {
+        exponent: crate::serde_support::Float,
+        upwind: crate::serde_support::Float,
+    },
+}
+
+#[cfg(feature = "serde")]
+impl From<Spreading> for SpreadingData {
+    fn from(spreading: Spreading) -> Self {
+        match spreading {
+            Spreading::Mitsuyasu => SpreadingData::Mitsuyasu,
+            Spreading::Hasselmann => SpreadingData::Hasselmann,
+            Spreading::Cos2s { s } => SpreadingData::Cos2s { s: s.into() },
+            Spreading::DonelanBanner => SpreadingData::DonelanBanner,
+            Spreading::Flat => SpreadingData::Flat,
+            Spreading::Cos2 => SpreadingData::Cos2,
+            Spreading::Cosine { exponent, upwind } => SpreadingData::Cosine {
+                exponent: exponent.into(),
+                upwind: upwind.into(),
+            },
+        }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl TryFrom<SpreadingData> for Spreading {
+    type Error = Error;
+
+    fn try_from(data: SpreadingData) -> Result<Self, Error> {
+        match data {
+            SpreadingData::Mitsuyasu => Spreading::Mitsuyasu,
+            SpreadingData::Hasselmann => Spreading::Hasselmann,
+            SpreadingData::Cos2s { s } => Spreading::Cos2s { s: s.0 },
+            SpreadingData::DonelanBanner => Spreading::DonelanBanner,
+            SpreadingData::Flat => Spreading::Flat,
+            SpreadingData::Cos2 => Spreading::Cos2,
+            SpreadingData::Cosine { exponent, upwind } => Spreading::Cosine {
+                exponent: exponent.0,
+                upwind: upwind.0,
+            },
+        }
+        .validate()
+    }
 }
 
 impl Spreading {
