@@ -124,7 +124,8 @@ pub use ocean::{FoamConfig, OceanConfig, OceanState, BAND_SPLIT, MAX_STEP};
 pub use presets::SeaState;
 pub use sampling::{SurfaceSample, HEIGHT_AT_MAX_ITERATIONS, HEIGHT_AT_TOLERANCE, PARALLEL_BATCH};
 pub use spectrum::{
-    DepthFactor, Spectrum, Spreading, DEFAULT_GAMMA, FULLY_DEVELOPED_FETCH, MAX_WIND_SPEED,
+    DepthFactor, Spectrum, Spreading, DEFAULT_GAMMA, FULLY_DEVELOPED_FETCH, MAX_SPREADING_EXPONENT,
+    MAX_WIND_SPEED,
 };
 
 /// Largest supported grid size N (a cascade holds about 40·N² bytes per field set).

@@ -162,3 +162,42 @@ fn evaluation_is_finite_everywhere() {
         assert!(hs.is_finite() && hs > 0.0);
     }
 }
+
+#[test]
+fn spreading_exponents_are_bounded_so_evaluation_stays_finite() {
+    use ocean_fft::{Spectrum, Spreading, Vec2, MAX_SPREADING_EXPONENT};
+    let base = Spectrum::jonswap(10.0, 100_000.0).unwrap();
+    for bad in [1e20f32, f32::MAX, MAX_SPREADING_EXPONENT * 1.01] {
+        assert!(base
+            .clone()
+            .with_spreading(Spreading::Cos2s { s: bad })
+            .is_err());
+        let cosine = Spreading::Cosine {
+            exponent: bad,
+            upwind: 1.0,
+        };
+        assert!(base.clone().with_spreading(cosine).is_err());
+    }
+    // At the bound the spreading still integrates to 1 (midpoint rule on a grid fine enough
+    // for its 1° width: 200 000 steps of 3e-5 rad) and S(k) is finite everywhere.
+    let narrow = base
+        .with_spreading(Spreading::Cos2s {
+            s: MAX_SPREADING_EXPONENT,
+        })
+        .unwrap();
+    let steps = 200_000;
+    let h = 2.0 * std::f64::consts::PI / f64::from(steps);
+    let omega = narrow.peak_omega();
+    let integral: f64 = (0..steps)
+        .map(|i| {
+            let theta = -std::f64::consts::PI + (f64::from(i) + 0.5) * h;
+            f64::from(narrow.spreading(omega, theta as f32)) * h
+        })
+        .sum();
+    assert!((integral - 1.0).abs() < 1e-3, "∫D = {integral}");
+    for kx in [-0.3f32, 0.0, 0.01, 0.1, 2.0] {
+        for kz in [-0.2f32, 0.0, 0.05] {
+            assert!(narrow.density(Vec2::new(kx, kz)).is_finite());
+        }
+    }
+}

@@ -12,7 +12,7 @@ use glam::Vec2;
 use crate::dispersion::Dispersion;
 use crate::error::{self, Error};
 
-pub use spreading::Spreading;
+pub use spreading::{Spreading, MAX_SPREADING_EXPONENT};
 
 use omega::{G, PIERSON_MOSKOWITZ_ALPHA, PIERSON_MOSKOWITZ_PEAK};
 use spreading::SpreadingParams;

@@ -56,6 +56,18 @@ pub enum Spreading {
     },
 }
 
+/// Largest accepted cos-2s exponent s and cosine exponent p (dimensionless): at s = 1e4 the
+/// spreading falls to half power 0.95° either side of the wind, and its normalisation is still
+/// far from overflowing.
+pub const MAX_SPREADING_EXPONENT: f32 = 1e4;
+
+fn bounded_exponent(name: &'static str, value: f32, expected: &'static str) -> Result<(), Error> {
+    if value > MAX_SPREADING_EXPONENT {
+        return Err(error::out_of_range(name, value, expected));
+    }
+    Ok(())
+}
+
 /// The serialised form of [`Spreading`], checked by `TryFrom` on the way in.
 #[cfg(feature = "serde")]
 #[derive(serde::Serialize, serde::Deserialize)]
@@ -119,10 +131,12 @@ impl Spreading {
     pub(crate) fn validate(self) -> Result<Self, Error> {
         match self {
             Spreading::Cos2s { s } => {
-                error::positive("s", s)?;
+                let s = error::positive("s", s)?;
+                bounded_exponent("s", s, "in (0, 1e4]")?;
             }
             Spreading::Cosine { exponent, upwind } => {
-                error::non_negative("exponent", exponent)?;
+                let exponent = error::non_negative("exponent", exponent)?;
+                bounded_exponent("exponent", exponent, "in [0, 1e4]")?;
                 error::unit_interval("upwind", upwind)?;
             }
             _ => {}
