@@ -37,6 +37,14 @@ static GLOBAL: Counting = Counting;
 #[test]
 fn stepping_and_querying_allocate_nothing() {
     let spectrum = Spectrum::jonswap(12.0, 200_000.0).unwrap();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    // Every worker's one-time thread set-up happens when it first runs, asynchronously: make
+    // each run once and let them settle before anything is counted (as in tests/alloc.rs).
+    pool.broadcast(|_| ());
+    std::thread::sleep(std::time::Duration::from_millis(200));
     for parallel_cascades in [false, true] {
         let config = OceanConfig {
             size: 128,
@@ -46,10 +54,6 @@ fn stepping_and_querying_allocate_nothing() {
         let mut ocean = OceanState::new(spectrum.clone(), config).unwrap();
         let points: Vec<[f64; 2]> = (0..256).map(|i| [f64::from(i) * 1.7, -3.0]).collect();
         let mut heights = vec![0.0; points.len()];
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(2)
-            .build()
-            .unwrap();
         let (before, after) = pool.install(|| {
             // Warm-up: the first parallel calls size the workers' queues.
             for _ in 0..3 {
