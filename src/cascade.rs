@@ -949,62 +949,60 @@ fn write_outputs(
     let (t0, rest) = row.split_at(n);
     let (t1, rest) = rest.split_at(n);
     let (t2, t3) = rest.split_at(n);
-    // Blocks of OUTPUT_BLOCK: the arithmetic runs into plain f32 arrays (so that it
-    // vectorises; stores of Vec3 in the same loop keep it scalar), then the normals and
-    // slopes are copied out.
+    // Blocks of OUTPUT_BLOCK: the arithmetic runs into plain f32 arrays for the normals (so
+    // that it vectorises; stores of Vec3 in the same loop keep it scalar), then the normals
+    // are copied out.
     const OUTPUT_BLOCK: usize = 64;
     let mut nx = [0.0f32; OUTPUT_BLOCK];
     let mut ny = [0.0f32; OUTPUT_BLOCK];
     let mut nz = [0.0f32; OUTPUT_BLOCK];
-    let mut sx = [0.0f32; OUTPUT_BLOCK];
-    let mut sz = [0.0f32; OUTPUT_BLOCK];
     for start in (0..n).step_by(OUTPUT_BLOCK) {
         let len = OUTPUT_BLOCK.min(n - start);
         let range = start..start + len;
         output_block(
-            [
-                &t0[range.clone()],
-                &t1[range.clone()],
-                &t2[range.clone()],
-                &t3[range.clone()],
-            ],
+            &t0[range.clone()],
+            &t1[range.clone()],
+            &t2[range.clone()],
+            &t3[range.clone()],
             lambda,
             &mut height[range.clone()],
             &mut jacobian[range.clone()],
             &mut displacement[range.clone()],
-            [&mut nx[..len], &mut ny[..len], &mut nz[..len]],
-            [&mut sx[..len], &mut sz[..len]],
+            &mut slope[range.clone()],
+            &mut nx[..len],
+            &mut ny[..len],
+            &mut nz[..len],
         );
-        for (i, (normal, slope)) in normal[range.clone()]
-            .iter_mut()
-            .zip(&mut slope[range])
-            .enumerate()
-        {
+        for (i, normal) in normal[range].iter_mut().enumerate() {
             *normal = Vec3::new(nx[i], ny[i], nz[i]);
-            *slope = Vec2::new(sx[i], sz[i]);
         }
     }
 }
 
-/// The arithmetic of [`write_outputs`] on one block, with the normals and slopes into plain
-/// f32 arrays. A function of its own, with every slice an argument (no aliasing, equal
-/// lengths), so that the loop vectorises.
+/// The arithmetic of [`write_outputs`] on one block, with the normals into plain f32 arrays.
+/// A function of its own, with every slice a separate argument (so that LLVM knows they do
+/// not overlap and needs no run-time checks), so that the loop vectorises.
+#[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn output_block(
-    [t0, t1, t2, t3]: [&[Complex32]; 4],
+    t0: &[Complex32],
+    t1: &[Complex32],
+    t2: &[Complex32],
+    t3: &[Complex32],
     lambda: f32,
     height: &mut [f32],
     jacobian: &mut [f32],
     displacement: &mut [Vec2],
-    [nx, ny, nz]: [&mut [f32]; 3],
-    [sx, sz]: [&mut [f32]; 2],
+    slope: &mut [Vec2],
+    nx: &mut [f32],
+    ny: &mut [f32],
+    nz: &mut [f32],
 ) {
     let len = t0.len();
     let (t1, t2, t3) = (&t1[..len], &t2[..len], &t3[..len]);
     let (height, jacobian) = (&mut height[..len], &mut jacobian[..len]);
-    let displacement = &mut displacement[..len];
+    let (displacement, slope) = (&mut displacement[..len], &mut slope[..len]);
     let (nx, ny, nz) = (&mut nx[..len], &mut ny[..len], &mut nz[..len]);
-    let (sx, sz) = (&mut sx[..len], &mut sz[..len]);
     for i in 0..len {
         let (eta, dx) = (t0[i].re, t0[i].im);
         let (dz, eta_x) = (t1[i].re, t1[i].im);
@@ -1030,8 +1028,11 @@ fn output_block(
         nx[i] = if valid { rx * inv_len } else { 0.0 };
         ny[i] = if valid { det * inv_len } else { 1.0 };
         nz[i] = if valid { rz * inv_len } else { 0.0 };
-        sx[i] = if valid { -rx * inv_ny } else { 0.0 };
-        sz[i] = if valid { -rz * inv_ny } else { 0.0 };
+        slope[i] = if valid {
+            Vec2::new(-rx * inv_ny, -rz * inv_ny)
+        } else {
+            Vec2::ZERO
+        };
     }
 }
 
