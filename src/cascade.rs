@@ -153,16 +153,19 @@ struct EvolutionTable {
     q_re: Vec<f32>,
     q_im: Vec<f32>,
     freq: Vec<f64>,
+    /// 1/|k| (0 at k = 0), tabulated: cheaper to load than a square root and a division.
+    inv_k: Vec<f32>,
 }
 
 impl EvolutionTable {
-    fn from_entries(entries: &[Evolution]) -> Self {
+    fn from_entries(entries: &[Evolution], inv_k: Vec<f32>) -> Self {
         EvolutionTable {
             p_re: entries.iter().map(|e| e.p.re).collect(),
             p_im: entries.iter().map(|e| e.p.im).collect(),
             q_re: entries.iter().map(|e| e.q.re).collect(),
             q_im: entries.iter().map(|e| e.q.im).collect(),
             freq: entries.iter().map(|e| e.freq).collect(),
+            inv_k,
         }
     }
 
@@ -182,7 +185,8 @@ impl EvolutionTable {
             p_im: &self.p_im[range.clone()],
             q_re: &self.q_re[range.clone()],
             q_im: &self.q_im[range.clone()],
-            freq: &self.freq[range],
+            freq: &self.freq[range.clone()],
+            inv_k: &self.inv_k[range],
         }
     }
 }
@@ -195,6 +199,7 @@ struct EvolutionRow<'a> {
     q_re: &'a [f32],
     q_im: &'a [f32],
     freq: &'a [f64],
+    inv_k: &'a [f32],
 }
 
 impl EvolutionRow<'_> {
@@ -394,7 +399,19 @@ impl Cascade {
                 }
             });
 
-        let evolution = EvolutionTable::from_entries(&evolution);
+        let inv_k = (0..half * n)
+            .map(|index| {
+                let kx = f64::from(wave_index(index / n, n)) * dk64;
+                let kz = f64::from(wave_index(index % n, n)) * dk64;
+                let k = kx.hypot(kz);
+                if k > 0.0 {
+                    (1.0 / k) as f32
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let evolution = EvolutionTable::from_entries(&evolution, inv_k);
         let kz = (0..n).map(|j| wave_index(j, n) as f32 * dk).collect();
         let rows = RowFft::new(n);
         let tasks = n.div_ceil(ROWS_PER_TASK) + half;
@@ -480,7 +497,14 @@ impl Cascade {
                 let table = evolution.get_row(0, n);
                 for j in 1..half {
                     let e = table.get(j);
-                    let (plus, minus) = packed_pair(fract_turns(e.freq * t), e.p, e.q, 0.0, kz[j]);
+                    let (plus, minus) = packed_pair(
+                        fract_turns(e.freq * t),
+                        e.p,
+                        e.q,
+                        0.0,
+                        kz[j],
+                        table.inv_k[j],
+                    );
                     for f in 0..TRANSFORMS {
                         row0[f * n + j] = plus[f];
                         row0[f * n + n - j] = minus[f];
@@ -786,11 +810,10 @@ fn packed_pair(
     q: Complex32,
     kx: f32,
     kz: f32,
+    inv_k: f32,
 ) -> ([Complex32; 4], [Complex32; 4]) {
     let (sin, cos) = sin_cos_turns(turns);
     let (hr, hi) = (p.re * cos + q.re * sin, p.im * cos + q.im * sin);
-    let k = (kx * kx + kz * kz).sqrt();
-    let inv_k = if k > 0.0 { 1.0 / k } else { 0.0 };
     let (ux, uz) = (kx * inv_k, kz * inv_k);
     // Transform 0: h̃(1 − u_x) at k, conj h̃ (1 + u_x) at −k.
     let (a, b) = (1.0 - ux, 1.0 + ux);
@@ -843,7 +866,7 @@ fn evolve_row_pair(
     // Column 0 pairs with itself; the rest pair j with N − j. (The Nyquist column's table
     // entries are zero, so it comes out zero.)
     let e = table.get(0);
-    let (plus, minus) = packed_pair(fract_turns(e.freq * t), e.p, e.q, kx, kz[0]);
+    let (plus, minus) = packed_pair(fract_turns(e.freq * t), e.p, e.q, kx, kz[0], table.inv_k[0]);
     (u0[0], u1[0], u2[0], u3[0]) = (plus[0], plus[1], plus[2], plus[3]);
     (l0[0], l1[0], l2[0], l3[0]) = (minus[0], minus[1], minus[2], minus[3]);
     // Blocks of EVOLVE_BLOCK columns over 1..N: the f64 phase reduction first (2 lanes per
@@ -868,6 +891,7 @@ fn evolve_row_pair(
             &table.p_im[range.clone()],
             &table.q_re[range.clone()],
             &table.q_im[range.clone()],
+            &table.inv_k[range.clone()],
             kx,
             &kz[range.clone()],
             &mut u0[range.clone()],
@@ -896,6 +920,7 @@ fn evolve_block(
     p_im: &[f32],
     q_re: &[f32],
     q_im: &[f32],
+    inv_k: &[f32],
     kx: f32,
     kz: &[f32],
     u0: &mut [Complex32],
@@ -910,7 +935,7 @@ fn evolve_block(
     let len = turns.len();
     let (p_re, p_im) = (&p_re[..len], &p_im[..len]);
     let (q_re, q_im) = (&q_re[..len], &q_im[..len]);
-    let kz = &kz[..len];
+    let (inv_k, kz) = (&inv_k[..len], &kz[..len]);
     let (u0, u1, u2, u3) = (
         &mut u0[..len],
         &mut u1[..len],
@@ -926,7 +951,7 @@ fn evolve_block(
     for b in 0..len {
         let p = Complex32::new(p_re[b], p_im[b]);
         let q = Complex32::new(q_re[b], q_im[b]);
-        let (plus, minus) = packed_pair(turns[b], p, q, kx, kz[b]);
+        let (plus, minus) = packed_pair(turns[b], p, q, kx, kz[b], inv_k[b]);
         (u0[b], u1[b], u2[b], u3[b]) = (plus[0], plus[1], plus[2], plus[3]);
         let m = len - 1 - b;
         (l0[m], l1[m], l2[m], l3[m]) = (minus[0], minus[1], minus[2], minus[3]);
