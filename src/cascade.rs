@@ -998,8 +998,8 @@ fn write_outputs(
             &mut ny[..len],
             &mut nz[..len],
         );
-        for (i, normal) in normal[range].iter_mut().enumerate() {
-            *normal = Vec3::new(nx[i], ny[i], nz[i]);
+        for (normal, ((&x, &y), &z)) in normal[range].iter_mut().zip(nx.iter().zip(&ny).zip(&nz)) {
+            *normal = Vec3::new(x, y, z);
         }
     }
 }
