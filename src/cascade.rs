@@ -842,7 +842,7 @@ fn packed_pair(
 }
 
 /// Columns evolved by one [`evolve_block`] call.
-const EVOLVE_BLOCK: usize = 32;
+const EVOLVE_BLOCK: usize = 64;
 
 /// Fills spectral rows i (`upper`, k_x > 0) and N − i (`lower`, its Hermitian partner), each
 /// four packed transforms of N, from table row i: (i, j) pairs with (N − i, N − j).
