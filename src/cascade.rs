@@ -977,7 +977,7 @@ fn write_outputs(
     // Blocks of OUTPUT_BLOCK: the arithmetic runs into plain f32 arrays for the normals (so
     // that it vectorises; stores of Vec3 in the same loop keep it scalar), then the normals
     // are copied out.
-    const OUTPUT_BLOCK: usize = 64;
+    const OUTPUT_BLOCK: usize = 128;
     let mut nx = [0.0f32; OUTPUT_BLOCK];
     let mut ny = [0.0f32; OUTPUT_BLOCK];
     let mut nz = [0.0f32; OUTPUT_BLOCK];
