@@ -161,16 +161,19 @@ struct EvolutionTable {
     q_re: Vec<f32>,
     q_im: Vec<f32>,
     freq: Vec<f64>,
+    /// 1/|k| (0 at k = 0), tabulated: cheaper to load than a square root and a division.
+    inv_k: Vec<f32>,
 }
 
 impl EvolutionTable {
-    fn from_entries(entries: &[Evolution]) -> Self {
+    fn from_entries(entries: &[Evolution], inv_k: Vec<f32>) -> Self {
         EvolutionTable {
             p_re: entries.iter().map(|e| e.p.re).collect(),
             p_im: entries.iter().map(|e| e.p.im).collect(),
             q_re: entries.iter().map(|e| e.q.re).collect(),
             q_im: entries.iter().map(|e| e.q.im).collect(),
             freq: entries.iter().map(|e| e.freq).collect(),
+            inv_k,
         }
     }
 
@@ -190,7 +193,8 @@ impl EvolutionTable {
             p_im: &self.p_im[range.clone()],
             q_re: &self.q_re[range.clone()],
             q_im: &self.q_im[range.clone()],
-            freq: &self.freq[range],
+            freq: &self.freq[range.clone()],
+            inv_k: &self.inv_k[range],
         }
     }
 }
@@ -203,19 +207,10 @@ struct EvolutionRow<'a> {
     q_re: &'a [f32],
     q_im: &'a [f32],
     freq: &'a [f64],
+    inv_k: &'a [f32],
 }
 
 impl EvolutionRow<'_> {
-    fn slice(&self, range: std::ops::Range<usize>) -> EvolutionRow<'_> {
-        EvolutionRow {
-            p_re: &self.p_re[range.clone()],
-            p_im: &self.p_im[range.clone()],
-            q_re: &self.q_re[range.clone()],
-            q_im: &self.q_im[range.clone()],
-            freq: &self.freq[range],
-        }
-    }
-
     fn get(&self, j: usize) -> Evolution {
         Evolution {
             p: Complex32::new(self.p_re[j], self.p_im[j]),
@@ -412,7 +407,19 @@ impl Cascade {
                 }
             });
 
-        let evolution = EvolutionTable::from_entries(&evolution);
+        let inv_k = (0..half * n)
+            .map(|index| {
+                let kx = f64::from(wave_index(index / n, n)) * dk64;
+                let kz = f64::from(wave_index(index % n, n)) * dk64;
+                let k = kx.hypot(kz);
+                if k > 0.0 {
+                    (1.0 / k) as f32
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let evolution = EvolutionTable::from_entries(&evolution, inv_k);
         let kz = (0..n).map(|j| wave_index(j, n) as f32 * dk).collect();
         let rows = RowFft::new(n);
         let tasks = n.div_ceil(ROWS_PER_TASK) + half;
@@ -498,7 +505,14 @@ impl Cascade {
                 let table = evolution.get_row(0, n);
                 for j in 1..half {
                     let e = table.get(j);
-                    let (plus, minus) = packed_pair(fract_turns(e.freq * t), e.p, e.q, 0.0, kz[j]);
+                    let (plus, minus) = packed_pair(
+                        fract_turns(e.freq * t),
+                        e.p,
+                        e.q,
+                        0.0,
+                        kz[j],
+                        table.inv_k[j],
+                    );
                     for f in 0..TRANSFORMS {
                         row0[f * n + j] = plus[f];
                         row0[f * n + n - j] = minus[f];
@@ -800,7 +814,9 @@ pub(crate) fn sin_cos_turns(turns: f32) -> (f32, f32) {
 ///
 /// Transform p holds A + iB for the field pair (A, B) = (η, D_x), (D_z, η_x), (η_z, D_xx),
 /// (D_zz, D_xz). With A = α h̃, B = β h̃ and Hermitian fields, the value at k is (α + iβ) h̃
-/// and at −k it is (conj α + i conj β) conj h̃.
+/// and at −k it is (conj α + i conj β) conj h̃. With u = k/|k| the multipliers α + iβ at k
+/// and at −k are 1 ∓ u_x, ∓k_x + i u_z, i(k_z ∓ k_x u_x) and −u_z(k_z + i k_x); the
+/// products of h̃ they share are computed once.
 #[inline(always)]
 fn packed_pair(
     turns: f32,
@@ -808,28 +824,39 @@ fn packed_pair(
     q: Complex32,
     kx: f32,
     kz: f32,
+    inv_k: f32,
 ) -> ([Complex32; 4], [Complex32; 4]) {
     let (sin, cos) = sin_cos_turns(turns);
-    let h = Complex32::new(p.re * cos + q.re * sin, p.im * cos + q.im * sin);
-    let hc = h.conj();
-    let k = (kx * kx + kz * kz).sqrt();
-    let inv_k = if k > 0.0 { 1.0 / k } else { 0.0 };
+    let (hr, hi) = (p.re * cos + q.re * sin, p.im * cos + q.im * sin);
     let (ux, uz) = (kx * inv_k, kz * inv_k);
-    let i = Complex32::i();
+    // Transform 0: h̃(1 − u_x) at k, conj h̃ (1 + u_x) at −k.
+    let (a, b) = (1.0 - ux, 1.0 + ux);
+    let hib = hi * b;
+    // Transform 1: h̃(−k_x + i u_z) at k, conj h̃ (k_x − i u_z) at −k.
+    let (kx_hr, uz_hi, kx_hi, uz_hr) = (kx * hr, uz * hi, kx * hi, uz * hr);
+    // Transform 2: i c h̃ at k, −i d conj h̃ at −k.
+    let kx_ux = kx * ux;
+    let (c, d) = (kz - kx_ux, kz + kx_ux);
+    // Transform 3: (e + i f) h̃ at k and (e + i f) conj h̃ at −k.
+    let (e, f) = (-(kz * uz), -(kx * uz));
+    let (hr_e, hi_f, hr_f, hi_e) = (hr * e, hi * f, hr * f, hi * e);
     let plus = [
-        h * (1.0 - ux),
-        h * Complex32::new(-kx, uz),
-        h * (i * (kz - kx * ux)),
-        h * Complex32::new(-kz * uz, -kx * uz),
+        Complex32::new(hr * a, hi * a),
+        Complex32::new(-kx_hr - uz_hi, uz_hr - kx_hi),
+        Complex32::new(-(c * hi), c * hr),
+        Complex32::new(hr_e - hi_f, hr_f + hi_e),
     ];
     let minus = [
-        hc * (1.0 + ux),
-        hc * Complex32::new(kx, -uz),
-        hc * (-i * (kz + kx * ux)),
-        hc * Complex32::new(-kz * uz, -kx * uz),
+        Complex32::new(hr * b, -hib),
+        Complex32::new(kx_hr - uz_hi, -uz_hr - kx_hi),
+        Complex32::new(-(d * hi), -(d * hr)),
+        Complex32::new(hr_e + hi_f, hr_f - hi_e),
     ];
     (plus, minus)
 }
+
+/// Columns evolved by one [`evolve_block`] call.
+const EVOLVE_BLOCK: usize = 64;
 
 /// Fills spectral rows i (`upper`, k_x > 0) and N − i (`lower`, its Hermitian partner), each
 /// four packed transforms of N, from table row i: (i, j) pairs with (N − i, N − j).
@@ -853,70 +880,82 @@ fn evolve_row_pair(
     // Column 0 pairs with itself; the rest pair j with N − j. (The Nyquist column's table
     // entries are zero, so it comes out zero.)
     let e = table.get(0);
-    let (plus, minus) = packed_pair(fract_turns(e.freq * t), e.p, e.q, kx, kz[0]);
+    let (plus, minus) = packed_pair(fract_turns(e.freq * t), e.p, e.q, kx, kz[0], table.inv_k[0]);
     (u0[0], u1[0], u2[0], u3[0]) = (plus[0], plus[1], plus[2], plus[3]);
     (l0[0], l1[0], l2[0], l3[0]) = (minus[0], minus[1], minus[2], minus[3]);
-    // Blocks of EVOLVE_BLOCK columns: the f64 phase reduction first (2 lanes per SSE
-    // vector), then the f32 work (4 lanes), each loop vectorising at its own width.
-    const EVOLVE_BLOCK: usize = 32;
+    // Blocks of EVOLVE_BLOCK columns over 1..N: the f64 phase reduction first (2 lanes per
+    // SSE vector), then the f32 work (4 lanes), each loop vectorising at its own width. When
+    // N − 1 ≥ EVOLVE_BLOCK every block is full (the last one starts early and recomputes a
+    // few columns, writing the same values), so the vector loops have no scalar remainder.
     let mut turns = [0.0f32; EVOLVE_BLOCK];
-    let mut start = 1;
-    while start < n {
-        let len = EVOLVE_BLOCK.min(n - start);
+    let columns = n - 1;
+    let len = EVOLVE_BLOCK.min(columns);
+    let mut next = 1;
+    while next < n {
+        let start = next.min(n - len);
         let range = start..start + len;
         let turns = &mut turns[..len];
         for (turns, &freq) in turns.iter_mut().zip(&table.freq[range.clone()]) {
             *turns = fract_turns(freq * t);
         }
-        let mirror = n + 1 - start - len..n + 1 - start;
+        let mirror = n - start - len + 1..n - start + 1;
         evolve_block(
             turns,
-            table.slice(range.clone()),
+            &table.p_re[range.clone()],
+            &table.p_im[range.clone()],
+            &table.q_re[range.clone()],
+            &table.q_im[range.clone()],
+            &table.inv_k[range.clone()],
             kx,
             &kz[range.clone()],
-            [
-                &mut u0[range.clone()],
-                &mut u1[range.clone()],
-                &mut u2[range.clone()],
-                &mut u3[range],
-            ],
-            [
-                &mut l0[mirror.clone()],
-                &mut l1[mirror.clone()],
-                &mut l2[mirror.clone()],
-                &mut l3[mirror],
-            ],
+            &mut u0[range.clone()],
+            &mut u1[range.clone()],
+            &mut u2[range.clone()],
+            &mut u3[range],
+            &mut l0[mirror.clone()],
+            &mut l1[mirror.clone()],
+            &mut l2[mirror.clone()],
+            &mut l3[mirror],
         );
-        start += len;
+        next = start + len;
     }
 }
 
 /// The four packed values of a block of columns j (`plus`, at the block's columns) and of
 /// their partners N − j (`minus`, in reverse order), from the block's reduced phases and
-/// table entries. A function of its own, every slice an argument, so that the loop
-/// vectorises (within `evolve_row_pair` LLVM cannot tell the row slices apart and leaves it
-/// scalar).
+/// table entries (p_re, p_im, q_re, q_im). A function of its own, every output slice a
+/// separate `&mut` argument (so that LLVM knows they do not overlap and needs no run-time
+/// checks), so that the loop vectorises.
+#[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn evolve_block(
     turns: &[f32],
-    table: EvolutionRow<'_>,
+    p_re: &[f32],
+    p_im: &[f32],
+    q_re: &[f32],
+    q_im: &[f32],
+    inv_k: &[f32],
     kx: f32,
     kz: &[f32],
-    plus: [&mut [Complex32]; 4],
-    minus: [&mut [Complex32]; 4],
+    u0: &mut [Complex32],
+    u1: &mut [Complex32],
+    u2: &mut [Complex32],
+    u3: &mut [Complex32],
+    l0: &mut [Complex32],
+    l1: &mut [Complex32],
+    l2: &mut [Complex32],
+    l3: &mut [Complex32],
 ) {
     let len = turns.len();
-    let (p_re, p_im) = (&table.p_re[..len], &table.p_im[..len]);
-    let (q_re, q_im) = (&table.q_re[..len], &table.q_im[..len]);
-    let kz = &kz[..len];
-    let [u0, u1, u2, u3] = plus;
+    let (p_re, p_im) = (&p_re[..len], &p_im[..len]);
+    let (q_re, q_im) = (&q_re[..len], &q_im[..len]);
+    let (inv_k, kz) = (&inv_k[..len], &kz[..len]);
     let (u0, u1, u2, u3) = (
         &mut u0[..len],
         &mut u1[..len],
         &mut u2[..len],
         &mut u3[..len],
     );
-    let [l0, l1, l2, l3] = minus;
     let (l0, l1, l2, l3) = (
         &mut l0[..len],
         &mut l1[..len],
@@ -926,7 +965,7 @@ fn evolve_block(
     for b in 0..len {
         let p = Complex32::new(p_re[b], p_im[b]);
         let q = Complex32::new(q_re[b], q_im[b]);
-        let (plus, minus) = packed_pair(turns[b], p, q, kx, kz[b]);
+        let (plus, minus) = packed_pair(turns[b], p, q, kx, kz[b], inv_k[b]);
         (u0[b], u1[b], u2[b], u3[b]) = (plus[0], plus[1], plus[2], plus[3]);
         let m = len - 1 - b;
         (l0[m], l1[m], l2[m], l3[m]) = (minus[0], minus[1], minus[2], minus[3]);
@@ -949,62 +988,60 @@ fn write_outputs(
     let (t0, rest) = row.split_at(n);
     let (t1, rest) = rest.split_at(n);
     let (t2, t3) = rest.split_at(n);
-    // Blocks of OUTPUT_BLOCK: the arithmetic runs into plain f32 arrays (so that it
-    // vectorises; stores of Vec3 in the same loop keep it scalar), then the normals and
-    // slopes are copied out.
-    const OUTPUT_BLOCK: usize = 64;
+    // Blocks of OUTPUT_BLOCK: the arithmetic runs into plain f32 arrays for the normals (so
+    // that it vectorises; stores of Vec3 in the same loop keep it scalar), then the normals
+    // are copied out.
+    const OUTPUT_BLOCK: usize = 128;
     let mut nx = [0.0f32; OUTPUT_BLOCK];
     let mut ny = [0.0f32; OUTPUT_BLOCK];
     let mut nz = [0.0f32; OUTPUT_BLOCK];
-    let mut sx = [0.0f32; OUTPUT_BLOCK];
-    let mut sz = [0.0f32; OUTPUT_BLOCK];
     for start in (0..n).step_by(OUTPUT_BLOCK) {
         let len = OUTPUT_BLOCK.min(n - start);
         let range = start..start + len;
         output_block(
-            [
-                &t0[range.clone()],
-                &t1[range.clone()],
-                &t2[range.clone()],
-                &t3[range.clone()],
-            ],
+            &t0[range.clone()],
+            &t1[range.clone()],
+            &t2[range.clone()],
+            &t3[range.clone()],
             lambda,
             &mut height[range.clone()],
             &mut jacobian[range.clone()],
             &mut displacement[range.clone()],
-            [&mut nx[..len], &mut ny[..len], &mut nz[..len]],
-            [&mut sx[..len], &mut sz[..len]],
+            &mut slope[range.clone()],
+            &mut nx[..len],
+            &mut ny[..len],
+            &mut nz[..len],
         );
-        for (i, (normal, slope)) in normal[range.clone()]
-            .iter_mut()
-            .zip(&mut slope[range])
-            .enumerate()
-        {
-            *normal = Vec3::new(nx[i], ny[i], nz[i]);
-            *slope = Vec2::new(sx[i], sz[i]);
+        for (normal, ((&x, &y), &z)) in normal[range].iter_mut().zip(nx.iter().zip(&ny).zip(&nz)) {
+            *normal = Vec3::new(x, y, z);
         }
     }
 }
 
-/// The arithmetic of [`write_outputs`] on one block, with the normals and slopes into plain
-/// f32 arrays. A function of its own, with every slice an argument (no aliasing, equal
-/// lengths), so that the loop vectorises.
+/// The arithmetic of [`write_outputs`] on one block, with the normals into plain f32 arrays.
+/// A function of its own, with every slice a separate argument (so that LLVM knows they do
+/// not overlap and needs no run-time checks), so that the loop vectorises.
+#[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn output_block(
-    [t0, t1, t2, t3]: [&[Complex32]; 4],
+    t0: &[Complex32],
+    t1: &[Complex32],
+    t2: &[Complex32],
+    t3: &[Complex32],
     lambda: f32,
     height: &mut [f32],
     jacobian: &mut [f32],
     displacement: &mut [Vec2],
-    [nx, ny, nz]: [&mut [f32]; 3],
-    [sx, sz]: [&mut [f32]; 2],
+    slope: &mut [Vec2],
+    nx: &mut [f32],
+    ny: &mut [f32],
+    nz: &mut [f32],
 ) {
     let len = t0.len();
     let (t1, t2, t3) = (&t1[..len], &t2[..len], &t3[..len]);
     let (height, jacobian) = (&mut height[..len], &mut jacobian[..len]);
-    let displacement = &mut displacement[..len];
+    let (displacement, slope) = (&mut displacement[..len], &mut slope[..len]);
     let (nx, ny, nz) = (&mut nx[..len], &mut ny[..len], &mut nz[..len]);
-    let (sx, sz) = (&mut sx[..len], &mut sz[..len]);
     for i in 0..len {
         let (eta, dx) = (t0[i].re, t0[i].im);
         let (dz, eta_x) = (t1[i].re, t1[i].im);
@@ -1030,8 +1067,11 @@ fn output_block(
         nx[i] = if valid { rx * inv_len } else { 0.0 };
         ny[i] = if valid { det * inv_len } else { 1.0 };
         nz[i] = if valid { rz * inv_len } else { 0.0 };
-        sx[i] = if valid { -rx * inv_ny } else { 0.0 };
-        sz[i] = if valid { -rz * inv_ny } else { 0.0 };
+        slope[i] = if valid {
+            Vec2::new(-rx * inv_ny, -rz * inv_ny)
+        } else {
+            Vec2::ZERO
+        };
     }
 }
 
