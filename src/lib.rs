@@ -58,10 +58,10 @@
 //!
 //! # Performance
 //!
-//! On a 2-core machine one [`Cascade::update`] takes about 0.25 ms at 128², 0.8–1.0 ms at
-//! 256² and 3.5 ms at 512², 1.3–1.8× the time of its four bare complex 2D inverse FFTs
-//! ([`Fft2d`]); a step of the default ocean (three 256² cascades) takes about 2.7 ms,
-//! [`OceanState::height_at`] about 0.5 µs. Run `cargo bench` for your machine; the guide lists
+//! On a 2-core machine one [`Cascade::update`] takes about 0.2 ms at 128², 0.8 ms at 256² and
+//! 3.6 ms at 512², 1.2–1.4× the time of its four bare complex 2D inverse FFTs ([`Fft2d`]); a
+//! step of the default ocean (three 256² cascades) takes about 2.7 ms,
+//! [`OceanState::height_at`] about 0.6 µs. Run `cargo bench` for your machine; the guide lists
 //! the numbers.
 //!
 //! # Features

@@ -85,9 +85,8 @@ pub struct OceanConfig {
     pub repeat_period: Option<f32>,
     /// Update the cascades in parallel with each other, on top of the parallel rows inside
     /// each. Default `true`: on 2 cores, 3 cascades of 256² step in 2.5–2.75 ms this way
-    /// against 2.6–3.5 ms one after another; at 128² the two are equal within noise and at
-    /// 64² one after another is up to 15 % faster (`cargo bench --bench ocean`). The results
-    /// are bit-identical either way.
+    /// against 2.6–3.5 ms one after another, and 128² and 64² grids gain or lose at most
+    /// 15–20 % (`cargo bench --bench ocean`). The results are bit-identical either way.
     pub parallel_cascades: bool,
 }
 
