@@ -104,9 +104,37 @@ impl OceanState {
     }
 
     fn sample_unchecked(&self, x: f64, z: f64) -> SurfaceSample {
+        self.sample_range(x, z, 0..self.cascades.len())
+    }
+
+    /// [`OceanState::sample`] summed over the cascades in `cascades` only (indices into
+    /// [`OceanState::cascades`], largest first) — for level of detail: far from the camera,
+    /// `0..1` or `0..2` leave out waves too small to see, which would only shimmer. An empty
+    /// range gives flat water. Errors for non-finite coordinates or a range past the last
+    /// cascade.
+    pub fn sample_cascades(
+        &self,
+        x: f64,
+        z: f64,
+        cascades: std::ops::Range<usize>,
+    ) -> Result<SurfaceSample, Error> {
+        check_point(x, z)?;
+        if cascades.end > self.cascades.len() {
+            return Err(Error::OutOfRange {
+                name: "cascades.end",
+                value: cascades.end as f64,
+                expected: "at most the number of cascades",
+            });
+        }
+        Ok(self.sample_range(x, z, cascades))
+    }
+
+    fn sample_range(&self, x: f64, z: f64, range: std::ops::Range<usize>) -> SurfaceSample {
         let mut out = SurfaceSample::default();
         let mut clear = 1.0f32;
-        for (cascade, foam) in self.cascades.iter().zip(&self.foam) {
+        let cascades = self.cascades.get(range.clone()).unwrap_or(&[]);
+        let foams = self.foam.get(range).unwrap_or(&[]);
+        for (cascade, foam) in cascades.iter().zip(foams) {
             let s = stencil_of(cascade, x, z);
             out.height += s.scalar(cascade.height());
             out.displacement += s.vector(cascade.displacement());

@@ -497,3 +497,29 @@ fn a_refused_choppiness_changes_no_cascade() {
         .iter()
         .all(|c| c.config().choppiness == 0.5));
 }
+
+#[test]
+fn sampling_a_subset_of_cascades_adds_up_to_the_whole() {
+    let mut state = ocean(small_config());
+    state.step(3.3).unwrap();
+    for &(x, z) in &[(1.0, 2.0), (-345.6, 789.1), (2.5e5, -1.0e5)] {
+        let whole = state.sample(x, z).unwrap();
+        let parts = [
+            state.sample_cascades(x, z, 0..1).unwrap(),
+            state.sample_cascades(x, z, 1..2).unwrap(),
+            state.sample_cascades(x, z, 2..3).unwrap(),
+        ];
+        // Height, displacement and slope are sums over cascades: the parts add up to the
+        // whole up to f32 rounding of the ~1 m values.
+        let height: f32 = parts.iter().map(|p| p.height).sum();
+        assert!((height - whole.height).abs() < 1e-5);
+        let slope = parts[0].slope + parts[1].slope + parts[2].slope;
+        assert!((slope - whole.slope).length() < 1e-5);
+        assert_eq!(state.sample_cascades(x, z, 0..3).unwrap(), whole);
+        let flat = state.sample_cascades(x, z, 1..1).unwrap();
+        assert_eq!(flat.height, 0.0);
+        assert_eq!(flat.normal, ocean_fft::Vec3::Y);
+    }
+    assert!(state.sample_cascades(0.0, 0.0, 0..4).is_err());
+    assert!(state.sample_cascades(f64::NAN, 0.0, 0..1).is_err());
+}
