@@ -166,14 +166,15 @@ struct EvolutionTable {
 }
 
 impl EvolutionTable {
-    fn from_entries(entries: &[Evolution], inv_k: Vec<f32>) -> Self {
+    /// From entries with their 1/|k|, in table order.
+    fn from_entries(entries: &[(Evolution, f32)]) -> Self {
         EvolutionTable {
-            p_re: entries.iter().map(|e| e.p.re).collect(),
-            p_im: entries.iter().map(|e| e.p.im).collect(),
-            q_re: entries.iter().map(|e| e.q.re).collect(),
-            q_im: entries.iter().map(|e| e.q.im).collect(),
-            freq: entries.iter().map(|e| e.freq).collect(),
-            inv_k,
+            p_re: entries.iter().map(|(e, _)| e.p.re).collect(),
+            p_im: entries.iter().map(|(e, _)| e.p.im).collect(),
+            q_re: entries.iter().map(|(e, _)| e.q.re).collect(),
+            q_im: entries.iter().map(|(e, _)| e.q.im).collect(),
+            freq: entries.iter().map(|(e, _)| e.freq).collect(),
+            inv_k: entries.iter().map(|&(_, inv_k)| inv_k).collect(),
         }
     }
 
@@ -285,6 +286,21 @@ pub(crate) fn check_size(size: usize) -> Result<usize, Error> {
     Ok(size)
 }
 
+/// Checks a simulation time: finite, |t| ≤ [`MAX_TIME`].
+pub(crate) fn check_time(t: f64) -> Result<(), Error> {
+    if !t.is_finite() {
+        return Err(Error::NonFinite { name: "t" });
+    }
+    if t.abs() > MAX_TIME {
+        return Err(Error::OutOfRange {
+            name: "t",
+            value: t,
+            expected: "|t| ≤ 1e9 s",
+        });
+    }
+    Ok(())
+}
+
 /// Signed wave-number index of grid index `i` on an N grid (plain FFT order).
 #[inline]
 pub(crate) fn wave_index(i: usize, n: usize) -> i32 {
@@ -384,7 +400,9 @@ impl Cascade {
         let dispersion = spectrum.dispersion();
         let looping = config.repeat_period.map(f64::from);
         let half = n / 2;
-        let mut evolution = vec![Evolution::default(); half * n];
+        // Each entry with 1/|k| (0 at k = 0), which the evolution loads instead of computing a
+        // square root and a division.
+        let mut evolution = vec![(Evolution::default(), 0.0f32); half * n];
         evolution
             .par_chunks_mut(n)
             .enumerate()
@@ -394,32 +412,24 @@ impl Cascade {
                     let b = h0[((n - j) % n) * n + (n - i) % n].conj();
                     let kx = f64::from(wave_index(i, n)) * dk64;
                     let kz = f64::from(wave_index(j, n)) * dk64;
-                    let omega = dispersion.omega_f64(kx.hypot(kz));
+                    let k = kx.hypot(kz);
+                    let omega = dispersion.omega_f64(k);
                     let freq = match looping {
                         Some(period) => (omega * period / TAU).floor() / period,
                         None => omega / TAU,
                     };
-                    *entry = Evolution {
-                        p: a + b,
-                        q: Complex32::i() * (b - a),
-                        freq,
-                    };
+                    let inv_k = if k > 0.0 { (1.0 / k) as f32 } else { 0.0 };
+                    *entry = (
+                        Evolution {
+                            p: a + b,
+                            q: Complex32::i() * (b - a),
+                            freq,
+                        },
+                        inv_k,
+                    );
                 }
             });
-
-        let inv_k = (0..half * n)
-            .map(|index| {
-                let kx = f64::from(wave_index(index / n, n)) * dk64;
-                let kz = f64::from(wave_index(index % n, n)) * dk64;
-                let k = kx.hypot(kz);
-                if k > 0.0 {
-                    (1.0 / k) as f32
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        let evolution = EvolutionTable::from_entries(&evolution, inv_k);
+        let evolution = EvolutionTable::from_entries(&evolution);
         let kz = (0..n).map(|j| wave_index(j, n) as f32 * dk).collect();
         let rows = RowFft::new(n);
         let tasks = n.div_ceil(ROWS_PER_TASK) + half;
@@ -454,16 +464,7 @@ impl Cascade {
     /// Errors: non-finite t ([`Error::NonFinite`]) or |t| > [`MAX_TIME`]
     /// ([`Error::OutOfRange`]); the buffers are left as they were.
     pub fn update(&mut self, t: f64) -> Result<(), Error> {
-        if !t.is_finite() {
-            return Err(Error::NonFinite { name: "t" });
-        }
-        if t.abs() > MAX_TIME {
-            return Err(Error::OutOfRange {
-                name: "t",
-                value: t,
-                expected: "|t| ≤ 1e9 s",
-            });
-        }
+        check_time(t)?;
         self.time = t;
         // Looping: the phases are integer multiples of t/T, so t mod T gives the same fields
         // with smaller, more precise phases.

@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-use crate::cascade::{Cascade, CascadeConfig};
+use crate::cascade::{check_time, Cascade, CascadeConfig};
 use crate::error::{self, Error};
 use crate::spectrum::Spectrum;
 
@@ -270,16 +270,7 @@ impl OceanState {
 
     fn update_cascades(&mut self, t: f64) -> Result<(), Error> {
         // Validate once up front so that either every cascade is updated or none is.
-        if !t.is_finite() {
-            return Err(Error::NonFinite { name: "t" });
-        }
-        if t.abs() > crate::MAX_TIME {
-            return Err(Error::OutOfRange {
-                name: "t",
-                value: t,
-                expected: "|t| ≤ 1e9 s",
-            });
-        }
+        check_time(t)?;
         if self.config.parallel_cascades {
             self.cascades
                 .par_iter_mut()
