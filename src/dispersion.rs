@@ -32,7 +32,10 @@ const TENSION: f64 = SURFACE_TENSION as f64 / WATER_DENSITY as f64;
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(
     feature = "serde",
-    serde(try_from = "DispersionData", into = "DispersionData")
+    serde(
+        try_from = "crate::serde_impls::DispersionData",
+        into = "crate::serde_impls::DispersionData"
+    )
 )]
 pub enum Dispersion {
     /// Deep water: ω = √(g k).
@@ -48,46 +51,6 @@ pub enum Dispersion {
         /// Water depth h, in metres.
         depth: f32,
     },
-}
-
-/// The serialised form of [`Dispersion`], checked by `TryFrom` on the way in.
-#[cfg(feature = "serde")]
-#[derive(serde::Serialize, serde::Deserialize)]
-#[serde(rename = "Dispersion")]
-enum DispersionData {
-    Deep,
-    FiniteDepth { depth: crate::serde_support::Float },
-    Capillary { depth: crate::serde_support::Float },
-}
-
-#[cfg(feature = "serde")]
-impl From<Dispersion> for DispersionData {
-    fn from(dispersion: Dispersion) -> Self {
-        match dispersion {
-            Dispersion::Deep => DispersionData::Deep,
-            Dispersion::FiniteDepth { depth } => DispersionData::FiniteDepth {
-                depth: depth.into(),
-            },
-            Dispersion::Capillary { depth } => DispersionData::Capillary {
-                depth: depth.into(),
-            },
-        }
-    }
-}
-
-#[cfg(feature = "serde")]
-impl TryFrom<DispersionData> for Dispersion {
-    type Error = Error;
-
-    fn try_from(data: DispersionData) -> Result<Self, Error> {
-        let dispersion = match data {
-            DispersionData::Deep => Dispersion::Deep,
-            DispersionData::FiniteDepth { depth } => Dispersion::FiniteDepth { depth: depth.0 },
-            DispersionData::Capillary { depth } => Dispersion::Capillary { depth: depth.0 },
-        };
-        dispersion.validate()?;
-        Ok(dispersion)
-    }
 }
 
 impl Dispersion {

@@ -130,7 +130,7 @@ pub struct Fft2d {
 impl Fft2d {
     /// Plans `count` transforms of N×N arrays, N = `size` (even, 4 ≤ N ≤ [`crate::MAX_SIZE`]).
     pub fn new(size: usize, count: usize) -> Result<Self, Error> {
-        crate::cascade::check_size(size)?;
+        crate::grid::check_size(size)?;
         if count == 0 || count > 64 {
             return Err(crate::error::out_of_range(
                 "count",

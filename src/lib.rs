@@ -108,12 +108,12 @@ mod cascade;
 mod dispersion;
 mod error;
 mod fft2d;
+mod grid;
 mod ocean;
 mod presets;
-mod sampling;
-mod seed;
+mod rng;
 #[cfg(feature = "serde")]
-mod serde_support;
+mod serde_impls;
 mod spectrum;
 
 pub use cascade::{Cascade, CascadeConfig, Field, MAX_TIME};
@@ -122,9 +122,11 @@ pub use error::Error;
 pub use fft2d::Fft2d;
 pub use glam::{Vec2, Vec3};
 pub use num_complex::Complex32;
-pub use ocean::{FoamConfig, OceanConfig, OceanState, BAND_SPLIT, MAX_STEP};
+pub use ocean::{
+    FoamConfig, OceanConfig, OceanState, SurfaceSample, BAND_SPLIT, HEIGHT_AT_MAX_ITERATIONS,
+    HEIGHT_AT_TOLERANCE, MAX_STEP, PARALLEL_BATCH,
+};
 pub use presets::SeaState;
-pub use sampling::{SurfaceSample, HEIGHT_AT_MAX_ITERATIONS, HEIGHT_AT_TOLERANCE, PARALLEL_BATCH};
 pub use spectrum::{
     DepthFactor, Spectrum, Spreading, DEFAULT_GAMMA, FULLY_DEVELOPED_FETCH, MAX_SPREADING_EXPONENT,
     MAX_WIND_SPEED,

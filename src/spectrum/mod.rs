@@ -1,9 +1,9 @@
 //! The directional wave spectrum: what a [`Cascade`](crate) turns into waves.
 
+mod density;
 mod omega;
-#[cfg(feature = "serde")]
-mod serde_data;
 mod spreading;
+mod variance;
 
 use std::f64::consts::PI;
 
@@ -43,7 +43,7 @@ pub enum DepthFactor {
 
 /// The model behind S(ω).
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Model {
+pub(crate) enum Model {
     /// JONSWAP shape (Pierson–Moskowitz when γ = 1).
     Jonswap {
         alpha: f32,
@@ -82,21 +82,21 @@ enum Model {
 #[cfg_attr(
     feature = "serde",
     serde(
-        try_from = "serde_data::SpectrumData",
-        into = "serde_data::SpectrumData"
+        try_from = "crate::serde_impls::SpectrumData",
+        into = "crate::serde_impls::SpectrumData"
     )
 )]
 pub struct Spectrum {
-    model: Model,
-    wind_speed: f32,
-    fetch: Option<f32>,
-    wind_direction: f32,
-    spreading: Spreading,
-    swell: f32,
-    spread_blend: f32,
-    short_wave_length: f32,
-    dispersion: Dispersion,
-    depth_factor: DepthFactor,
+    pub(crate) model: Model,
+    pub(crate) wind_speed: f32,
+    pub(crate) fetch: Option<f32>,
+    pub(crate) wind_direction: f32,
+    pub(crate) spreading: Spreading,
+    pub(crate) swell: f32,
+    pub(crate) spread_blend: f32,
+    pub(crate) short_wave_length: f32,
+    pub(crate) dispersion: Dispersion,
+    pub(crate) depth_factor: DepthFactor,
 }
 
 impl Spectrum {
@@ -541,180 +541,6 @@ impl Spectrum {
             swell: f64::from(self.swell),
             spread_blend: f64::from(self.spread_blend),
         }
-    }
-
-    /// Non-directional spectrum S(ω) in m²·s/rad at angular frequency `omega` in rad/s,
-    /// including the depth factor. 0 for ω ≤ 0 and for non-finite ω.
-    pub fn omega_spectrum(&self, omega: f32) -> f32 {
-        self.omega_spectrum_f64(f64::from(omega)) as f32
-    }
-
-    fn omega_spectrum_f64(&self, omega: f64) -> f64 {
-        if !omega.is_finite() || omega <= 0.0 {
-            return 0.0;
-        }
-        match self.model {
-            Model::Jonswap { .. } => self.jonswap_shape(omega) * self.depth_factor_at(omega, None),
-            Model::Phillips { .. } => {
-                // S(ω) = S(k) dk/dω with k = k(ω) of this spectrum's dispersion.
-                let k = self.dispersion.k_from_omega_f64(omega);
-                let group = self.dispersion.d_omega_dk_f64(k);
-                if !(group > 0.0 && group.is_finite()) {
-                    return 0.0;
-                }
-                self.phillips_omni(k) / group
-            }
-        }
-    }
-
-    /// The depth factor Φ at `omega`; `k`, when given, is ω's wave number under this
-    /// spectrum's dispersion.
-    fn depth_factor_at(&self, omega: f64, k: Option<f64>) -> f64 {
-        let Some(h) = self.dispersion.depth().map(f64::from) else {
-            return 1.0;
-        };
-        match self.depth_factor {
-            DepthFactor::None => 1.0,
-            DepthFactor::ThompsonVincent => omega::thompson_vincent(omega, h),
-            // With finite-depth dispersion a known k is the gravity-wave k(ω, h), so the exact
-            // factor needs no Newton solve. With capillary dispersion the gravity k is solved
-            // for: the capillary correction matters only where Φ = 1 already.
-            DepthFactor::Kitaigorodskii => match (k, self.dispersion) {
-                (Some(k), Dispersion::FiniteDepth { .. }) => omega::kitaigorodskii_kh(k * h),
-                _ => omega::kitaigorodskii(omega, h),
-            },
-        }
-    }
-
-    fn jonswap_shape(&self, omega: f64) -> f64 {
-        match self.model {
-            Model::Jonswap {
-                alpha,
-                peak_omega,
-                gamma,
-            } => omega::jonswap(
-                omega,
-                f64::from(alpha),
-                f64::from(peak_omega),
-                f64::from(gamma),
-            ),
-            Model::Phillips { .. } => 0.0,
-        }
-    }
-
-    fn phillips_omni(&self, k: f64) -> f64 {
-        match self.model {
-            Model::Phillips { amplitude } => {
-                omega::phillips_omni(k, f64::from(amplitude), self.wind_length())
-            }
-            Model::Jonswap { .. } => 0.0,
-        }
-    }
-
-    /// Directional spreading D(ω, θ) in 1/rad at angular frequency `omega` in rad/s and
-    /// direction `theta` in radians relative to the wind (any real angle; it is wrapped),
-    /// including the swell and spread-blend controls. ∫_{−π}^{π} D dθ = 1.
-    pub fn spreading(&self, omega: f32, theta: f32) -> f32 {
-        if !theta.is_finite() {
-            return 0.0;
-        }
-        self.spreading_params()
-            .evaluate(f64::from(omega), wrap_angle(f64::from(theta))) as f32
-    }
-
-    /// Directional wave-number spectrum S(k) in m⁴ at wave vector `k` = (k_x, k_z) in rad/m,
-    /// including the short-wave fade:
-    ///
-    /// ```text
-    /// S(k) = S(ω) · D(ω, θ) · (dω/dk) / k · e^{−k²ℓ²},   ω = ω(|k|), θ = atan2(k_z, k_x) − θ_w
-    /// ```
-    ///
-    /// Its integral over the plane is the surface variance. 0 at k = 0 and for non-finite k.
-    pub fn density(&self, k: Vec2) -> f32 {
-        self.density_f64(f64::from(k.x), f64::from(k.y), &self.spreading_params()) as f32
-    }
-
-    pub(crate) fn density_f64(&self, kx: f64, kz: f64, spreading: &SpreadingParams) -> f64 {
-        let k = kx.hypot(kz);
-        if !(k > 0.0 && k.is_finite()) {
-            return 0.0;
-        }
-        let omni = self.omni_k(k);
-        if omni == 0.0 {
-            return 0.0;
-        }
-        let omega = self.dispersion.omega_f64(k);
-        let theta = wrap_angle(kz.atan2(kx) - f64::from(self.wind_direction));
-        omni * spreading.evaluate(omega, theta) / k
-    }
-
-    /// Omnidirectional wave-number spectrum ∫ S(k) k dθ in m³ at |k| = `k`, with the fade.
-    fn omni_k(&self, k: f64) -> f64 {
-        let fade = if self.short_wave_length > 0.0 {
-            let l = f64::from(self.short_wave_length);
-            (-(k * l) * (k * l)).exp()
-        } else {
-            1.0
-        };
-        if fade == 0.0 {
-            return 0.0;
-        }
-        let value = match self.model {
-            Model::Jonswap { .. } => {
-                let omega = self.dispersion.omega_f64(k);
-                let group = self.dispersion.d_omega_dk_f64(k);
-                self.jonswap_shape(omega) * self.depth_factor_at(omega, Some(k)) * group
-            }
-            Model::Phillips { .. } => self.phillips_omni(k),
-        };
-        value * fade
-    }
-
-    /// Variance of the surface elevation carried by the wave vectors with
-    /// k_min ≤ |k| < k_max (rad/m), in m²: ∫∫ S(k) d²k over that annulus.
-    ///
-    /// Computed by composite Simpson quadrature in ln k of the omnidirectional spectrum (the
-    /// spreading integrates to 1 over direction), 400 nodes a decade, relative error below
-    /// 1e-6 for the spectra here. `k_max` may be +∞; an empty or invalid band gives 0.
-    pub fn band_variance(&self, k_min: f32, k_max: f32) -> f32 {
-        self.band_variance_f64(f64::from(k_min), f64::from(k_max)) as f32
-    }
-
-    pub(crate) fn band_variance_f64(&self, k_min: f64, k_max: f64) -> f64 {
-        if k_min.is_nan() || k_max.is_nan() || k_max <= k_min {
-            return 0.0;
-        }
-        // The spectra vanish faster than any power below 1e-3 k_p and carry less than
-        // 1e-9 of their energy above 1e6 k_p (tails ∝ k⁻³ or steeper in the integrand S·k).
-        let k_peak = self.dispersion.k_from_omega_f64(self.peak_omega_f64());
-        let lo = k_min.max(1e-3 * k_peak);
-        let hi = k_max.min(1e6 * k_peak);
-        if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
-            return 0.0;
-        }
-        let (a, b) = (lo.ln(), hi.ln());
-        let decades = (b - a) / std::f64::consts::LN_10;
-        let intervals = ((decades * 400.0).ceil() as usize)
-            .max(2)
-            .next_multiple_of(2);
-        let h = (b - a) / intervals as f64;
-        let f = |u: f64| {
-            let k = u.exp();
-            self.omni_k(k) * k
-        };
-        let mut sum = f(a) + f(b);
-        for i in 1..intervals {
-            let weight = if i % 2 == 1 { 4.0 } else { 2.0 };
-            sum += weight * f(a + i as f64 * h);
-        }
-        sum * h / 3.0
-    }
-
-    /// Significant wave height H_s = 4√m0 in metres, m0 the variance of the whole spectrum
-    /// (with the short-wave fade) by quadrature.
-    #[doc(alias = "Hs")]
-    pub fn significant_wave_height(&self) -> f32 {
-        (4.0 * self.band_variance_f64(0.0, f64::INFINITY).sqrt()) as f32
     }
 }
 

@@ -17,7 +17,10 @@ use super::omega::G;
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(
     feature = "serde",
-    serde(try_from = "SpreadingData", into = "SpreadingData")
+    serde(
+        try_from = "crate::serde_impls::SpreadingData",
+        into = "crate::serde_impls::SpreadingData"
+    )
 )]
 #[non_exhaustive]
 pub enum Spreading {
@@ -66,64 +69,6 @@ fn bounded_exponent(name: &'static str, value: f32, expected: &'static str) -> R
         return Err(error::out_of_range(name, value, expected));
     }
     Ok(())
-}
-
-/// The serialised form of [`Spreading`], checked by `TryFrom` on the way in.
-#[cfg(feature = "serde")]
-#[derive(serde::Serialize, serde::Deserialize)]
-#[serde(rename = "Spreading")]
-enum SpreadingData {
-    Mitsuyasu,
-    Hasselmann,
-    Cos2s {
-        s: crate::serde_support::Float,
-    },
-    DonelanBanner,
-    Flat,
-    Cos2,
-    Cosine {
-        exponent: crate::serde_support::Float,
-        upwind: crate::serde_support::Float,
-    },
-}
-
-#[cfg(feature = "serde")]
-impl From<Spreading> for SpreadingData {
-    fn from(spreading: Spreading) -> Self {
-        match spreading {
-            Spreading::Mitsuyasu => SpreadingData::Mitsuyasu,
-            Spreading::Hasselmann => SpreadingData::Hasselmann,
-            Spreading::Cos2s { s } => SpreadingData::Cos2s { s: s.into() },
-            Spreading::DonelanBanner => SpreadingData::DonelanBanner,
-            Spreading::Flat => SpreadingData::Flat,
-            Spreading::Cos2 => SpreadingData::Cos2,
-            Spreading::Cosine { exponent, upwind } => SpreadingData::Cosine {
-                exponent: exponent.into(),
-                upwind: upwind.into(),
-            },
-        }
-    }
-}
-
-#[cfg(feature = "serde")]
-impl TryFrom<SpreadingData> for Spreading {
-    type Error = Error;
-
-    fn try_from(data: SpreadingData) -> Result<Self, Error> {
-        match data {
-            SpreadingData::Mitsuyasu => Spreading::Mitsuyasu,
-            SpreadingData::Hasselmann => Spreading::Hasselmann,
-            SpreadingData::Cos2s { s } => Spreading::Cos2s { s: s.0 },
-            SpreadingData::DonelanBanner => Spreading::DonelanBanner,
-            SpreadingData::Flat => Spreading::Flat,
-            SpreadingData::Cos2 => Spreading::Cos2,
-            SpreadingData::Cosine { exponent, upwind } => Spreading::Cosine {
-                exponent: exponent.0,
-                upwind: upwind.0,
-            },
-        }
-        .validate()
-    }
 }
 
 impl Spreading {

@@ -4,9 +4,9 @@
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
+use super::OceanState;
 use crate::cascade::Cascade;
 use crate::error::Error;
-use crate::ocean::OceanState;
 
 /// Fixed-point iterations of [`OceanState::height_at`] at most.
 pub const HEIGHT_AT_MAX_ITERATIONS: usize = 16;

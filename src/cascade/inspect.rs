@@ -1,0 +1,93 @@
+//! Read-only views of a cascade for verification and tools: the evolved spectrum, ω per
+//! wave vector, single fields and the raw packed transforms. These allocate.
+
+use std::f64::consts::TAU;
+
+use num_complex::Complex32;
+
+use super::tables::Evolution;
+use super::{Cascade, Field, TRANSFORMS};
+
+impl Cascade {
+    /// The evolved spectrum h̃(k, t) = h0(k)e^{−iωt} + conj(h0(−k))e^{iωt} in m, in the grid's
+    /// FFT order, computed afresh in f64 (for verification and tools; allocates). Non-finite
+    /// t gives zeros.
+    pub fn wave_spectrum(&self, t: f64) -> Vec<Complex32> {
+        let n = self.n;
+        if !t.is_finite() {
+            return vec![Complex32::default(); n * n];
+        }
+        let t = match self.config.repeat_period {
+            Some(period) => t.rem_euclid(f64::from(period)),
+            None => t,
+        };
+        let mut out = vec![Complex32::default(); n * n];
+        for j in 0..n {
+            for i in 0..n {
+                let (entry, conjugate) = self.evolution_entry(i, j);
+                let phase = (entry.freq * t).fract() * TAU;
+                let (sin, cos) = phase.sin_cos();
+                let p = (f64::from(entry.p.re), f64::from(entry.p.im));
+                let q = (f64::from(entry.q.re), f64::from(entry.q.im));
+                let value = Complex32::new(
+                    (p.0 * cos + q.0 * sin) as f32,
+                    (p.1 * cos + q.1 * sin) as f32,
+                );
+                out[j * n + i] = if conjugate { value.conj() } else { value };
+            }
+        }
+        out
+    }
+
+    /// Angular frequency ω(k) in rad/s used for the wave vector at grid index (i, j)
+    /// (quantised when looping). Out-of-grid indices give 0.
+    pub fn omega_at(&self, i: usize, j: usize) -> f64 {
+        if i >= self.n || j >= self.n {
+            return 0.0;
+        }
+        self.evolution_entry(i, j).0.freq * TAU
+    }
+
+    /// The table entry that evolves (i, j), and whether (i, j) is the conjugate partner.
+    fn evolution_entry(&self, i: usize, j: usize) -> (Evolution, bool) {
+        let n = self.n;
+        let half = n / 2;
+        if i == half || j == half {
+            (Evolution::default(), false)
+        } else if i < half {
+            (self.evolution.get(i * n + j), false)
+        } else {
+            let (pi, pj) = ((n - i) % n, (n - j) % n);
+            (self.evolution.get(pi * n + pj), true)
+        }
+    }
+
+    /// One of the eight real fields at the last update, in metres or dimensionless as
+    /// [`Field`] says, in buffer order (index j·N + i). Allocates; read straight from the
+    /// packed transforms.
+    pub fn field(&self, field: Field) -> Vec<f32> {
+        let n = self.n;
+        let (transform, imaginary) = field.packing();
+        let mut out = Vec::with_capacity(n * n);
+        for j in 0..n {
+            let row = &self.spatial[(j * TRANSFORMS + transform) * n..][..n];
+            out.extend(row.iter().map(|c| if imaginary { c.im } else { c.re }));
+        }
+        out
+    }
+
+    /// The raw result of packed transform `transform` (0..4) at the last update, in buffer
+    /// order: real part field 2·`transform`, imaginary part field 2·`transform` + 1 of
+    /// [`Field::ALL`]. An index ≥ 4 gives an empty vector.
+    pub fn packed_transform(&self, transform: usize) -> Vec<Complex32> {
+        let n = self.n;
+        if transform >= TRANSFORMS {
+            return Vec::new();
+        }
+        let mut out = Vec::with_capacity(n * n);
+        for j in 0..n {
+            out.extend_from_slice(&self.spatial[(j * TRANSFORMS + transform) * n..][..n]);
+        }
+        out
+    }
+}

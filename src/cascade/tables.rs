@@ -1,0 +1,228 @@
+//! The tables a cascade builds once: h0(k) drawn per wave vector and the evolution table
+//! (p, q, frequency and 1/|k| per wave vector of the evolved half plane).
+
+use std::f64::consts::TAU;
+
+use num_complex::Complex32;
+use rayon::prelude::*;
+
+use super::CascadeConfig;
+use crate::dispersion::Dispersion;
+use crate::error::Error;
+use crate::grid::wave_index;
+use crate::rng;
+use crate::spectrum::Spectrum;
+
+/// Largest accepted bound on the outputs' magnitude (see [`Cascade::new`]): far enough below
+/// f32::MAX that squares and cross products of the fields stay finite.
+const AMPLITUDE_LIMIT: f64 = 1e15;
+
+/// One entry of the evolution table, for a wave vector k of the half plane that is evolved
+/// (its partner −k gets the conjugate): h̃(k, t) = p cos φ + q sin φ, φ = 2π·`freq`·t.
+///
+/// From h̃ = h0(k) e^{−iφ} + conj(h0(−k)) e^{iφ}: p = h0(k) + conj(h0(−k)),
+/// q = i (conj(h0(−k)) − h0(k)).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Evolution {
+    pub(super) p: Complex32,
+    pub(super) q: Complex32,
+    /// ω(k)/2π in Hz (quantised when looping).
+    pub(super) freq: f64,
+}
+
+/// The evolution table in struct-of-arrays layout (so the evolution loop reads each
+/// component contiguously and vectorises), transposed: index `i * N + j` holds the
+/// [`Evolution`] of k_x index i in 0..N/2 and k_z index j.
+#[derive(Debug, Default)]
+pub(super) struct EvolutionTable {
+    p_re: Vec<f32>,
+    p_im: Vec<f32>,
+    q_re: Vec<f32>,
+    q_im: Vec<f32>,
+    freq: Vec<f64>,
+    /// 1/|k| (0 at k = 0), tabulated: cheaper to load than a square root and a division.
+    inv_k: Vec<f32>,
+}
+
+impl EvolutionTable {
+    /// From entries with their 1/|k|, in table order.
+    fn from_entries(entries: &[(Evolution, f32)]) -> Self {
+        EvolutionTable {
+            p_re: entries.iter().map(|(e, _)| e.p.re).collect(),
+            p_im: entries.iter().map(|(e, _)| e.p.im).collect(),
+            q_re: entries.iter().map(|(e, _)| e.q.re).collect(),
+            q_im: entries.iter().map(|(e, _)| e.q.im).collect(),
+            freq: entries.iter().map(|(e, _)| e.freq).collect(),
+            inv_k: entries.iter().map(|&(_, inv_k)| inv_k).collect(),
+        }
+    }
+
+    pub(super) fn get(&self, index: usize) -> Evolution {
+        Evolution {
+            p: Complex32::new(self.p_re[index], self.p_im[index]),
+            q: Complex32::new(self.q_re[index], self.q_im[index]),
+            freq: self.freq[index],
+        }
+    }
+
+    /// Row `i` (k_x index) of an N-wide table.
+    pub(super) fn get_row(&self, i: usize, n: usize) -> EvolutionRow<'_> {
+        let range = i * n..(i + 1) * n;
+        EvolutionRow {
+            p_re: &self.p_re[range.clone()],
+            p_im: &self.p_im[range.clone()],
+            q_re: &self.q_re[range.clone()],
+            q_im: &self.q_im[range.clone()],
+            freq: &self.freq[range.clone()],
+            inv_k: &self.inv_k[range],
+        }
+    }
+}
+
+/// One row of an [`EvolutionTable`].
+#[derive(Clone, Copy)]
+pub(super) struct EvolutionRow<'a> {
+    pub(super) p_re: &'a [f32],
+    pub(super) p_im: &'a [f32],
+    pub(super) q_re: &'a [f32],
+    pub(super) q_im: &'a [f32],
+    pub(super) freq: &'a [f64],
+    pub(super) inv_k: &'a [f32],
+}
+
+impl EvolutionRow<'_> {
+    pub(super) fn get(&self, j: usize) -> Evolution {
+        Evolution {
+            p: Complex32::new(self.p_re[j], self.p_im[j]),
+            q: Complex32::new(self.q_re[j], self.q_im[j]),
+            freq: self.freq[j],
+        }
+    }
+}
+
+pub(super) fn check_amplitude(bound: f64, choppiness: f32) -> Result<(), Error> {
+    let bound = bound * f64::from(choppiness).max(1.0);
+    if bound.is_nan() || bound > AMPLITUDE_LIMIT {
+        return Err(Error::OutOfRange {
+            name: "amplitude",
+            value: bound,
+            expected: "2·Σ|h0|·max(1, k)·max(1, λ) ≤ 1e15 (fields would overflow f32)",
+        });
+    }
+    Ok(())
+}
+
+/// The random amplitudes of a cascade and what follows from them.
+pub(super) struct Amplitudes {
+    /// h0(k) in m, in the grid's FFT order.
+    pub(super) h0: Vec<Complex32>,
+    /// Σ S(k) Δk² over the wave vectors in the band, in m².
+    pub(super) expected_variance: f64,
+    /// Σ 2|h0| · max(1, k_grid_max): a bound on every synthesised field's magnitude.
+    pub(super) amplitude_bound: f64,
+}
+
+impl Amplitudes {
+    /// Draws h0(k) = ½(ξ_r + iξ_i)·√S(k)·Δk for every wave vector of the grid with
+    /// `k_min` ≤ |k| < `k_max` (zero elsewhere, and on k = 0 and the Nyquist row and column),
+    /// ξ standard normals drawn from (seed, m_x, m_z). Errors with [`Error::EmptyBand`] when
+    /// the band holds no wave vector of the grid.
+    pub(super) fn draw(spectrum: &Spectrum, config: &CascadeConfig) -> Result<Self, Error> {
+        let n = config.size;
+        let dk64 = TAU / f64::from(config.length);
+        let k_min = f64::from(config.k_min);
+        let k_max = f64::from(config.k_max);
+        let in_band = |i: usize, j: usize| -> Option<(f64, f64)> {
+            if i == n / 2 || j == n / 2 {
+                return None;
+            }
+            let kx = f64::from(wave_index(i, n)) * dk64;
+            let kz = f64::from(wave_index(j, n)) * dk64;
+            let k = kx.hypot(kz);
+            (k > 0.0 && k >= k_min && k < k_max).then_some((kx, kz))
+        };
+        let band_has_vectors = (0..n).any(|j| (0..n).any(|i| in_band(i, j).is_some()));
+        if !band_has_vectors {
+            return Err(Error::EmptyBand { k_min, k_max });
+        }
+
+        // h0 in natural order, rows in parallel; each value depends only on its wave vector.
+        let params = spectrum.spreading_params();
+        let mut h0 = vec![Complex32::default(); n * n];
+        let mut variance_rows = vec![0.0f64; n];
+        h0.par_chunks_mut(n)
+            .zip(variance_rows.par_iter_mut())
+            .enumerate()
+            .for_each(|(j, (row, variance))| {
+                for (i, value) in row.iter_mut().enumerate() {
+                    let Some((kx, kz)) = in_band(i, j) else {
+                        continue;
+                    };
+                    let s = spectrum.density_f64(kx, kz, &params);
+                    if s <= 0.0 {
+                        continue;
+                    }
+                    *variance += s * dk64 * dk64;
+                    let (xr, xi) =
+                        rng::gaussian_pair(config.seed, wave_index(i, n), wave_index(j, n));
+                    let amplitude = 0.5 * s.sqrt() * dk64;
+                    *value = Complex32::new((xr * amplitude) as f32, (xi * amplitude) as f32);
+                }
+            });
+        // Summed in a fixed order: the same result whatever the thread count.
+        let expected_variance: f64 = variance_rows.iter().sum();
+        let abs_sum: f64 = h0.iter().map(|c| f64::from(c.norm())).sum();
+        let k_grid_max = dk64 * (n as f64 / 2.0) * std::f64::consts::SQRT_2;
+        let amplitude_bound = 2.0 * abs_sum * k_grid_max.max(1.0);
+        Ok(Amplitudes {
+            h0,
+            expected_variance,
+            amplitude_bound,
+        })
+    }
+}
+
+impl EvolutionTable {
+    /// The table of an N×N grid with spacing `dk` (rad/m) from its amplitudes `h0`: p and q
+    /// of every wave vector with k_x index i in 0..N/2, ω(k)/2π from `dispersion` (rounded
+    /// down to a multiple of 1/T when `looping` gives a period T in seconds), and 1/|k|.
+    pub(super) fn new(
+        h0: &[Complex32],
+        n: usize,
+        dk: f64,
+        dispersion: Dispersion,
+        looping: Option<f64>,
+    ) -> Self {
+        let half = n / 2;
+        // Each entry with 1/|k| (0 at k = 0), which the evolution loads instead of computing a
+        // square root and a division.
+        let mut evolution = vec![(Evolution::default(), 0.0f32); half * n];
+        evolution
+            .par_chunks_mut(n)
+            .enumerate()
+            .for_each(|(i, row)| {
+                for (j, entry) in row.iter_mut().enumerate() {
+                    let a = h0[j * n + i];
+                    let b = h0[((n - j) % n) * n + (n - i) % n].conj();
+                    let kx = f64::from(wave_index(i, n)) * dk;
+                    let kz = f64::from(wave_index(j, n)) * dk;
+                    let k = kx.hypot(kz);
+                    let omega = dispersion.omega_f64(k);
+                    let freq = match looping {
+                        Some(period) => (omega * period / TAU).floor() / period,
+                        None => omega / TAU,
+                    };
+                    let inv_k = if k > 0.0 { (1.0 / k) as f32 } else { 0.0 };
+                    *entry = (
+                        Evolution {
+                            p: a + b,
+                            q: Complex32::i() * (b - a),
+                            freq,
+                        },
+                        inv_k,
+                    );
+                }
+            });
+        EvolutionTable::from_entries(&evolution)
+    }
+}

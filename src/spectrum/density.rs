@@ -1,0 +1,137 @@
+//! Evaluation of a [`Spectrum`]: S(ω), D(ω, θ) and S(k), infallible and NaN-free.
+
+use glam::Vec2;
+
+use super::omega;
+use super::spreading::SpreadingParams;
+use super::{wrap_angle, DepthFactor, Model, Spectrum};
+use crate::dispersion::Dispersion;
+
+impl Spectrum {
+    /// Non-directional spectrum S(ω) in m²·s/rad at angular frequency `omega` in rad/s,
+    /// including the depth factor. 0 for ω ≤ 0 and for non-finite ω.
+    pub fn omega_spectrum(&self, omega: f32) -> f32 {
+        self.omega_spectrum_f64(f64::from(omega)) as f32
+    }
+
+    fn omega_spectrum_f64(&self, omega: f64) -> f64 {
+        if !omega.is_finite() || omega <= 0.0 {
+            return 0.0;
+        }
+        match self.model {
+            Model::Jonswap { .. } => self.jonswap_shape(omega) * self.depth_factor_at(omega, None),
+            Model::Phillips { .. } => {
+                // S(ω) = S(k) dk/dω with k = k(ω) of this spectrum's dispersion.
+                let k = self.dispersion.k_from_omega_f64(omega);
+                let group = self.dispersion.d_omega_dk_f64(k);
+                if !(group > 0.0 && group.is_finite()) {
+                    return 0.0;
+                }
+                self.phillips_omni(k) / group
+            }
+        }
+    }
+
+    /// The depth factor Φ at `omega`; `k`, when given, is ω's wave number under this
+    /// spectrum's dispersion.
+    fn depth_factor_at(&self, omega: f64, k: Option<f64>) -> f64 {
+        let Some(h) = self.dispersion.depth().map(f64::from) else {
+            return 1.0;
+        };
+        match self.depth_factor {
+            DepthFactor::None => 1.0,
+            DepthFactor::ThompsonVincent => omega::thompson_vincent(omega, h),
+            // With finite-depth dispersion a known k is the gravity-wave k(ω, h), so the exact
+            // factor needs no Newton solve. With capillary dispersion the gravity k is solved
+            // for: the capillary correction matters only where Φ = 1 already.
+            DepthFactor::Kitaigorodskii => match (k, self.dispersion) {
+                (Some(k), Dispersion::FiniteDepth { .. }) => omega::kitaigorodskii_kh(k * h),
+                _ => omega::kitaigorodskii(omega, h),
+            },
+        }
+    }
+
+    fn jonswap_shape(&self, omega: f64) -> f64 {
+        match self.model {
+            Model::Jonswap {
+                alpha,
+                peak_omega,
+                gamma,
+            } => omega::jonswap(
+                omega,
+                f64::from(alpha),
+                f64::from(peak_omega),
+                f64::from(gamma),
+            ),
+            Model::Phillips { .. } => 0.0,
+        }
+    }
+
+    fn phillips_omni(&self, k: f64) -> f64 {
+        match self.model {
+            Model::Phillips { amplitude } => {
+                omega::phillips_omni(k, f64::from(amplitude), self.wind_length())
+            }
+            Model::Jonswap { .. } => 0.0,
+        }
+    }
+
+    /// Directional spreading D(ω, θ) in 1/rad at angular frequency `omega` in rad/s and
+    /// direction `theta` in radians relative to the wind (any real angle; it is wrapped),
+    /// including the swell and spread-blend controls. ∫_{−π}^{π} D dθ = 1.
+    pub fn spreading(&self, omega: f32, theta: f32) -> f32 {
+        if !theta.is_finite() {
+            return 0.0;
+        }
+        self.spreading_params()
+            .evaluate(f64::from(omega), wrap_angle(f64::from(theta))) as f32
+    }
+
+    /// Directional wave-number spectrum S(k) in m⁴ at wave vector `k` = (k_x, k_z) in rad/m,
+    /// including the short-wave fade:
+    ///
+    /// ```text
+    /// S(k) = S(ω) · D(ω, θ) · (dω/dk) / k · e^{−k²ℓ²},   ω = ω(|k|), θ = atan2(k_z, k_x) − θ_w
+    /// ```
+    ///
+    /// Its integral over the plane is the surface variance. 0 at k = 0 and for non-finite k.
+    pub fn density(&self, k: Vec2) -> f32 {
+        self.density_f64(f64::from(k.x), f64::from(k.y), &self.spreading_params()) as f32
+    }
+
+    pub(crate) fn density_f64(&self, kx: f64, kz: f64, spreading: &SpreadingParams) -> f64 {
+        let k = kx.hypot(kz);
+        if !(k > 0.0 && k.is_finite()) {
+            return 0.0;
+        }
+        let omni = self.omni_k(k);
+        if omni == 0.0 {
+            return 0.0;
+        }
+        let omega = self.dispersion.omega_f64(k);
+        let theta = wrap_angle(kz.atan2(kx) - f64::from(self.wind_direction));
+        omni * spreading.evaluate(omega, theta) / k
+    }
+
+    /// Omnidirectional wave-number spectrum ∫ S(k) k dθ in m³ at |k| = `k`, with the fade.
+    pub(super) fn omni_k(&self, k: f64) -> f64 {
+        let fade = if self.short_wave_length > 0.0 {
+            let l = f64::from(self.short_wave_length);
+            (-(k * l) * (k * l)).exp()
+        } else {
+            1.0
+        };
+        if fade == 0.0 {
+            return 0.0;
+        }
+        let value = match self.model {
+            Model::Jonswap { .. } => {
+                let omega = self.dispersion.omega_f64(k);
+                let group = self.dispersion.d_omega_dk_f64(k);
+                self.jonswap_shape(omega) * self.depth_factor_at(omega, Some(k)) * group
+            }
+            Model::Phillips { .. } => self.phillips_omni(k),
+        };
+        value * fade
+    }
+}
