@@ -53,7 +53,7 @@ fn main() -> Result<()> {
         "preset", "U10 m/s", "fetch km", "depth m", "Hs m", "Tp s"
     );
     for (index, state) in SeaState::ALL.iter().enumerate() {
-        let (spectrum, mut config) = state.build()?;
+        let (spectrum, mut config) = state.build();
         let hs = spectrum.significant_wave_height();
         let tp = spectrum.peak_period();
         let fetch = spectrum

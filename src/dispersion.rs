@@ -1,7 +1,7 @@
 //! Dispersion relations ω(k) of surface gravity(-capillary) waves, their group-velocity
 //! derivative dω/dk, and the inverse k(ω).
 
-use crate::error::{self, Error};
+use crate::error::{self, saturate, Error};
 
 /// Gravitational acceleration g, in m/s².
 pub const GRAVITY: f32 = 9.81;
@@ -97,12 +97,14 @@ impl Dispersion {
         }
     }
 
-    /// Angular frequency ω(k) in rad/s of a wave of wave number `k` in rad/m.
+    /// Angular frequency ω(k) in rad/s of a wave of wave number `k` in rad/m, evaluated in
+    /// f64.
     ///
-    /// Returns 0 for k ≤ 0 or NaN.
+    /// Outside the domain: 0 for k ≤ 0 or NaN. Values beyond `f32::MAX` (k = +∞) saturate
+    /// there.
     #[inline]
     pub fn omega(&self, k: f32) -> f32 {
-        self.omega_f64(f64::from(k)) as f32
+        saturate(self.omega_f64(f64::from(k)))
     }
 
     /// Derivative dω/dk in m/s (the group velocity) at wave number `k` in rad/m.
@@ -113,20 +115,25 @@ impl Dispersion {
     /// Capillary    dω/dk = ((g + 3(σ/ρ)k²) tanh(kh) + (g k + (σ/ρ)k³) h sech²(kh)) / (2ω)
     /// ```
     ///
-    /// At k ≤ 0 it returns the limit k → 0⁺: +∞ in deep water, √(g h) at finite depth.
+    /// Evaluated in f64. At k ≤ 0 it returns the limit k → 0⁺ (√(g h) at finite depth, +∞
+    /// in deep water) and at k = +∞ the limit k → ∞ (0 for gravity waves, +∞ for capillary
+    /// ones); infinite values saturate at `f32::MAX`. NaN gives 0.
     #[inline]
     pub fn d_omega_dk(&self, k: f32) -> f32 {
-        self.d_omega_dk_f64(f64::from(k)) as f32
+        if k.is_nan() {
+            return 0.0;
+        }
+        saturate(self.d_omega_dk_f64(f64::from(k)))
     }
 
     /// Wave number k in rad/m of the wave whose angular frequency is `omega` in rad/s: the
     /// inverse of [`omega`](Self::omega).
     ///
     /// Deep water has the closed form k = ω²/g; otherwise a safeguarded Newton iteration on
-    /// the monotonic ω²(k) converges for every ω > 0 and depth > 0. Returns 0 for ω ≤ 0 or NaN
-    /// and +∞ for ω = +∞.
+    /// the monotonic ω²(k) converges for every ω > 0 and depth > 0. Outside the domain: 0
+    /// for ω ≤ 0 or NaN. Values beyond `f32::MAX` (ω = +∞) saturate there.
     pub fn k_from_omega(&self, omega: f32) -> f32 {
-        self.k_from_omega_f64(f64::from(omega)) as f32
+        saturate(self.k_from_omega_f64(f64::from(omega)))
     }
 
     /// [`omega`](Self::omega) in f64.
@@ -144,6 +151,13 @@ impl Dispersion {
             return match h {
                 Some(h) => (G * h).sqrt(),
                 None => f64::INFINITY,
+            };
+        }
+        if k == f64::INFINITY {
+            // The limits: g/(2ω) → 0 for gravity waves; capillary waves speed up as √k.
+            return match self {
+                Dispersion::Capillary { .. } => f64::INFINITY,
+                _ => 0.0,
             };
         }
         let omega = self.omega_squared(k).sqrt();

@@ -11,7 +11,8 @@ use num_complex::Complex32;
 use rayon::prelude::*;
 use rustfft::{Fft, FftPlanner};
 
-use crate::error::Error;
+use crate::error::{self, Error};
+use crate::grid;
 
 /// Rows handled by one parallel task of the second pass (the rows a task gathers by a
 /// transpose and transforms). 16 rows of a 512-point complex transform are 64 KiB (256 KiB
@@ -128,40 +129,59 @@ pub struct Fft2d {
 }
 
 impl Fft2d {
-    /// Plans `count` transforms of N×N arrays, N = `size` (even, 4 ≤ N ≤ [`crate::MAX_SIZE`]).
+    /// Most arrays one `Fft2d` transforms at once.
+    pub const MAX_COUNT: usize = 64;
+
+    /// Most bytes an `Fft2d` may hold (its intermediate buffer, plans and scratch): 4 GiB, as
+    /// the default limit of a cascade.
+    pub const MEMORY_LIMIT: usize = grid::DEFAULT_MEMORY_LIMIT;
+
+    /// Plans `count` transforms of N×N arrays, N = `size` (even,
+    /// [`CascadeConfig::MIN_SIZE`] ≤ N ≤ [`CascadeConfig::MAX_SIZE`]).
+    ///
+    /// [`CascadeConfig::MIN_SIZE`]: crate::CascadeConfig::MIN_SIZE
+    /// [`CascadeConfig::MAX_SIZE`]: crate::CascadeConfig::MAX_SIZE
+    ///
+    /// # Errors
+    /// [`Error::InvalidSize`] for `size`; [`Error::CountOutOfRange`] unless
+    /// 1 ≤ `count` ≤ [`MAX_COUNT`](Self::MAX_COUNT); [`Error::MemoryLimit`] if it would hold
+    /// more than [`MEMORY_LIMIT`](Self::MEMORY_LIMIT) bytes; [`Error::OutOfMemory`] if the
+    /// system refuses an allocation.
     pub fn new(size: usize, count: usize) -> Result<Self, Error> {
-        crate::grid::check_size(size)?;
-        if count == 0 || count > 64 {
-            return Err(crate::error::out_of_range(
-                "count",
-                count as f32,
-                "in [1, 64]",
-            ));
+        grid::check_size("size", size)?;
+        if !(1..=Self::MAX_COUNT).contains(&count) {
+            return Err(Error::CountOutOfRange {
+                name: "count",
+                count,
+                min: 1,
+                max: Self::MAX_COUNT,
+            });
         }
         let rows = RowFft::new(size);
         // The first pass runs (count·N)/ROWS_PER_TASK tasks, the second count·⌈N/ROWS_PER_TASK⌉.
         let tasks = count * size.div_ceil(ROWS_PER_TASK);
+        let scratch_len = tasks * rows.scratch_len();
+        let values = count * size * size;
+        let bytes = (scratch_len + values) * std::mem::size_of::<Complex32>();
+        grid::check_memory(bytes, Self::MEMORY_LIMIT)?;
         Ok(Fft2d {
             n: size,
             count,
-            scratch: vec![Complex32::default(); tasks * rows.scratch_len()],
+            scratch: error::try_vec(scratch_len, Complex32::default())?,
             rows,
-            transposed: vec![Complex32::default(); count * size * size],
+            transposed: error::try_vec(values, Complex32::default())?,
         })
     }
 
     /// Transforms `data` (`count` arrays of N×N, row-major, one after another) and returns
-    /// the transposed result. `data` is used as working space; it must hold exactly
-    /// `count`·N² values, or [`Error::OutOfRange`] is returned.
+    /// the transposed result. `data` is used as working space. Allocates nothing.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] unless `data` holds exactly `count`·N² values; nothing is
+    /// transformed then.
     pub fn process(&mut self, data: &mut [Complex32]) -> Result<&[Complex32], Error> {
         let n = self.n;
-        if data.len() != self.count * n * n {
-            return Err(crate::error::out_of_range(
-                "data.len()",
-                data.len() as f32,
-                "count · size²",
-            ));
-        }
+        error::length("data", data.len(), self.count * n * n)?;
         let rows = &self.rows;
         let s = rows.scratch_len();
         data.par_chunks_mut(n * ROWS_PER_TASK)

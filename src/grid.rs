@@ -3,14 +3,31 @@
 //! (sample (i, j) at index `j * N + i`, z the row).
 
 use crate::error::Error;
-use crate::MAX_SIZE;
 
-/// Checks a grid size: even, at least 4, at most [`MAX_SIZE`].
-pub(crate) fn check_size(size: usize) -> Result<usize, Error> {
-    if size < 4 || size % 2 != 0 || size > MAX_SIZE {
-        return Err(Error::InvalidSize { size });
+/// Smallest grid size N.
+pub(crate) const MIN_SIZE: usize = 4;
+
+/// Largest grid size N: a 4096² cascade holds about 2 GiB.
+pub(crate) const MAX_SIZE: usize = 4096;
+
+/// Checks a grid size `name`: even, [`MIN_SIZE`] ≤ N ≤ [`MAX_SIZE`].
+pub(crate) fn check_size(name: &'static str, size: usize) -> Result<usize, Error> {
+    if !(MIN_SIZE..=MAX_SIZE).contains(&size) || size % 2 != 0 {
+        return Err(Error::InvalidSize { name, size });
     }
     Ok(size)
+}
+
+/// The default memory limit of a cascade, an ocean or an [`Fft2d`](crate::Fft2d): 4 GiB
+/// (or the whole address space on targets with narrower pointers).
+pub(crate) const DEFAULT_MEMORY_LIMIT: usize = (u32::MAX as usize).saturating_add(1);
+
+/// Checks that `bytes` is within `limit`.
+pub(crate) fn check_memory(bytes: usize, limit: usize) -> Result<(), Error> {
+    if bytes > limit {
+        return Err(Error::MemoryLimit { bytes, limit });
+    }
+    Ok(())
 }
 
 /// Signed wave-number index of grid index `i` on an N grid (plain FFT order).

@@ -37,8 +37,10 @@
 //!
 //! # Conventions
 //!
-//! - Right-handed, **y up**; the sea surface is the (x, z) plane. Horizontal vectors are
-//!   [`Vec2`] holding **(x, z)**; 3-vectors are [`Vec3`] (x, y, z).
+//! - Right-handed, **y up**; the sea surface is the (x, z) plane. Buffers and query results
+//!   are plain arrays: horizontal vectors are `[f32; 2]` holding **`[x, z]`**, 3-vectors are
+//!   `[f32; 3]` holding `[x, y, z]`. No math library appears in the API, so any engine's
+//!   vector types read them (`glam::Vec3::from_array`, or zero-copy with `bytemuck`).
 //! - Angles in radians. A direction θ is the unit vector (cos θ, sin θ) in (x, z). The wind
 //!   direction is the direction the wind blows **toward**; waves travel downwind.
 //! - SI units: metres, seconds, rad/s, m/s; g = 9.81 m/s² ([`GRAVITY`]). Time is f64.
@@ -87,7 +89,7 @@
 //! # #[cfg(feature = "serde")] {
 //! use ocean_fft::{OceanConfig, SeaState, Spectrum};
 //!
-//! let (spectrum, config) = SeaState::FreshBreeze.build()?;
+//! let (spectrum, config) = SeaState::FreshBreeze.build();
 //! let saved = serde_json::to_string(&(&spectrum, &config)).unwrap();
 //! let loaded: (Spectrum, OceanConfig) = serde_json::from_str(&saved).unwrap();
 //! assert_eq!(loaded, (spectrum, config));
@@ -103,6 +105,7 @@
 //! repository's `docs/theory.md`; how to pick parameters and embed the crate in a game is in
 //! `docs/guide.md`.
 #![warn(missing_docs)]
+#![warn(clippy::missing_errors_doc)]
 
 mod cascade;
 mod dispersion;
@@ -116,21 +119,11 @@ mod rng;
 mod serde_impls;
 mod spectrum;
 
-pub use cascade::{Cascade, CascadeConfig, Field, MAX_TIME};
+pub use cascade::{Cascade, CascadeConfig, Field};
 pub use dispersion::{Dispersion, GRAVITY, SURFACE_TENSION, WATER_DENSITY};
 pub use error::Error;
 pub use fft2d::Fft2d;
-pub use glam::{Vec2, Vec3};
 pub use num_complex::Complex32;
-pub use ocean::{
-    FoamConfig, OceanConfig, OceanState, SurfaceSample, BAND_SPLIT, HEIGHT_AT_MAX_ITERATIONS,
-    HEIGHT_AT_TOLERANCE, MAX_STEP, PARALLEL_BATCH,
-};
+pub use ocean::{FoamConfig, OceanConfig, OceanState, QueryConfig, SurfaceSample};
 pub use presets::SeaState;
-pub use spectrum::{
-    DepthFactor, Spectrum, Spreading, DEFAULT_GAMMA, FULLY_DEVELOPED_FETCH, MAX_SPREADING_EXPONENT,
-    MAX_WIND_SPEED,
-};
-
-/// Largest supported grid size N (a cascade holds about 40·N² bytes per field set).
-pub const MAX_SIZE: usize = 4096;
+pub use spectrum::{DepthFactor, Spectrum, Spreading};

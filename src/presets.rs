@@ -12,7 +12,7 @@ use crate::spectrum::{Spectrum, Spreading};
 ///
 /// ```
 /// use ocean_fft::{OceanState, SeaState};
-/// let (spectrum, mut config) = SeaState::FreshBreeze.build()?;
+/// let (spectrum, mut config) = SeaState::FreshBreeze.build();
 /// config.size = 64;
 /// let ocean = OceanState::new(spectrum, config)?;
 /// assert_eq!(ocean.cascades().len(), 3);
@@ -80,7 +80,14 @@ impl SeaState {
 
     /// The spectrum and ocean configuration of this sea state (size 256, seed 0; change
     /// them freely).
-    pub fn build(self) -> Result<(Spectrum, OceanConfig), Error> {
+    pub fn build(self) -> (Spectrum, OceanConfig) {
+        // Every preset's parameters are constants inside the checked ranges (the crate's
+        // tests build each one), so this cannot fail.
+        self.try_build()
+            .expect("preset parameters lie inside the checked ranges")
+    }
+
+    fn try_build(self) -> Result<(Spectrum, OceanConfig), Error> {
         let u = self.wind_speed();
         let (spectrum, lengths, choppiness) = match self {
             SeaState::Calm => (Spectrum::jonswap(u, 20_000.0)?, vec![60.0, 13.8, 3.1], 0.8),

@@ -1,24 +1,25 @@
 //! [`CascadeConfig`]: the passive parameters of one cascade and their checks.
 
-use crate::error::{self, Error};
-use crate::grid::check_size;
+use std::ops::Bound::Included;
 
-/// Smallest and largest accepted patch side, in metres.
-const LENGTH_RANGE: (f32, f32) = (1e-2, 1e7);
+use crate::error::{self, Error};
+use crate::grid;
 
 /// Parameters of one [`Cascade`]: passive data, validated by [`Cascade::new`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CascadeConfig {
-    /// Grid size N (samples per side): even, 4 ≤ N ≤ [`MAX_SIZE`]; powers of two are fastest.
-    /// Default 256.
+    /// Grid size N (samples per side): even, [`MIN_SIZE`](Self::MIN_SIZE) ≤ N ≤
+    /// [`MAX_SIZE`](Self::MAX_SIZE); powers of two are fastest (default: `256`).
     pub size: usize,
-    /// Side L of the square patch, in metres (Δk = 2π/L). Default 1000 m.
+    /// Side L of the square patch in metres (Δk = 2π/L), from
+    /// [`MIN_LENGTH`](Self::MIN_LENGTH) to [`MAX_LENGTH`](Self::MAX_LENGTH) (default: `1000.0`).
     pub length: f32,
-    /// Lower band limit in rad/m: wave vectors with |k| < `k_min` are left out. Default 0.
+    /// Lower band limit in rad/m, ≥ 0: wave vectors with |k| < `k_min` are left out
+    /// (default: `0.0`).
     pub k_min: f32,
-    /// Upper band limit in rad/m: wave vectors with |k| ≥ `k_max` are left out (may be
-    /// +∞). Default +∞.
+    /// Upper band limit in rad/m, above `k_min`: wave vectors with |k| ≥ `k_max` are left out
+    /// (may be +∞; default: `f32::INFINITY`).
     #[cfg_attr(
         feature = "serde",
         serde(
@@ -28,14 +29,24 @@ pub struct CascadeConfig {
     )]
     pub k_max: f32,
     /// Choppiness λ ≥ 0 (dimensionless): grid points move by λ·D. 1 gives the Gerstner
-    /// profile for a single wave. Default 1.
+    /// profile for a single wave (default: `1.0`).
     pub choppiness: f32,
-    /// Seed of the random amplitudes; the same seed and L give the same waves at every N.
-    /// Default 0.
+    /// Seed of the random amplitudes; the same seed and L give the same waves at every N
+    /// (default: `0`).
     pub seed: u64,
-    /// Repeat period T in seconds: when set, every ω is rounded down to a multiple of 2π/T,
-    /// so the fields at t and t + T are equal (for looping bakes). Default `None`.
+    /// Repeat period T in seconds, from [`MIN_REPEAT_PERIOD`](Self::MIN_REPEAT_PERIOD) to
+    /// [`MAX_REPEAT_PERIOD`](Self::MAX_REPEAT_PERIOD): when set, every ω is rounded down to a
+    /// multiple of 2π/T, so the fields at t and t + T are equal (for looping bakes)
+    /// (default: `None`).
     pub repeat_period: Option<f32>,
+    /// Most bytes the cascade may hold; [`Cascade::new`](crate::Cascade::new) refuses a
+    /// config whose [`memory_bytes`](Self::memory_bytes) exceed it (default:
+    /// [`DEFAULT_MEMORY_LIMIT`](Self::DEFAULT_MEMORY_LIMIT), 4 GiB).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "crate::serde_impls::default_memory_limit")
+    )]
+    pub memory_limit: usize,
 }
 
 impl Default for CascadeConfig {
@@ -48,32 +59,75 @@ impl Default for CascadeConfig {
             choppiness: 1.0,
             seed: 0,
             repeat_period: None,
+            memory_limit: Self::DEFAULT_MEMORY_LIMIT,
         }
     }
 }
 
 impl CascadeConfig {
+    /// Smallest grid size N.
+    pub const MIN_SIZE: usize = grid::MIN_SIZE;
+    /// Largest grid size N (a cascade of 4096² holds about 2 GiB).
+    pub const MAX_SIZE: usize = grid::MAX_SIZE;
+    /// Smallest patch side L, in metres.
+    pub const MIN_LENGTH: f32 = 1e-2;
+    /// Largest patch side L, in metres.
+    pub const MAX_LENGTH: f32 = 1e7;
+    /// Shortest repeat period T, in seconds.
+    pub const MIN_REPEAT_PERIOD: f32 = 1e-2;
+    /// Longest repeat period T, in seconds (11.6 days).
+    pub const MAX_REPEAT_PERIOD: f32 = 1e6;
+    /// Default memory limit, in bytes: 4 GiB (the whole address space on 32-bit targets).
+    pub const DEFAULT_MEMORY_LIMIT: usize = grid::DEFAULT_MEMORY_LIMIT;
+
     /// Checks every field; the error names the first bad one.
+    ///
+    /// # Errors
+    /// [`Error::InvalidSize`] for `size`; [`Error::NonFinite`] or [`Error::OutOfRange`] for
+    /// `length`, `k_min`, `choppiness` or `repeat_period` outside the ranges their docs
+    /// give, or a NaN `k_max`; [`Error::EmptyBand`] unless `k_max` > `k_min`;
+    /// [`Error::MemoryLimit`] if the cascade would hold more than `memory_limit` bytes.
     pub fn validate(&self) -> Result<(), Error> {
-        check_size(self.size)?;
-        let length = error::positive("length", self.length)?;
-        if length < LENGTH_RANGE.0 || length > LENGTH_RANGE.1 {
-            return Err(error::out_of_range("length", length, "in [0.01, 1e7] m"));
-        }
-        let k_min = error::non_negative("k_min", self.k_min)?;
-        if self.k_max.is_nan() {
-            return Err(Error::NonFinite { name: "k_max" });
-        }
-        if self.k_max <= k_min {
-            return Err(Error::EmptyBand {
-                k_min: f64::from(k_min),
-                k_max: f64::from(self.k_max),
-            });
-        }
+        grid::check_size("size", self.size)?;
+        error::in_range(
+            "length",
+            self.length,
+            Included(f64::from(Self::MIN_LENGTH)),
+            Included(f64::from(Self::MAX_LENGTH)),
+        )?;
+        check_band(self.k_min, self.k_max)?;
         error::non_negative("choppiness", self.choppiness)?;
         if let Some(period) = self.repeat_period {
-            error::positive("repeat_period", period)?;
+            error::in_range(
+                "repeat_period",
+                period,
+                Included(f64::from(Self::MIN_REPEAT_PERIOD)),
+                Included(f64::from(Self::MAX_REPEAT_PERIOD)),
+            )?;
         }
-        Ok(())
+        grid::check_memory(super::memory_bytes(self.size), self.memory_limit)
     }
+
+    /// Bytes a cascade of this size holds (buffers, tables, FFT plans and scratch), about
+    /// 127·N² (N = `size`). Any size gives an answer, even one
+    /// [`validate`](Self::validate) refuses.
+    pub fn memory_bytes(&self) -> usize {
+        super::memory_bytes(self.size)
+    }
+}
+
+/// Checks a band `[k_min, k_max)` in rad/m: `k_min` finite and ≥ 0, `k_max` not NaN and
+/// above `k_min` (+∞ allowed).
+pub(crate) fn check_band(k_min: f32, k_max: f32) -> Result<(), Error> {
+    error::non_negative("k_min", k_min)?;
+    if k_max.is_nan() {
+        return Err(Error::NonFinite { name: "k_max" });
+    }
+    if k_max <= k_min {
+        return Err(Error::EmptyBand {
+            k_min: f64::from(k_min),
+            k_max: f64::from(k_max),
+        });
+    }
+    Ok(())
 }

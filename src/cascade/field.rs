@@ -1,7 +1,8 @@
 //! [`Field`]: the eight real fields a cascade synthesises and their spectral multipliers.
 
-use glam::Vec2;
 use num_complex::Complex32;
+
+use crate::error;
 
 /// The eight real fields a cascade synthesises, for [`Cascade::field`]. Each is the inverse
 /// DFT of h̃(k, t) times the multiplier named (k = |k|); the displacement fields are per unit
@@ -39,30 +40,37 @@ impl Field {
         Field::DisplacementXZ,
     ];
 
-    /// Which packed transform holds this field and whether it is the imaginary part.
-    /// Transform p holds fields 2p (real part) and 2p + 1 (imaginary part) of [`Field::ALL`].
+    /// Which packed transform holds this field and whether it is the imaginary part:
+    /// transform p holds fields 2p (real part) and 2p + 1 (imaginary part) of [`Field::ALL`].
+    /// For inspecting [`Cascade::packed_transform`](crate::Cascade::packed_transform).
     pub fn packing(self) -> (usize, bool) {
-        let index = Field::ALL.iter().position(|&f| f == self).unwrap_or(0);
+        let index = self as usize;
         (index / 2, index % 2 == 1)
     }
 
-    /// The spectral multiplier of this field at wave vector `k` = (k_x, k_z) in rad/m
-    /// (0 at k = 0).
-    pub fn multiplier(self, k: Vec2) -> Complex32 {
-        let (kx, kz) = (k.x, k.y);
+    /// The spectral multiplier of this field at wave vector `k` = `[k_x, k_z]` in rad/m,
+    /// evaluated in f64 and rounded to f32 (parts beyond ±`f32::MAX` saturate there). 0 at
+    /// k = 0, and for a wave vector with a NaN or infinite component (outside the domain).
+    pub fn multiplier(self, k: [f32; 2]) -> Complex32 {
+        let zero = Complex32::new(0.0, 0.0);
+        if !(k[0].is_finite() && k[1].is_finite()) {
+            return zero;
+        }
+        let (kx, kz) = (f64::from(k[0]), f64::from(k[1]));
         let len = kx.hypot(kz);
         if len == 0.0 {
-            return Complex32::new(0.0, 0.0);
+            return zero;
         }
-        match self {
-            Field::Height => Complex32::new(1.0, 0.0),
-            Field::DisplacementX => Complex32::new(0.0, kx / len),
-            Field::DisplacementZ => Complex32::new(0.0, kz / len),
-            Field::SlopeX => Complex32::new(0.0, kx),
-            Field::SlopeZ => Complex32::new(0.0, kz),
-            Field::DisplacementXX => Complex32::new(-kx * kx / len, 0.0),
-            Field::DisplacementZZ => Complex32::new(-kz * kz / len, 0.0),
-            Field::DisplacementXZ => Complex32::new(-kx * kz / len, 0.0),
-        }
+        let (re, im) = match self {
+            Field::Height => (1.0, 0.0),
+            Field::DisplacementX => (0.0, kx / len),
+            Field::DisplacementZ => (0.0, kz / len),
+            Field::SlopeX => (0.0, kx),
+            Field::SlopeZ => (0.0, kz),
+            Field::DisplacementXX => (-kx * kx / len, 0.0),
+            Field::DisplacementZZ => (-kz * kz / len, 0.0),
+            Field::DisplacementXZ => (-kx * kz / len, 0.0),
+        };
+        Complex32::new(error::saturate(re), error::saturate(im))
     }
 }

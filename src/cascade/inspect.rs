@@ -6,17 +6,20 @@ use std::f64::consts::TAU;
 use num_complex::Complex32;
 
 use super::tables::Evolution;
-use super::{Cascade, Field, TRANSFORMS};
+use super::{check_time, Cascade, Field, TRANSFORMS};
+use crate::error::{self, Error};
 
 impl Cascade {
     /// The evolved spectrum h̃(k, t) = h0(k)e^{−iωt} + conj(h0(−k))e^{iωt} in m, in the grid's
-    /// FFT order, computed afresh in f64 (for verification and tools; allocates). Non-finite
-    /// t gives zeros.
-    pub fn wave_spectrum(&self, t: f64) -> Vec<Complex32> {
+    /// FFT order, computed afresh in f64 at time `t` in seconds (for verification and tools;
+    /// allocates).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `t` outside
+    /// ±[`MAX_TIME`](Self::MAX_TIME), as [`Cascade::update`].
+    pub fn wave_spectrum(&self, t: f64) -> Result<Vec<Complex32>, Error> {
         let n = self.n;
-        if !t.is_finite() {
-            return vec![Complex32::default(); n * n];
-        }
+        check_time("t", t)?;
         let t = match self.config.repeat_period {
             Some(period) => t.rem_euclid(f64::from(period)),
             None => t,
@@ -36,16 +39,19 @@ impl Cascade {
                 out[j * n + i] = if conjugate { value.conj() } else { value };
             }
         }
-        out
+        Ok(out)
     }
 
-    /// Angular frequency ω(k) in rad/s used for the wave vector at grid index (i, j)
-    /// (quantised when looping). Out-of-grid indices give 0.
-    pub fn omega_at(&self, i: usize, j: usize) -> f64 {
-        if i >= self.n || j >= self.n {
-            return 0.0;
-        }
-        self.evolution_entry(i, j).0.freq * TAU
+    /// Angular frequency ω(k) in rad/s used for the wave vector at spectral index (i, j),
+    /// k = Δk·(m(i), m(j)) (quantised when looping; 0 on the Nyquist row and column, which
+    /// hold no wave).
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`] unless `i` and `j` are below N.
+    pub fn omega_at(&self, i: usize, j: usize) -> Result<f64, Error> {
+        error::index("i", i, self.n)?;
+        error::index("j", j, self.n)?;
+        Ok(self.evolution_entry(i, j).0.freq * TAU)
     }
 
     /// The table entry that evolves (i, j), and whether (i, j) is the conjugate partner.
@@ -78,16 +84,18 @@ impl Cascade {
 
     /// The raw result of packed transform `transform` (0..4) at the last update, in buffer
     /// order: real part field 2·`transform`, imaginary part field 2·`transform` + 1 of
-    /// [`Field::ALL`]. An index ≥ 4 gives an empty vector.
-    pub fn packed_transform(&self, transform: usize) -> Vec<Complex32> {
+    /// [`Field::ALL`] (see [`Field::packing`]). For checking the packing, as the crate's own
+    /// tests do; [`Cascade::field`] reads one field.
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`] unless `transform` < 4.
+    pub fn packed_transform(&self, transform: usize) -> Result<Vec<Complex32>, Error> {
         let n = self.n;
-        if transform >= TRANSFORMS {
-            return Vec::new();
-        }
+        error::index("transform", transform, TRANSFORMS)?;
         let mut out = Vec::with_capacity(n * n);
         for j in 0..n {
             out.extend_from_slice(&self.spatial[(j * TRANSFORMS + transform) * n..][..n]);
         }
-        out
+        Ok(out)
     }
 }

@@ -9,26 +9,23 @@ mod outputs;
 mod tables;
 
 use std::f64::consts::TAU;
+use std::ops::Bound::Included;
 
-use glam::{Vec2, Vec3};
 use num_complex::Complex32;
 use rayon::prelude::*;
 
 use crate::error::{self, Error};
 use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
-use crate::grid::wave_index;
+use crate::grid::{self, wave_index};
 use crate::spectrum::Spectrum;
 
+pub(crate) use config::check_band;
 pub use config::CascadeConfig;
 pub use field::Field;
 
 use evolve::{evolve_row_pair, fract_turns, packed_pair};
 use outputs::write_outputs;
 use tables::{check_amplitude, Amplitudes, EvolutionTable};
-
-/// Largest |t| accepted by [`Cascade::update`], in seconds (about 31.7 years). Up to here the
-/// f64 phase ω·t keeps an error below 1e-5 rad.
-pub const MAX_TIME: f64 = 1e9;
 
 /// One N×N patch of ocean surface of side L: the wave amplitudes h0(k) drawn once from a
 /// [`Spectrum`], and after every [`Cascade::update`] the height, horizontal displacement,
@@ -68,9 +65,9 @@ pub struct Cascade {
     spatial: Vec<Complex32>,
     scratch: Vec<Complex32>,
     height: Vec<f32>,
-    displacement: Vec<Vec2>,
-    slope: Vec<Vec2>,
-    normal: Vec<Vec3>,
+    displacement: Vec<[f32; 2]>,
+    slope: Vec<[f32; 2]>,
+    normal: Vec<[f32; 3]>,
     jacobian: Vec<f32>,
 }
 
@@ -87,30 +84,67 @@ impl std::fmt::Debug for Cascade {
 /// Number of packed complex transforms per update.
 const TRANSFORMS: usize = 4;
 
-/// Checks a simulation time: finite, |t| ≤ [`MAX_TIME`].
-pub(crate) fn check_time(t: f64) -> Result<(), Error> {
-    if !t.is_finite() {
-        return Err(Error::NonFinite { name: "t" });
-    }
-    if t.abs() > MAX_TIME {
-        return Err(Error::OutOfRange {
-            name: "t",
-            value: t,
-            expected: "|t| ≤ 1e9 s",
-        });
-    }
-    Ok(())
+/// Checks a simulation time `name`: finite, |t| ≤ [`Cascade::MAX_TIME`].
+pub(crate) fn check_time(name: &'static str, t: f64) -> Result<f64, Error> {
+    error::in_range_f64(
+        name,
+        t,
+        Included(-Cascade::MAX_TIME),
+        Included(Cascade::MAX_TIME),
+    )
+}
+
+/// Bytes a cascade of size `n` holds: its buffers, tables, FFT plan and scratch (planned
+/// for a valid size; for larger ones the scratch is estimated at N per task).
+pub(crate) fn memory_bytes(n: usize) -> usize {
+    let points = n.saturating_mul(n);
+    let complex = std::mem::size_of::<Complex32>();
+    let scratch_len = if n <= grid::MAX_SIZE {
+        RowFft::new(n).scratch_len()
+    } else {
+        n
+    };
+    let per_point = [
+        complex,                  // h0
+        2 * TRANSFORMS * complex, // pass-1 and pass-2 buffers
+        4 + 2 * 8 + 12 + 4,       // height, displacement, slope, normal, jacobian
+    ];
+    let evolution_entry = 4 * 4 + 8 + 4; // p, q, freq, 1/|k|, for half the points
+    let tables = (points / 2).saturating_mul(evolution_entry) + n.saturating_mul(4);
+    let scratch = tasks(n).saturating_mul(scratch_len).saturating_mul(complex);
+    per_point
+        .iter()
+        .fold(tables.saturating_add(scratch), |sum, &bytes| {
+            sum.saturating_add(points.saturating_mul(bytes))
+        })
+}
+
+/// Parallel tasks of one update, each with its own scratch: the row pairs of pass 1 and the
+/// row blocks of pass 2 at once.
+fn tasks(n: usize) -> usize {
+    n.div_ceil(ROWS_PER_TASK) + n / 2
 }
 
 impl Cascade {
+    /// Largest |t| accepted by [`Cascade::update`], in seconds (about 31.7 years). Up to here
+    /// the f64 phase ω·t keeps an error below 1e-5 rad.
+    pub const MAX_TIME: f64 = 1e9;
+
+    /// Largest bound on the fields' magnitude that [`Cascade::new`] accepts (see
+    /// [`Error::AmplitudeTooLarge`]): far enough below f32::MAX that squares and cross
+    /// products of the fields stay finite.
+    pub const MAX_AMPLITUDE: f64 = tables::AMPLITUDE_LIMIT;
+
     /// Draws h0(k) = ½(ξ_r + iξ_i)·√S(k)·Δk for every wave vector of the grid with
     /// `k_min` ≤ |k| < `k_max` (zero elsewhere, and on k = 0 and the Nyquist row and column),
     /// ξ standard normals drawn from (seed, m_x, m_z); tabulates ω(k) of the spectrum's
     /// dispersion; allocates every buffer the updates use. The fields are those of t = 0.
     ///
-    /// Errors: an invalid config ([`CascadeConfig::validate`]), a band holding no wave vector
-    /// of the grid ([`Error::EmptyBand`]), or a spectrum so large at this grid that the fields
-    /// could overflow f32 ([`Error::OutOfRange`] on `amplitude`).
+    /// # Errors
+    /// Those of [`CascadeConfig::validate`]; [`Error::EmptyBand`] if the band holds no wave
+    /// vector of the grid; [`Error::AmplitudeTooLarge`] if the spectrum is so strong at this
+    /// grid and choppiness that the fields could overflow f32; [`Error::OutOfMemory`] if the
+    /// system refuses an allocation.
     pub fn new(spectrum: &Spectrum, config: CascadeConfig) -> Result<Cascade, Error> {
         config.validate()?;
         let n = config.size;
@@ -124,10 +158,9 @@ impl Cascade {
         check_amplitude(amplitude_bound, config.choppiness)?;
         let looping = config.repeat_period.map(f64::from);
         let evolution = EvolutionTable::new(&h0, n, dk64, spectrum.dispersion(), looping);
-        let half = n / 2;
         let kz = (0..n).map(|j| wave_index(j, n) as f32 * dk).collect();
         let rows = RowFft::new(n);
-        let tasks = n.div_ceil(ROWS_PER_TASK) + half;
+        let points = n * n;
         let mut cascade = Cascade {
             config,
             n,
@@ -138,28 +171,29 @@ impl Cascade {
             h0,
             evolution,
             kz,
-            spectral: vec![Complex32::default(); TRANSFORMS * n * n],
-            spatial: vec![Complex32::default(); TRANSFORMS * n * n],
-            scratch: vec![Complex32::default(); tasks * rows.scratch_len()],
+            spectral: error::try_vec(TRANSFORMS * points, Complex32::default())?,
+            spatial: error::try_vec(TRANSFORMS * points, Complex32::default())?,
+            scratch: error::try_vec(tasks(n) * rows.scratch_len(), Complex32::default())?,
             rows,
-            height: vec![0.0; n * n],
-            displacement: vec![Vec2::ZERO; n * n],
-            slope: vec![Vec2::ZERO; n * n],
-            normal: vec![Vec3::Y; n * n],
-            jacobian: vec![1.0; n * n],
+            height: error::try_vec(points, 0.0)?,
+            displacement: error::try_vec(points, [0.0; 2])?,
+            slope: error::try_vec(points, [0.0; 2])?,
+            normal: error::try_vec(points, [0.0, 1.0, 0.0])?,
+            jacobian: error::try_vec(points, 1.0)?,
         };
         cascade.update(0.0)?;
         Ok(cascade)
     }
 
-    /// Evolves the spectrum to time `t` (seconds, f64; any t with |t| ≤ [`MAX_TIME`]) and
-    /// recomputes every output buffer. Allocates nothing; the result does not depend on the
-    /// number of rayon threads.
+    /// Evolves the spectrum to time `t` (seconds, f64; any t with
+    /// |t| ≤ [`MAX_TIME`](Self::MAX_TIME)) and recomputes every output buffer. Allocates
+    /// nothing inside a rayon pool; the result does not depend on the number of threads.
     ///
-    /// Errors: non-finite t ([`Error::NonFinite`]) or |t| > [`MAX_TIME`]
-    /// ([`Error::OutOfRange`]); the buffers are left as they were.
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `t`; the buffers are left as they
+    /// were.
     pub fn update(&mut self, t: f64) -> Result<(), Error> {
-        check_time(t)?;
+        check_time("t", t)?;
         self.time = t;
         // Looping: the phases are integer multiples of t/T, so t mod T gives the same fields
         // with smaller, more precise phases.
@@ -316,6 +350,11 @@ impl Cascade {
 
     /// Changes the choppiness λ (dimensionless, ≥ 0). Takes effect at the next
     /// [`Cascade::update`].
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] for a negative or non-finite
+    /// `choppiness`; [`Error::AmplitudeTooLarge`] if the fields could overflow f32 at this
+    /// choppiness. The choppiness is then unchanged.
     pub fn set_choppiness(&mut self, choppiness: f32) -> Result<(), Error> {
         let lambda = self.check_choppiness(choppiness)?;
         self.config.choppiness = lambda;
@@ -340,21 +379,23 @@ impl Cascade {
         &self.height
     }
 
-    /// Horizontal displacement λ·(D_x, D_z) in metres: grid point x₀ moves to x₀ + this.
-    pub fn displacement(&self) -> &[Vec2] {
+    /// Horizontal displacement λ·(D_x, D_z) in metres, as `[x, z]`: grid point x₀ moves to
+    /// x₀ + this.
+    pub fn displacement(&self) -> &[[f32; 2]] {
         &self.displacement
     }
 
     /// Slope (∂y/∂x, ∂y/∂z) of the displaced surface at each grid point's displaced position,
-    /// (−n_x/n_y, −n_z/n_y), dimensionless. n_y = J is kept at least 1e-4·|n|, so where the
-    /// surface is vertical or folds (J ≤ 0) the slope stays finite (magnitude ≤ 1e4).
-    pub fn slope(&self) -> &[Vec2] {
+    /// (−n_x/n_y, −n_z/n_y) as `[x, z]`, dimensionless. n_y = J is kept at least 1e-4·|n|, so
+    /// where the surface is vertical or folds (J ≤ 0) the slope stays finite (magnitude
+    /// ≤ 1e4).
+    pub fn slope(&self) -> &[[f32; 2]] {
         &self.slope
     }
 
     /// Unit normal of the displaced surface, (T_z × T_x)/|T_z × T_x|; it points down where
-    /// the surface folds over itself (J < 0).
-    pub fn normal(&self) -> &[Vec3] {
+    /// the surface folds over itself (J < 0). `[x, y, z]`, y up.
+    pub fn normal(&self) -> &[[f32; 3]] {
         &self.normal
     }
 

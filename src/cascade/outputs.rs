@@ -1,7 +1,6 @@
 //! Pass-2 kernels: height, displacement, slope, normal and Jacobian of one grid row from its
 //! four packed, transformed rows.
 
-use glam::{Vec2, Vec3};
 use num_complex::Complex32;
 
 /// Where the displaced surface is vertical or folded (J ≤ 0), the slope's denominator n_y is
@@ -16,9 +15,9 @@ pub(super) fn write_outputs(
     n: usize,
     lambda: f32,
     height: &mut [f32],
-    displacement: &mut [Vec2],
-    slope: &mut [Vec2],
-    normal: &mut [Vec3],
+    displacement: &mut [[f32; 2]],
+    slope: &mut [[f32; 2]],
+    normal: &mut [[f32; 3]],
     jacobian: &mut [f32],
 ) {
     let (t0, rest) = row.split_at(n);
@@ -49,7 +48,7 @@ pub(super) fn write_outputs(
             &mut nz[..len],
         );
         for (normal, ((&x, &y), &z)) in normal[range].iter_mut().zip(nx.iter().zip(&ny).zip(&nz)) {
-            *normal = Vec3::new(x, y, z);
+            *normal = [x, y, z];
         }
     }
 }
@@ -67,8 +66,8 @@ fn output_block(
     lambda: f32,
     height: &mut [f32],
     jacobian: &mut [f32],
-    displacement: &mut [Vec2],
-    slope: &mut [Vec2],
+    displacement: &mut [[f32; 2]],
+    slope: &mut [[f32; 2]],
     nx: &mut [f32],
     ny: &mut [f32],
     nz: &mut [f32],
@@ -98,15 +97,15 @@ fn output_block(
         let min_ny = MIN_SLOPE_NY * norm;
         let inv_ny = 1.0 / if det > min_ny { det } else { min_ny };
         height[i] = eta;
-        displacement[i] = Vec2::new(lambda * dx, lambda * dz);
+        displacement[i] = [lambda * dx, lambda * dz];
         jacobian[i] = det;
         nx[i] = if valid { rx * inv_len } else { 0.0 };
         ny[i] = if valid { det * inv_len } else { 1.0 };
         nz[i] = if valid { rz * inv_len } else { 0.0 };
         slope[i] = if valid {
-            Vec2::new(-rx * inv_ny, -rz * inv_ny)
+            [-rx * inv_ny, -rz * inv_ny]
         } else {
-            Vec2::ZERO
+            [0.0; 2]
         };
     }
 }

@@ -8,14 +8,14 @@ use rayon::prelude::*;
 
 use super::CascadeConfig;
 use crate::dispersion::Dispersion;
-use crate::error::Error;
+use crate::error::{self, Error};
 use crate::grid::wave_index;
 use crate::rng;
 use crate::spectrum::Spectrum;
 
 /// Largest accepted bound on the outputs' magnitude (see [`Cascade::new`]): far enough below
 /// f32::MAX that squares and cross products of the fields stay finite.
-const AMPLITUDE_LIMIT: f64 = 1e15;
+pub(super) const AMPLITUDE_LIMIT: f64 = 1e15;
 
 /// One entry of the evolution table, for a wave vector k of the half plane that is evolved
 /// (its partner −k gets the conjugate): h̃(k, t) = p cos φ + q sin φ, φ = 2π·`freq`·t.
@@ -103,10 +103,9 @@ impl EvolutionRow<'_> {
 pub(super) fn check_amplitude(bound: f64, choppiness: f32) -> Result<(), Error> {
     let bound = bound * f64::from(choppiness).max(1.0);
     if bound.is_nan() || bound > AMPLITUDE_LIMIT {
-        return Err(Error::OutOfRange {
-            name: "amplitude",
-            value: bound,
-            expected: "2·Σ|h0|·max(1, k)·max(1, λ) ≤ 1e15 (fields would overflow f32)",
+        return Err(Error::AmplitudeTooLarge {
+            bound,
+            limit: AMPLITUDE_LIMIT,
         });
     }
     Ok(())
@@ -148,7 +147,7 @@ impl Amplitudes {
 
         // h0 in natural order, rows in parallel; each value depends only on its wave vector.
         let params = spectrum.spreading_params();
-        let mut h0 = vec![Complex32::default(); n * n];
+        let mut h0 = error::try_vec(n * n, Complex32::default())?;
         let mut variance_rows = vec![0.0f64; n];
         h0.par_chunks_mut(n)
             .zip(variance_rows.par_iter_mut())

@@ -1,33 +1,35 @@
 //! [`OceanConfig`]: the passive parameters of an ocean, its cascades' bands and their checks.
 
-use crate::cascade::CascadeConfig;
+use std::ops::Bound::{Excluded, Included};
+
+use crate::cascade::{check_band, CascadeConfig};
 use crate::error::{self, Error};
+use crate::grid;
 
 use super::foam::FoamConfig;
 
-/// Fraction of a cascade's Nyquist wave number πN/L at which the next, smaller cascade takes
-/// over. At ½ the larger cascade still samples every direction of its band's top with 4 grid
-/// points per wavelength, and the smaller one starts N/4 of its own Δk above zero (for the
-/// length ratios ≈ 4–5 used here about 14 Δk), so both resolve the band where they meet.
-pub const BAND_SPLIT: f32 = 0.5;
-
-/// Parameters of an [`OceanState`]: passive data, validated by [`OceanState::new`].
+/// Parameters of an [`OceanState`](crate::OceanState): passive data, validated by
+/// [`OceanState::new`](crate::OceanState::new).
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct OceanConfig {
-    /// Side L of each cascade's patch in metres, strictly decreasing. Default
-    /// `[1000, 230, 51]`: non-integer ratios hide the tiling.
+    /// Side L of each cascade's patch in metres, strictly decreasing, each from
+    /// [`CascadeConfig::MIN_LENGTH`] to [`CascadeConfig::MAX_LENGTH`]; 1 to
+    /// [`MAX_CASCADES`](Self::MAX_CASCADES) cascades (default: `[1000.0, 230.0, 51.0]`:
+    /// non-integer ratios hide the tiling).
     pub lengths: Vec<f32>,
-    /// Grid size N of every cascade (even, 4 ≤ N ≤ [`crate::MAX_SIZE`]). Default 256.
+    /// Grid size N of every cascade: even, [`CascadeConfig::MIN_SIZE`] ≤ N ≤
+    /// [`CascadeConfig::MAX_SIZE`] (default: `256`).
     pub size: usize,
-    /// Choppiness λ ≥ 0 of every cascade (dimensionless). Default 1.
+    /// Choppiness λ ≥ 0 of every cascade, dimensionless (default: `1.0`).
     pub choppiness: f32,
-    /// Seed of the random amplitudes; cascade c uses `seed + c`. Default 0.
+    /// Seed of the random amplitudes; cascade c uses `seed + c` (default: `0`).
     pub seed: u64,
-    /// Lower limit of the whole band in rad/m. Default 0.
+    /// Lower limit of the whole band in rad/m, ≥ 0 (default: `0.0`).
     pub k_min: f32,
-    /// Upper limit of the whole band in rad/m (may be +∞; the smallest cascade's Nyquist
-    /// wave number πN/L caps it). Default +∞ (saved as `null` with the `serde` feature).
+    /// Upper limit of the whole band in rad/m, above `k_min` (may be +∞; the smallest
+    /// cascade's Nyquist wave number πN/L caps it; default: `f32::INFINITY`, saved as `null`
+    /// with the `serde` feature).
     #[cfg_attr(
         feature = "serde",
         serde(
@@ -36,16 +38,40 @@ pub struct OceanConfig {
         )
     )]
     pub k_max: f32,
+    /// Where adjacent cascades' bands meet, as a fraction of the larger cascade's Nyquist wave
+    /// number πN/L, in (0, 1] (default: [`DEFAULT_BAND_SPLIT`](Self::DEFAULT_BAND_SPLIT),
+    /// `0.5`).
+    ///
+    /// At ½ the larger cascade still samples every direction of its band's top with 4 grid
+    /// points per wavelength, and the smaller one starts N/4 of its own Δk above zero (for
+    /// length ratios of 4–5, about 14 Δk), so both resolve the band where they meet.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "crate::serde_impls::default_band_split")
+    )]
+    pub band_split: f32,
     /// Foam injection and decay.
     pub foam: FoamConfig,
-    /// Repeat period in seconds for looping (see [`CascadeConfig::repeat_period`]).
-    /// Default `None`.
+    /// Repeat period in seconds for looping (see [`CascadeConfig::repeat_period`])
+    /// (default: `None`).
     pub repeat_period: Option<f32>,
     /// Update the cascades in parallel with each other, on top of the parallel rows inside
-    /// each. Default `true`: on 2 cores, 3 cascades of 256² step in 2.5–2.75 ms this way
-    /// against 2.6–3.5 ms one after another, and 128² and 64² grids gain or lose at most
-    /// 15–20 % (`cargo bench --bench ocean`). The results are bit-identical either way.
+    /// each (default: `true`, measured faster for three 256² cascades on 2 cores; see the
+    /// guide's performance section). The results are bit-identical either way.
     pub parallel_cascades: bool,
+    /// How [`OceanState::height_at`](crate::OceanState::height_at) and the queries built on
+    /// it invert the horizontal displacement.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub query: QueryConfig,
+    /// Most bytes the whole ocean may hold (every cascade and the foam);
+    /// [`OceanState::new`](crate::OceanState::new) refuses a config whose
+    /// [`memory_bytes`](Self::memory_bytes) exceed it (default:
+    /// [`CascadeConfig::DEFAULT_MEMORY_LIMIT`], 4 GiB).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "crate::serde_impls::default_memory_limit")
+    )]
+    pub memory_limit: usize,
 }
 
 impl Default for OceanConfig {
@@ -57,71 +83,145 @@ impl Default for OceanConfig {
             seed: 0,
             k_min: 0.0,
             k_max: f32::INFINITY,
+            band_split: Self::DEFAULT_BAND_SPLIT,
             foam: FoamConfig::default(),
             repeat_period: None,
             parallel_cascades: true,
+            query: QueryConfig::default(),
+            memory_limit: CascadeConfig::DEFAULT_MEMORY_LIMIT,
         }
     }
 }
 
+/// How the world queries find the undisplaced point whose water lands on a query point:
+/// the fixed-point iteration x₀ ← p − D(x₀).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct QueryConfig {
+    /// Most fixed-point iterations, 1 to [`MAX_ITERATIONS`](Self::MAX_ITERATIONS)
+    /// (default: `16`).
+    pub max_iterations: usize,
+    /// Stop once the displaced point lands this close to the query point, in metres, > 0
+    /// (default: `1e-4`).
+    pub tolerance: f32,
+}
+
+impl Default for QueryConfig {
+    fn default() -> Self {
+        QueryConfig {
+            max_iterations: 16,
+            tolerance: 1e-4,
+        }
+    }
+}
+
+impl QueryConfig {
+    /// Largest accepted `max_iterations`.
+    pub const MAX_ITERATIONS: usize = 1000;
+
+    /// Checks both fields.
+    ///
+    /// # Errors
+    /// [`Error::CountOutOfRange`] for `max_iterations`; [`Error::NonFinite`] or
+    /// [`Error::OutOfRange`] unless `tolerance` is finite and > 0.
+    pub fn validate(&self) -> Result<(), Error> {
+        if !(1..=Self::MAX_ITERATIONS).contains(&self.max_iterations) {
+            return Err(Error::CountOutOfRange {
+                name: "query.max_iterations",
+                count: self.max_iterations,
+                min: 1,
+                max: Self::MAX_ITERATIONS,
+            });
+        }
+        error::positive("query.tolerance", self.tolerance)?;
+        Ok(())
+    }
+}
+
 impl OceanConfig {
-    /// The wave-number band [lower, upper) of each cascade, in rad/m: adjacent bands meet at
-    /// [`BAND_SPLIT`] of the larger cascade's Nyquist wave number, the first starts at
-    /// `k_min` and the last ends at min(`k_max`, πN/L_last). Call [`OceanConfig::validate`]
-    /// first; for an invalid config the bands may be empty.
-    pub fn bands(&self) -> Vec<(f32, f32)> {
+    /// Most cascades.
+    pub const MAX_CASCADES: usize = 8;
+
+    /// Default [`band_split`](Self::band_split).
+    pub const DEFAULT_BAND_SPLIT: f32 = 0.5;
+
+    /// The wave-number band `(lower, upper)` of each cascade, in rad/m, largest cascade first:
+    /// adjacent bands meet at [`band_split`](Self::band_split) of the larger cascade's
+    /// Nyquist wave number πN/L, the first starts at `k_min` and the last ends at
+    /// min(`k_max`, πN/L_last).
+    ///
+    /// # Errors
+    /// Those of [`OceanConfig::validate`]: the bands of an invalid config are not computed.
+    pub fn bands(&self) -> Result<Vec<(f32, f32)>, Error> {
+        self.validate()?;
+        Ok(self.bands_unchecked())
+    }
+
+    /// The bands of a config whose fields (not yet its bands) have been checked.
+    fn bands_unchecked(&self) -> Vec<(f32, f32)> {
         let count = self.lengths.len();
         let nyquist = |length: f32| std::f32::consts::PI * self.size as f32 / length;
         let mut edges = Vec::with_capacity(count + 1);
         edges.push(self.k_min);
-        for &length in &self.lengths[..count.saturating_sub(1)] {
-            edges.push((BAND_SPLIT * nyquist(length)).clamp(self.k_min, self.k_max));
+        for &length in &self.lengths[..count - 1] {
+            edges.push((self.band_split * nyquist(length)).clamp(self.k_min, self.k_max));
         }
-        let last = self.lengths.last().copied().unwrap_or(1.0);
-        edges.push(self.k_max.min(nyquist(last)).max(self.k_min));
+        edges.push(
+            self.k_max
+                .min(nyquist(self.lengths[count - 1]))
+                .max(self.k_min),
+        );
         edges.windows(2).map(|w| (w[0], w[1])).collect()
     }
 
-    /// Checks every field and that every cascade's band is non-empty.
+    /// Checks every field, that every cascade's band is non-empty, and the memory the ocean
+    /// would hold.
+    ///
+    /// # Errors
+    /// [`Error::CountOutOfRange`] for the number of `lengths`; those of
+    /// [`CascadeConfig::validate`] for `size`, each length (also [`Error::OutOfRange`] unless
+    /// the lengths strictly decrease), `choppiness`, `k_min`, `k_max` and `repeat_period`;
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `band_split`; those of
+    /// [`FoamConfig::validate`] and [`QueryConfig::validate`]; [`Error::EmptyBand`] if a
+    /// cascade's band is empty; [`Error::MemoryLimit`] if the ocean would hold more than
+    /// `memory_limit` bytes.
     pub fn validate(&self) -> Result<(), Error> {
-        if self.lengths.is_empty() || self.lengths.len() > 8 {
-            return Err(error::out_of_range(
-                "lengths.len()",
-                self.lengths.len() as f32,
-                "1 to 8 cascades",
-            ));
-        }
-        for (index, &length) in self.lengths.iter().enumerate() {
-            let probe = CascadeConfig {
-                length,
-                size: self.size,
-                ..CascadeConfig::default()
-            };
-            probe.validate()?;
-            if index > 0 && length >= self.lengths[index - 1] {
-                return Err(error::out_of_range(
-                    "lengths",
-                    length,
-                    "strictly decreasing lengths",
-                ));
-            }
-        }
-        error::non_negative("choppiness", self.choppiness)?;
-        error::non_negative("k_min", self.k_min)?;
-        if self.k_max.is_nan() {
-            return Err(Error::NonFinite { name: "k_max" });
-        }
-        if self.k_max <= self.k_min {
-            return Err(Error::EmptyBand {
-                k_min: f64::from(self.k_min),
-                k_max: f64::from(self.k_max),
+        if !(1..=Self::MAX_CASCADES).contains(&self.lengths.len()) {
+            return Err(Error::CountOutOfRange {
+                name: "lengths.len()",
+                count: self.lengths.len(),
+                min: 1,
+                max: Self::MAX_CASCADES,
             });
         }
+        grid::check_size("size", self.size)?;
+        for (index, &length) in self.lengths.iter().enumerate() {
+            // Within the cascades' limits, and below the length before.
+            let max = match index {
+                0 => Included(f64::from(CascadeConfig::MAX_LENGTH)),
+                _ => Excluded(f64::from(self.lengths[index - 1])),
+            };
+            error::in_range(
+                "lengths",
+                length,
+                Included(f64::from(CascadeConfig::MIN_LENGTH)),
+                max,
+            )?;
+        }
+        error::non_negative("choppiness", self.choppiness)?;
+        check_band(self.k_min, self.k_max)?;
+        error::in_range("band_split", self.band_split, Excluded(0.0), Included(1.0))?;
         self.foam.validate()?;
         if let Some(period) = self.repeat_period {
-            error::positive("repeat_period", period)?;
+            error::in_range(
+                "repeat_period",
+                period,
+                Included(f64::from(CascadeConfig::MIN_REPEAT_PERIOD)),
+                Included(f64::from(CascadeConfig::MAX_REPEAT_PERIOD)),
+            )?;
         }
-        for (lower, upper) in self.bands() {
+        self.query.validate()?;
+        for (lower, upper) in self.bands_unchecked() {
             if upper <= lower {
                 return Err(Error::EmptyBand {
                     k_min: f64::from(lower),
@@ -129,7 +229,18 @@ impl OceanConfig {
                 });
             }
         }
-        Ok(())
+        grid::check_memory(self.memory_bytes(), self.memory_limit)
+    }
+
+    /// Bytes the ocean holds: every cascade ([`CascadeConfig::memory_bytes`]) and its foam,
+    /// about 131·N² per cascade. Any config gives an answer, even one
+    /// [`validate`](Self::validate) refuses.
+    pub fn memory_bytes(&self) -> usize {
+        let cascade = crate::cascade::memory_bytes(self.size);
+        let foam = self.size.saturating_mul(self.size).saturating_mul(4);
+        cascade
+            .saturating_add(foam)
+            .saturating_mul(self.lengths.len())
     }
 
     /// The config of cascade `index` (its length, band and seed).
@@ -142,6 +253,7 @@ impl OceanConfig {
             choppiness: self.choppiness,
             seed: self.seed.wrapping_add(index as u64),
             repeat_period: self.repeat_period,
+            memory_limit: self.memory_limit,
         }
     }
 }

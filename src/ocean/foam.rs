@@ -1,5 +1,7 @@
 //! Foam: injected where the surface is compressed (J below a bias), decaying over time.
 
+use std::ops::Bound::Included;
+
 use rayon::prelude::*;
 
 use crate::error::{self, Error};
@@ -14,12 +16,15 @@ use super::OceanState;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FoamConfig {
-    /// Jacobian threshold (dimensionless): foam is injected where J < `bias`. Default 0.8
-    /// (a look control: about 1 % of a fresh breeze's grid points lie below it).
+    /// Jacobian threshold (dimensionless): foam is injected where J < `bias`, within
+    /// ±[`MAX_BIAS`](Self::MAX_BIAS) (default: `0.8`, a look control: about 1 % of a fresh
+    /// breeze's grid points lie below it).
     pub bias: f32,
-    /// Injection rate per unit of (bias − J), in 1/s. Default 8.
+    /// Injection rate per unit of (bias − J), in 1/s, from 0 to
+    /// [`MAX_INJECTION`](Self::MAX_INJECTION) (default: `8.0`).
     pub injection: f32,
-    /// Decay time constant τ in seconds. Default 2.5.
+    /// Decay time constant τ in seconds, from [`MIN_DECAY`](Self::MIN_DECAY) to
+    /// [`MAX_DECAY`](Self::MAX_DECAY) (default: `2.5`).
     pub decay: f32,
 }
 
@@ -34,11 +39,39 @@ impl Default for FoamConfig {
 }
 
 impl FoamConfig {
-    /// Checks every field: finite `bias`, `injection` ≥ 0, `decay` > 0.
+    /// Largest |`bias`|. J is 1 on flat water and rarely outside (−1, 2) on a sea, so a bias
+    /// beyond ±10 means foam everywhere or nowhere.
+    pub const MAX_BIAS: f32 = 10.0;
+    /// Largest `injection`, in 1/s: foam saturates within 0.1 ms at bias − J = 1.
+    pub const MAX_INJECTION: f32 = 1e4;
+    /// Shortest `decay`, in seconds.
+    pub const MIN_DECAY: f32 = 1e-3;
+    /// Longest `decay`, in seconds (11.6 days).
+    pub const MAX_DECAY: f32 = 1e6;
+
+    /// Checks every field against the ranges their docs give. Within them the foam update
+    /// stays finite for any surface (|J| ≤ 1e30 under [`Cascade::MAX_AMPLITUDE`]).
+    ///
+    /// [`Cascade::MAX_AMPLITUDE`]: crate::Cascade::MAX_AMPLITUDE
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] naming `foam.bias`, `foam.injection` or
+    /// `foam.decay`.
     pub fn validate(&self) -> Result<(), Error> {
-        error::finite("foam.bias", self.bias)?;
-        error::non_negative("foam.injection", self.injection)?;
-        error::positive("foam.decay", self.decay)?;
+        let bias = f64::from(Self::MAX_BIAS);
+        error::in_range("foam.bias", self.bias, Included(-bias), Included(bias))?;
+        error::in_range(
+            "foam.injection",
+            self.injection,
+            Included(0.0),
+            Included(f64::from(Self::MAX_INJECTION)),
+        )?;
+        error::in_range(
+            "foam.decay",
+            self.decay,
+            Included(f64::from(Self::MIN_DECAY)),
+            Included(f64::from(Self::MAX_DECAY)),
+        )?;
         Ok(())
     }
 }

@@ -7,16 +7,15 @@ mod query;
 
 use rayon::prelude::*;
 
+use std::ops::Bound::Included;
+
 use crate::cascade::{check_time, Cascade};
 use crate::error::{self, Error};
 use crate::spectrum::Spectrum;
 
-pub use config::{OceanConfig, BAND_SPLIT};
+pub use config::{OceanConfig, QueryConfig};
 pub use foam::FoamConfig;
-pub use query::{SurfaceSample, HEIGHT_AT_MAX_ITERATIONS, HEIGHT_AT_TOLERANCE, PARALLEL_BATCH};
-
-/// Largest accepted time step of [`OceanState::step`], in seconds.
-pub const MAX_STEP: f64 = 3600.0;
+pub use query::SurfaceSample;
 
 /// An ocean: cascades of one spectrum over disjoint wave-number bands, the time, and foam.
 ///
@@ -41,11 +40,16 @@ pub struct OceanState {
 }
 
 impl OceanState {
+    /// Largest accepted time step of [`OceanState::step`], in seconds.
+    pub const MAX_STEP: f64 = 3600.0;
+
     /// Builds the cascades (h0 of each drawn once) on the bands of
     /// [`OceanConfig::bands`], at t = 0 with no foam.
+    ///
+    /// # Errors
+    /// Those of [`OceanConfig::validate`] and of [`Cascade::new`] for each cascade.
     pub fn new(spectrum: Spectrum, config: OceanConfig) -> Result<OceanState, Error> {
-        config.validate()?;
-        let bands = config.bands();
+        let bands = config.bands()?;
         let cascades = bands
             .iter()
             .enumerate()
@@ -53,8 +57,8 @@ impl OceanState {
             .collect::<Result<Vec<_>, _>>()?;
         let foam = cascades
             .iter()
-            .map(|c| vec![0.0; c.size() * c.size()])
-            .collect();
+            .map(|c| error::try_vec(c.size() * c.size(), 0.0))
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(OceanState {
             spectrum,
             config,
@@ -64,20 +68,15 @@ impl OceanState {
         })
     }
 
-    /// Advances the time by `dt` seconds (0 ≤ dt ≤ [`MAX_STEP`]), updates every cascade and
-    /// the foam. Allocates nothing.
+    /// Advances the time by `dt` seconds (0 ≤ dt ≤ [`MAX_STEP`](Self::MAX_STEP)), updates
+    /// every cascade and the foam. Allocates nothing inside a rayon pool.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `dt`, or for the new time
+    /// (`time + dt`) beyond [`Cascade::MAX_TIME`]. Nothing changes then.
     pub fn step(&mut self, dt: f64) -> Result<(), Error> {
-        if !dt.is_finite() {
-            return Err(Error::NonFinite { name: "dt" });
-        }
-        if !(0.0..=MAX_STEP).contains(&dt) {
-            return Err(Error::OutOfRange {
-                name: "dt",
-                value: dt,
-                expected: "in [0, 3600] s",
-            });
-        }
-        let t = self.time + dt;
+        error::in_range_f64("dt", dt, Included(0.0), Included(Self::MAX_STEP))?;
+        let t = check_time("time + dt", self.time + dt)?;
         // One job handed to rayon per step (see `Cascade::update`).
         rayon::scope(|_| {
             self.update_cascades(t)?;
@@ -87,9 +86,13 @@ impl OceanState {
         })
     }
 
-    /// Jumps to time `t` in seconds (|t| ≤ [`crate::MAX_TIME`]) and updates every cascade.
+    /// Jumps to time `t` in seconds (|t| ≤ [`Cascade::MAX_TIME`]) and updates every cascade.
     /// The foam has no history across a jump: it is cleared.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `t`. Nothing changes then.
     pub fn set_time(&mut self, t: f64) -> Result<(), Error> {
+        check_time("t", t)?;
         self.update_cascades(t)?;
         self.time = t;
         for foam in &mut self.foam {
@@ -98,9 +101,9 @@ impl OceanState {
         Ok(())
     }
 
+    /// Updates every cascade to a time already checked, so that either every cascade is
+    /// updated or none is.
     fn update_cascades(&mut self, t: f64) -> Result<(), Error> {
-        // Validate once up front so that either every cascade is updated or none is.
-        check_time(t)?;
         if self.config.parallel_cascades {
             self.cascades
                 .par_iter_mut()
@@ -132,13 +135,20 @@ impl OceanState {
         &self.cascades
     }
 
-    /// Foam coverage in [0, 1] of cascade `index` on that cascade's grid (index j·N + i),
-    /// or `None` for an index past the last cascade.
-    pub fn foam(&self, index: usize) -> Option<&[f32]> {
-        self.foam.get(index).map(Vec::as_slice)
+    /// Foam coverage in [0, 1] of cascade `index` (0 the largest) on that cascade's grid
+    /// (index j·N + i).
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`] unless `index` is below the number of cascades.
+    pub fn foam(&self, index: usize) -> Result<&[f32], Error> {
+        error::index("index", index, self.foam.len())?;
+        Ok(&self.foam[index])
     }
 
     /// Sets the choppiness λ ≥ 0 of every cascade (takes effect at the next step).
+    ///
+    /// # Errors
+    /// As [`Cascade::set_choppiness`], for any cascade; no cascade changes then.
     pub fn set_choppiness(&mut self, choppiness: f32) -> Result<(), Error> {
         let lambda = error::non_negative("choppiness", choppiness)?;
         // Check every cascade before changing any, so an error leaves them all as they were.

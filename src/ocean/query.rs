@@ -6,30 +6,38 @@ use rayon::prelude::*;
 
 use super::OceanState;
 use crate::cascade::Cascade;
-use crate::error::Error;
-
-/// Fixed-point iterations of [`OceanState::height_at`] at most.
-pub const HEIGHT_AT_MAX_ITERATIONS: usize = 16;
-
-/// [`OceanState::height_at`] stops once the displaced point is this close to the query, in
-/// metres.
-pub const HEIGHT_AT_TOLERANCE: f32 = 1e-4;
+use crate::error::{self, Error};
 
 /// The surface at one undisplaced world point, summed over the cascades.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct SurfaceSample {
     /// Height η in metres.
     pub height: f32,
-    /// Horizontal displacement (x, z) in metres (already × choppiness): the water at the
+    /// Horizontal displacement `[x, z]` in metres (already × choppiness): the water at the
     /// undisplaced point sits at that point plus this.
-    pub displacement: Vec2,
-    /// Slope (∂y/∂x, ∂y/∂z) of the displaced surface, dimensionless: the sum of the cascades'
-    /// slopes.
-    pub slope: Vec2,
-    /// Unit normal of the displaced surface, from the summed slope.
-    pub normal: Vec3,
+    pub displacement: [f32; 2],
+    /// Slope `[∂y/∂x, ∂y/∂z]` of the displaced surface, dimensionless: the sum of the
+    /// cascades' slopes.
+    pub slope: [f32; 2],
+    /// Unit normal `[x, y, z]` of the displaced surface (y up), from the summed slope.
+    pub normal: [f32; 3],
     /// Foam coverage in [0, 1]: 1 − Π(1 − f_c) over the cascades' foam f_c.
     pub foam: f32,
+}
+
+impl Default for SurfaceSample {
+    /// Flat, still water: zero height, displacement and slope, the normal straight up, no
+    /// foam.
+    fn default() -> Self {
+        SurfaceSample {
+            height: 0.0,
+            displacement: [0.0; 2],
+            slope: [0.0; 2],
+            normal: [0.0, 1.0, 0.0],
+            foam: 0.0,
+        }
+    }
 }
 
 /// Bilinear weights and the four sample indices of world point (x, z) on a periodic N×N grid
@@ -67,8 +75,10 @@ impl Stencil {
     }
 
     #[inline]
-    fn vector(&self, values: &[Vec2]) -> Vec2 {
-        (0..4).map(|c| values[self.index[c]] * self.weight[c]).sum()
+    fn vector(&self, values: &[[f32; 2]]) -> Vec2 {
+        (0..4)
+            .map(|c| Vec2::from_array(values[self.index[c]]) * self.weight[c])
+            .sum()
     }
 }
 
@@ -80,12 +90,12 @@ fn split(g: f64, n: usize) -> (usize, f32) {
     ((cell as usize) % n, fraction)
 }
 
+/// Checks a world point: both coordinates finite (any finite value: the cascades wrap).
 fn check_point(x: f64, z: f64) -> Result<(), Error> {
-    if !x.is_finite() {
-        return Err(Error::NonFinite { name: "x" });
-    }
-    if !z.is_finite() {
-        return Err(Error::NonFinite { name: "z" });
+    for (name, value) in [("x", x), ("z", z)] {
+        if !value.is_finite() {
+            return Err(Error::NonFinite { name });
+        }
     }
     Ok(())
 }
@@ -97,7 +107,10 @@ fn stencil_of(cascade: &Cascade, x: f64, z: f64) -> Stencil {
 impl OceanState {
     /// The surface at the undisplaced world point (`x`, `z`) in metres (any finite
     /// coordinates; every cascade wraps periodically): each cascade sampled bilinearly and
-    /// summed. Errors only for non-finite coordinates.
+    /// summed.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn sample(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
         Ok(self.sample_unchecked(x, z))
@@ -110,8 +123,11 @@ impl OceanState {
     /// [`OceanState::sample`] summed over the cascades in `cascades` only (indices into
     /// [`OceanState::cascades`], largest first) — for level of detail: far from the camera,
     /// `0..1` or `0..2` leave out waves too small to see, which would only shimmer. An empty
-    /// range gives flat water. Errors for non-finite coordinates or a range past the last
-    /// cascade.
+    /// range (`start == end`) gives flat water.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite coordinate; [`Error::CountOutOfRange`]
+    /// unless `cascades.start ≤ cascades.end ≤` the number of cascades.
     pub fn sample_cascades(
         &self,
         x: f64,
@@ -119,31 +135,36 @@ impl OceanState {
         cascades: std::ops::Range<usize>,
     ) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
-        if cascades.end > self.cascades.len() {
-            return Err(Error::OutOfRange {
+        if !(cascades.start..=self.cascades.len()).contains(&cascades.end) {
+            return Err(Error::CountOutOfRange {
                 name: "cascades.end",
-                value: cascades.end as f64,
-                expected: "at most the number of cascades",
+                count: cascades.end,
+                min: cascades.start,
+                max: self.cascades.len(),
             });
         }
         Ok(self.sample_range(x, z, cascades))
     }
 
     fn sample_range(&self, x: f64, z: f64, range: std::ops::Range<usize>) -> SurfaceSample {
-        let mut out = SurfaceSample::default();
+        let (mut height, mut displacement, mut slope) = (0.0f32, Vec2::ZERO, Vec2::ZERO);
         let mut clear = 1.0f32;
-        let cascades = self.cascades.get(range.clone()).unwrap_or(&[]);
-        let foams = self.foam.get(range).unwrap_or(&[]);
+        let cascades = &self.cascades[range.clone()];
+        let foams = &self.foam[range];
         for (cascade, foam) in cascades.iter().zip(foams) {
             let s = stencil_of(cascade, x, z);
-            out.height += s.scalar(cascade.height());
-            out.displacement += s.vector(cascade.displacement());
-            out.slope += s.vector(cascade.slope());
+            height += s.scalar(cascade.height());
+            displacement += s.vector(cascade.displacement());
+            slope += s.vector(cascade.slope());
             clear *= 1.0 - s.scalar(foam);
         }
-        out.foam = (1.0 - clear).clamp(0.0, 1.0);
-        out.normal = normal_from_slope(out.slope);
-        out
+        SurfaceSample {
+            height,
+            displacement: displacement.to_array(),
+            slope: slope.to_array(),
+            normal: normal_from_slope(slope).to_array(),
+            foam: (1.0 - clear).clamp(0.0, 1.0),
+        }
     }
 
     /// Summed horizontal displacement at the undisplaced point, in metres.
@@ -156,8 +177,15 @@ impl OceanState {
 
     /// The undisplaced point x₀ whose water lands on world point (`x`, `z`):
     /// x₀ + D(x₀) = (x, z), solved by the fixed-point iteration x₀ ← p − D(x₀) (at most
-    /// [`HEIGHT_AT_MAX_ITERATIONS`], stopping within [`HEIGHT_AT_TOLERANCE`]). It converges
-    /// where the surface does not fold (J > 0); returns x₀ and the final miss in metres.
+    /// [`QueryConfig::max_iterations`], stopping within [`QueryConfig::tolerance`]). It
+    /// converges where the surface does not fold (J > 0); returns x₀ and the final miss in
+    /// metres.
+    ///
+    /// [`QueryConfig::max_iterations`]: crate::QueryConfig::max_iterations
+    /// [`QueryConfig::tolerance`]: crate::QueryConfig::tolerance
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn undisplaced_point(&self, x: f64, z: f64) -> Result<([f64; 2], f32), Error> {
         check_point(x, z)?;
         Ok(self.undisplaced_unchecked(x, z))
@@ -167,12 +195,13 @@ impl OceanState {
         let mut d = self.displacement_at(x, z);
         let mut x0 = [x - f64::from(d.x), z - f64::from(d.y)];
         let mut miss = f32::INFINITY;
-        for _ in 0..HEIGHT_AT_MAX_ITERATIONS {
+        let query = self.config.query;
+        for _ in 0..query.max_iterations {
             d = self.displacement_at(x0[0], x0[1]);
             let landed = [x0[0] + f64::from(d.x), x0[1] + f64::from(d.y)];
             let error = [x - landed[0], z - landed[1]];
             miss = error[0].hypot(error[1]) as f32;
-            if miss < HEIGHT_AT_TOLERANCE {
+            if miss < query.tolerance {
                 break;
             }
             x0 = [x - f64::from(d.x), z - f64::from(d.y)];
@@ -183,6 +212,9 @@ impl OceanState {
     /// The surface at world point (`x`, `z`) after horizontal displacement: the sample of
     /// the undisplaced point whose water lands there (see [`OceanState::undisplaced_point`]).
     /// Its height, normal and foam are what a floating object at (x, z) feels.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn surface_at(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
         let (x0, _) = self.undisplaced_unchecked(x, z);
@@ -191,13 +223,19 @@ impl OceanState {
 
     /// Water height y in metres at world point (`x`, `z`), after horizontal displacement —
     /// the query buoyancy and gameplay need.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn height_at(&self, x: f64, z: f64) -> Result<f32, Error> {
         self.surface_at(x, z).map(|s| s.height)
     }
 
     /// [`OceanState::height_at`] for many world points (x, z), into `out` (same length as
-    /// `points`), in parallel from [`PARALLEL_BATCH`] points on. Errors, before writing
-    /// anything, on a length mismatch or a non-finite coordinate.
+    /// `points`), in parallel from 64 points on (fewer run on the calling thread).
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] unless `out` is as long as `points`; [`Error::NonFinite`]
+    /// for a NaN or infinite coordinate. Nothing is written then.
     pub fn heights_at(&self, points: &[[f64; 2]], out: &mut [f32]) -> Result<(), Error> {
         check_batch(points, out.len())?;
         for_each_point(points, out, |[x, z]| {
@@ -208,7 +246,10 @@ impl OceanState {
     }
 
     /// [`OceanState::surface_at`] for many world points (x, z): height, normal, slope and
-    /// foam where the water is, into `out`. Errors as [`OceanState::heights_at`].
+    /// foam where the water is, into `out`.
+    ///
+    /// # Errors
+    /// As [`OceanState::heights_at`].
     pub fn surfaces_at(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
         for_each_point(points, out, |[x, z]| {
@@ -219,7 +260,10 @@ impl OceanState {
     }
 
     /// [`OceanState::sample`] for many undisplaced world points (x, z), into `out` (same
-    /// length as `points`). Errors as [`OceanState::heights_at`].
+    /// length as `points`).
+    ///
+    /// # Errors
+    /// As [`OceanState::heights_at`].
     pub fn sample_many(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
         for_each_point(points, out, |[x, z]| self.sample_unchecked(x, z));
@@ -230,7 +274,7 @@ impl OceanState {
 /// Batches of at least this many points are spread over rayon's threads; smaller ones (a
 /// boat's few hull points) run on the calling thread, where handing them to the pool would
 /// cost more than it saves.
-pub const PARALLEL_BATCH: usize = 64;
+const PARALLEL_BATCH: usize = 64;
 
 fn for_each_point<T: Send>(
     points: &[[f64; 2]],
@@ -250,13 +294,7 @@ fn for_each_point<T: Send>(
 }
 
 fn check_batch(points: &[[f64; 2]], out_len: usize) -> Result<(), Error> {
-    if points.len() != out_len {
-        return Err(Error::OutOfRange {
-            name: "out.len()",
-            value: out_len as f64,
-            expected: "equal to points.len()",
-        });
-    }
+    error::length("out", out_len, points.len())?;
     points.iter().try_for_each(|&[x, z]| check_point(x, z))
 }
 

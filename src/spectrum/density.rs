@@ -1,17 +1,17 @@
 //! Evaluation of a [`Spectrum`]: S(ω), D(ω, θ) and S(k), infallible and NaN-free.
 
-use glam::Vec2;
-
 use super::omega;
 use super::spreading::SpreadingParams;
 use super::{wrap_angle, DepthFactor, Model, Spectrum};
 use crate::dispersion::Dispersion;
+use crate::error::saturate;
 
 impl Spectrum {
     /// Non-directional spectrum S(ω) in m²·s/rad at angular frequency `omega` in rad/s,
-    /// including the depth factor. 0 for ω ≤ 0 and for non-finite ω.
+    /// including the depth factor. 0 for ω ≤ 0 and for non-finite ω (outside the domain);
+    /// values beyond `f32::MAX` saturate there.
     pub fn omega_spectrum(&self, omega: f32) -> f32 {
-        self.omega_spectrum_f64(f64::from(omega)) as f32
+        saturate(self.omega_spectrum_f64(f64::from(omega)))
     }
 
     fn omega_spectrum_f64(&self, omega: f64) -> f64 {
@@ -78,25 +78,31 @@ impl Spectrum {
 
     /// Directional spreading D(ω, θ) in 1/rad at angular frequency `omega` in rad/s and
     /// direction `theta` in radians relative to the wind (any real angle; it is wrapped),
-    /// including the swell and spread-blend controls. ∫_{−π}^{π} D dθ = 1.
+    /// including the swell and spread-blend controls. ∫_{−π}^{π} D dθ = 1. Outside the
+    /// domain: 0 for a NaN or infinite `theta`; 1/(2π) (flat) for ω ≤ 0 or NaN.
     pub fn spreading(&self, omega: f32, theta: f32) -> f32 {
         if !theta.is_finite() {
             return 0.0;
         }
-        self.spreading_params()
-            .evaluate(f64::from(omega), wrap_angle(f64::from(theta))) as f32
+        saturate(
+            self.spreading_params()
+                .evaluate(f64::from(omega), wrap_angle(f64::from(theta))),
+        )
     }
 
-    /// Directional wave-number spectrum S(k) in m⁴ at wave vector `k` = (k_x, k_z) in rad/m,
+    /// Directional wave-number spectrum S(k) in m⁴ at wave vector `k` = `[k_x, k_z]` in rad/m,
     /// including the short-wave fade:
     ///
     /// ```text
     /// S(k) = S(ω) · D(ω, θ) · (dω/dk) / k · e^{−k²ℓ²},   ω = ω(|k|), θ = atan2(k_z, k_x) − θ_w
     /// ```
     ///
-    /// Its integral over the plane is the surface variance. 0 at k = 0 and for non-finite k.
-    pub fn density(&self, k: Vec2) -> f32 {
-        self.density_f64(f64::from(k.x), f64::from(k.y), &self.spreading_params()) as f32
+    /// Its integral over the plane is the surface variance. 0 at k = 0 and for a wave vector
+    /// with a NaN or infinite component (outside the domain); values beyond `f32::MAX`
+    /// saturate there.
+    pub fn density(&self, k: [f32; 2]) -> f32 {
+        let (kx, kz) = (f64::from(k[0]), f64::from(k[1]));
+        saturate(self.density_f64(kx, kz, &self.spreading_params()))
     }
 
     pub(crate) fn density_f64(&self, kx: f64, kz: f64, spreading: &SpreadingParams) -> f64 {

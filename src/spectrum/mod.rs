@@ -6,24 +6,16 @@ mod spreading;
 mod variance;
 
 use std::f64::consts::PI;
-
-use glam::Vec2;
+use std::ops::Bound::{Excluded, Included};
 
 use crate::dispersion::Dispersion;
 use crate::error::{self, Error};
 
-pub use spreading::{Spreading, MAX_SPREADING_EXPONENT};
+pub use spreading::Spreading;
 
-use omega::{G, PIERSON_MOSKOWITZ_ALPHA, PIERSON_MOSKOWITZ_PEAK};
+use omega::PIERSON_MOSKOWITZ_ALPHA;
+pub(crate) use omega::{G, PIERSON_MOSKOWITZ_PEAK};
 use spreading::SpreadingParams;
-
-/// Dimensionless fetch gF/U² at which the JONSWAP peak 22 (g²/(UF))^(1/3) reaches the
-/// Pierson–Moskowitz peak 0.877 g/U of a fully developed sea: (22/0.877)³ ≈ 15 786.
-/// [`Spectrum::jonswap`] caps the fetch there.
-pub const FULLY_DEVELOPED_FETCH: f32 = 15_786.0;
-
-/// Default JONSWAP peak enhancement γ (Hasselmann et al. 1973).
-pub const DEFAULT_GAMMA: f32 = 3.3;
 
 /// How the shallow-water depth factor Φ(ω, h) of the TMA spectrum is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -100,6 +92,18 @@ pub struct Spectrum {
 }
 
 impl Spectrum {
+    /// Dimensionless fetch gF/U² at which the JONSWAP peak 22 (g²/(UF))^(1/3) reaches the
+    /// Pierson–Moskowitz peak 0.877 g/U of a fully developed sea: (22/0.877)³ ≈ 15 786.
+    /// [`Spectrum::jonswap`] caps the fetch there.
+    pub const FULLY_DEVELOPED_FETCH: f32 = 15_786.0;
+
+    /// Default JONSWAP peak enhancement γ (Hasselmann et al. 1973).
+    pub const DEFAULT_GAMMA: f32 = 3.3;
+
+    /// Largest accepted wind speed, in m/s: above any wind measured at sea, and low enough
+    /// that the derived spectra stay well inside f32.
+    pub const MAX_WIND_SPEED: f32 = 200.0;
+
     fn with_model(model: Model, wind_speed: f32, fetch: Option<f32>) -> Self {
         let spreading = match model {
             Model::Jonswap { .. } => Spreading::DonelanBanner,
@@ -130,18 +134,18 @@ impl Spectrum {
     /// ```
     ///
     /// A fetch-limited sea cannot outgrow a fully developed one, so the dimensionless fetch
-    /// gF/U² is capped at [`FULLY_DEVELOPED_FETCH`], where this ω_p reaches the
+    /// gF/U² is capped at [`FULLY_DEVELOPED_FETCH`](Self::FULLY_DEVELOPED_FETCH), where this ω_p reaches the
     /// Pierson–Moskowitz peak 0.877 g/U (α is then 0.0091): beyond about 16 000 U²/g metres
     /// (160 km at 10 m/s) more fetch changes nothing. [`Spectrum::fetch`] returns the fetch
     /// used.
     ///
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless both are finite and > 0 and
-    /// `wind_speed` ≤ [`MAX_WIND_SPEED`].
+    /// `wind_speed` ≤ [`MAX_WIND_SPEED`](Self::MAX_WIND_SPEED).
     pub fn jonswap(wind_speed: f32, fetch: f32) -> Result<Self, Error> {
         let u = check_wind_speed(wind_speed)?;
         let f = error::positive("fetch", fetch)?;
-        let full = FULLY_DEVELOPED_FETCH * u * u / G as f32;
+        let full = Self::FULLY_DEVELOPED_FETCH * u * u / G as f32;
         let f = f.min(full);
         let (u64, f64_) = (f64::from(u), f64::from(f));
         let alpha = omega::jonswap_alpha(u64, f64_) as f32;
@@ -151,7 +155,7 @@ impl Spectrum {
             Model::Jonswap {
                 alpha,
                 peak_omega,
-                gamma: DEFAULT_GAMMA,
+                gamma: Self::DEFAULT_GAMMA,
             },
             u,
             Some(f),
@@ -189,7 +193,7 @@ impl Spectrum {
     ///
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `wind_speed` is in
-    /// (0, [`MAX_WIND_SPEED`]].
+    /// (0, [`MAX_WIND_SPEED`](Self::MAX_WIND_SPEED)].
     pub fn pierson_moskowitz(wind_speed: f32) -> Result<Self, Error> {
         let u = check_wind_speed(wind_speed)?;
         let peak_omega = (PIERSON_MOSKOWITZ_PEAK * G / f64::from(u)) as f32;
@@ -212,7 +216,7 @@ impl Spectrum {
     ///
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless all three are finite and > 0 and
-    /// `wind_speed` ≤ [`MAX_WIND_SPEED`].
+    /// `wind_speed` ≤ [`MAX_WIND_SPEED`](Self::MAX_WIND_SPEED).
     pub fn tma(wind_speed: f32, fetch: f32, depth: f32) -> Result<Self, Error> {
         Self::jonswap(wind_speed, fetch)?
             .with_depth(depth)?
@@ -228,81 +232,14 @@ impl Spectrum {
     ///
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `wind_speed` is in
-    /// (0, [`MAX_WIND_SPEED`]] and `amplitude` finite and ≥ 0.
+    /// (0, [`MAX_WIND_SPEED`](Self::MAX_WIND_SPEED)] and `amplitude` finite and ≥ 0.
     pub fn phillips(wind_speed: f32, amplitude: f32) -> Result<Self, Error> {
         let u = check_wind_speed(wind_speed)?;
         let amplitude = error::non_negative("amplitude", amplitude)?;
         Ok(Self::with_model(Model::Phillips { amplitude }, u, None))
     }
 
-    /// Checks every stored parameter with the checks of the constructors and setters, and
-    /// wraps the wind direction to [−π, π] as [`with_wind_direction`](Self::with_wind_direction)
-    /// does: the gate for spectra assembled from stored fields (deserialisation).
-    ///
-    /// The parameters are checked one by one, plus the one relation every constructor keeps
-    /// and evaluation relies on (ω_p U/g ≥ 0.877, a sea at most fully developed); α and ω_p
-    /// need not follow the fetch law of the stored wind and fetch, as they need not for
-    /// [`Spectrum::jonswap_from_parameters`].
-    #[cfg_attr(not(feature = "serde"), allow(dead_code))]
-    pub(crate) fn validate(mut self) -> Result<Self, Error> {
-        match self.model {
-            Model::Jonswap {
-                alpha,
-                peak_omega,
-                gamma,
-            } => {
-                Self::check_model(alpha, peak_omega)?;
-                error::positive("gamma", gamma)?;
-                // The fetch law caps the wind at MAX_WIND_SPEED; jonswap_from_parameters
-                // derives it from ω_p, which has no upper bound.
-                match self.fetch {
-                    Some(fetch) => {
-                        check_wind_speed(self.wind_speed)?;
-                        error::positive("fetch", fetch)?;
-                    }
-                    None => {
-                        error::positive("wind_speed", self.wind_speed)?;
-                    }
-                }
-                // Every constructor gives a sea at most fully developed, ω_p U/g ≥ 0.877 (the
-                // fetch law is capped there; Pierson–Moskowitz and jonswap_from_parameters sit
-                // on it). The Mitsuyasu spreading's s_p = 11.5 (ω_p U/g)^−2.5 relies on it:
-                // far below, s overflows the cos-2s normalisation into NaN.
-                let developed = f64::from(peak_omega) * f64::from(self.wind_speed) / G;
-                if developed < PIERSON_MOSKOWITZ_PEAK * (1.0 - 1e-4) {
-                    return Err(error::out_of_range(
-                        "peak_omega",
-                        peak_omega,
-                        ">= 0.877 g / wind_speed (a sea at most fully developed)",
-                    ));
-                }
-            }
-            Model::Phillips { amplitude } => {
-                check_wind_speed(self.wind_speed)?;
-                error::non_negative("amplitude", amplitude)?;
-                if self.fetch.is_some() {
-                    return Err(Error::NotApplicable {
-                        name: "fetch",
-                        reason: "the Phillips spectrum is not built from a fetch",
-                    });
-                }
-            }
-        }
-        let wind_direction = error::finite("wind_direction", self.wind_direction)?;
-        if wind_direction.abs() > std::f32::consts::PI {
-            self = self.with_wind_direction(wind_direction)?;
-        }
-        self.spreading = self.spreading.validate()?;
-        let (swell, blend, length) = (self.swell, self.spread_blend, self.short_wave_length);
-        let (dispersion, depth_factor) = (self.dispersion, self.depth_factor);
-        self.with_swell(swell)?
-            .with_spread_blend(blend)?
-            .with_short_wave_length(length)?
-            .with_dispersion(dispersion)?
-            .with_depth_factor(depth_factor)
-    }
-
-    fn check_model(alpha: f32, peak_omega: f32) -> Result<(), Error> {
+    pub(crate) fn check_model(alpha: f32, peak_omega: f32) -> Result<(), Error> {
         // Extreme but finite inputs can push the derived parameters out of f32.
         error::positive("alpha", alpha)?;
         error::positive("peak_omega", peak_omega)?;
@@ -445,9 +382,10 @@ impl Spectrum {
         self.wind_direction
     }
 
-    /// Unit vector (x, z) of the wind direction.
-    pub fn wind_vector(&self) -> Vec2 {
-        Vec2::from_angle(self.wind_direction)
+    /// Unit vector `[x, z]` of the wind direction.
+    pub fn wind_vector(&self) -> [f32; 2] {
+        let (sin, cos) = self.wind_direction.sin_cos();
+        [cos, sin]
     }
 
     /// The directional spreading function in use (evaluate it with
@@ -506,7 +444,7 @@ impl Spectrum {
     ///
     /// For JONSWAP, Pierson–Moskowitz and TMA the ω_p parameter of the JONSWAP shape (the
     /// TMA depth factor moves the actual maximum of S(ω) slightly). For Phillips the maximum
-    /// of its deep-water S(ω), at k = (2/√3)/L_w.
+    /// of its deep-water S(ω), at k = (2/√5)/L_w.
     #[doc(alias = "Tp")]
     pub fn peak_omega(&self) -> f32 {
         self.peak_omega_f64() as f32
@@ -520,11 +458,26 @@ impl Spectrum {
     fn peak_omega_f64(&self) -> f64 {
         match self.model {
             Model::Jonswap { peak_omega, .. } => f64::from(peak_omega),
-            Model::Phillips { .. } => {
-                let k = 2.0 / (3f64.sqrt() * self.wind_length());
-                (G * k).sqrt()
-            }
+            Model::Phillips { .. } => (G * self.phillips_peak_wave_number()).sqrt(),
         }
+    }
+
+    /// Wave number of the spectrum's peak in rad/m: k(ω_p) under this spectrum's dispersion
+    /// for the spectra defined on ω; for Phillips, defined on k, the wave number of its
+    /// deep-water peak whatever the dispersion (see [`Spectrum::peak_omega`]).
+    pub(crate) fn peak_wave_number_f64(&self) -> f64 {
+        match self.model {
+            Model::Jonswap { peak_omega, .. } => {
+                self.dispersion.k_from_omega_f64(f64::from(peak_omega))
+            }
+            Model::Phillips { .. } => self.phillips_peak_wave_number(),
+        }
+    }
+
+    /// Where the Phillips spectrum's deep-water S(ω) peaks, in rad/m: S(ω) = S(k) dk/dω
+    /// ∝ k^(−5/2) exp(−1/(k L_w)²) is largest at k = (2/√5)/L_w.
+    fn phillips_peak_wave_number(&self) -> f64 {
+        2.0 / (5f64.sqrt() * self.wind_length())
     }
 
     /// L_w = U²/g in metres, the Phillips spectrum's largest wave.
@@ -544,16 +497,14 @@ impl Spectrum {
     }
 }
 
-/// Largest accepted wind speed, in m/s: above any wind measured at sea, and low enough that
-/// the derived spectra stay well inside f32.
-pub const MAX_WIND_SPEED: f32 = 200.0;
-
-fn check_wind_speed(wind_speed: f32) -> Result<f32, Error> {
-    let u = error::positive("wind_speed", wind_speed)?;
-    if u > MAX_WIND_SPEED {
-        return Err(error::out_of_range("wind_speed", u, "in (0, 200] m/s"));
-    }
-    Ok(u)
+/// Checks a wind speed in m/s: 0 < U ≤ [`Spectrum::MAX_WIND_SPEED`].
+pub(crate) fn check_wind_speed(wind_speed: f32) -> Result<f32, Error> {
+    error::in_range(
+        "wind_speed",
+        wind_speed,
+        Excluded(0.0),
+        Included(f64::from(Spectrum::MAX_WIND_SPEED)),
+    )
 }
 
 /// Wraps an angle in radians to [−π, π].

@@ -1,6 +1,7 @@
 //! Directional spreading functions D(ω, θ), each normalised so that ∫_{−π}^{π} D dθ = 1.
 
 use std::f64::consts::{LN_2, PI};
+use std::ops::Bound::{Excluded, Included};
 
 use crate::error::{self, Error};
 
@@ -36,9 +37,10 @@ pub enum Spreading {
     /// s = 6.97 (ω/ω_p)^4.06  (ω ≤ ω_p),  9.77 (ω/ω_p)^(−2.33 − 1.45 (U ω_p / g − 1.17))  (ω > ω_p)
     /// ```
     Hasselmann,
-    /// Cos-2s with a fixed spreading exponent `s` (> 0; larger is narrower).
+    /// Cos-2s with a fixed spreading exponent `s` (larger is narrower).
     Cos2s {
-        /// The exponent s of |cos(θ/2)|^{2s}, dimensionless, > 0.
+        /// The exponent s of |cos(θ/2)|^{2s}, dimensionless, 0 < s ≤
+        /// [`MAX_EXPONENT`](Spreading::MAX_EXPONENT).
         s: f32,
     },
     /// Donelan, Hamilton & Hui (1985) sech² spreading with Banner's (1990) extension above
@@ -52,36 +54,28 @@ pub enum Spreading {
     /// angular factor |k̂·ŵ|^p, with his damping of waves moving against the wind.
     /// `Cosine { exponent: 2.0, upwind: 1.0 }` is the classic two-way |k̂·ŵ|².
     Cosine {
-        /// The exponent p, dimensionless, ≥ 0.
+        /// The exponent p, dimensionless, 0 ≤ p ≤ [`MAX_EXPONENT`](Spreading::MAX_EXPONENT).
         exponent: f32,
         /// Energy of upwind waves relative to downwind ones, in [0, 1].
         upwind: f32,
     },
 }
 
-/// Largest accepted cos-2s exponent s and cosine exponent p (dimensionless): at s = 1e4 the
-/// spreading falls to half power 0.95° either side of the wind, and its normalisation is still
-/// far from overflowing.
-pub const MAX_SPREADING_EXPONENT: f32 = 1e4;
-
-fn bounded_exponent(name: &'static str, value: f32, expected: &'static str) -> Result<(), Error> {
-    if value > MAX_SPREADING_EXPONENT {
-        return Err(error::out_of_range(name, value, expected));
-    }
-    Ok(())
-}
-
 impl Spreading {
+    /// Largest accepted cos-2s exponent s and cosine exponent p (dimensionless): at s = 1e4
+    /// the spreading falls to half power 0.95° either side of the wind, and its normalisation
+    /// is still far from overflowing.
+    pub const MAX_EXPONENT: f32 = 1e4;
+
     /// Checks the variant's parameters.
     pub(crate) fn validate(self) -> Result<Self, Error> {
+        let max = Included(f64::from(Self::MAX_EXPONENT));
         match self {
             Spreading::Cos2s { s } => {
-                let s = error::positive("s", s)?;
-                bounded_exponent("s", s, "in (0, 1e4]")?;
+                error::in_range("s", s, Excluded(0.0), max)?;
             }
             Spreading::Cosine { exponent, upwind } => {
-                let exponent = error::non_negative("exponent", exponent)?;
-                bounded_exponent("exponent", exponent, "in [0, 1e4]")?;
+                error::in_range("exponent", exponent, Included(0.0), max)?;
                 error::unit_interval("upwind", upwind)?;
             }
             _ => {}

@@ -1,6 +1,7 @@
 //! The variance a [`Spectrum`] carries over a band of wave numbers, and H_s, by quadrature.
 
 use super::Spectrum;
+use crate::error::saturate;
 
 impl Spectrum {
     /// Variance of the surface elevation carried by the wave vectors with
@@ -10,7 +11,7 @@ impl Spectrum {
     /// spreading integrates to 1 over direction), 400 nodes a decade, relative error below
     /// 1e-6 for the spectra here. `k_max` may be +∞; an empty or invalid band gives 0.
     pub fn band_variance(&self, k_min: f32, k_max: f32) -> f32 {
-        self.band_variance_f64(f64::from(k_min), f64::from(k_max)) as f32
+        saturate(self.band_variance_f64(f64::from(k_min), f64::from(k_max)))
     }
 
     pub(crate) fn band_variance_f64(&self, k_min: f64, k_max: f64) -> f64 {
@@ -18,8 +19,10 @@ impl Spectrum {
             return 0.0;
         }
         // The spectra vanish faster than any power below 1e-3 k_p and carry less than
-        // 1e-9 of their energy above 1e6 k_p (tails ∝ k⁻³ or steeper in the integrand S·k).
-        let k_peak = self.dispersion.k_from_omega_f64(self.peak_omega_f64());
+        // 1e-6 of their energy above 1e6 k_p (tails ∝ k⁻² or steeper in the integrand S·k).
+        // The peak is taken on k: Phillips is defined there, and its ω_p under a shallow
+        // dispersion says nothing about where its energy lies.
+        let k_peak = self.peak_wave_number_f64();
         let lo = k_min.max(1e-3 * k_peak);
         let hi = k_max.min(1e6 * k_peak);
         if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
@@ -47,6 +50,6 @@ impl Spectrum {
     /// (with the short-wave fade) by quadrature.
     #[doc(alias = "Hs")]
     pub fn significant_wave_height(&self) -> f32 {
-        (4.0 * self.band_variance_f64(0.0, f64::INFINITY).sqrt()) as f32
+        saturate(4.0 * self.band_variance_f64(0.0, f64::INFINITY).sqrt())
     }
 }
