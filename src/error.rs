@@ -46,9 +46,10 @@ pub enum Error {
         /// The value that was given (an f32 parameter is converted through its shortest
         /// decimal form, so `0.1_f32` reads back as `0.1`).
         value: f64,
-        /// Lower bound of the valid range.
+        /// Lower bound of the valid range (an f32 limit through its shortest decimal form,
+        /// like `value`).
         min: Bound<f64>,
-        /// Upper bound of the valid range.
+        /// Upper bound of the valid range (likewise).
         max: Bound<f64>,
     },
     /// The grid size N was odd, or outside
@@ -275,19 +276,34 @@ pub(crate) fn finite(name: &'static str, value: f32) -> Result<f32, Error> {
     }
 }
 
-/// Checks that `value` is finite and lies within `min .. max` (bounds in f64, so that they
-/// are written exactly as the constants they come from).
+/// Checks that `value` is finite and lies within `min .. max`, compared in f32; the error
+/// reports the value and bounds through their shortest decimal forms.
 pub(crate) fn in_range(
     name: &'static str,
     value: f32,
-    min: Bound<f64>,
-    max: Bound<f64>,
+    min: Bound<f32>,
+    max: Bound<f32>,
 ) -> Result<f32, Error> {
     finite(name, value)?;
-    if contains(f64::from(value), min, max) {
+    let above = match min {
+        Bound::Included(a) => value >= a,
+        Bound::Excluded(a) => value > a,
+        Bound::Unbounded => true,
+    };
+    let below = match max {
+        Bound::Included(b) => value <= b,
+        Bound::Excluded(b) => value < b,
+        Bound::Unbounded => true,
+    };
+    if above && below {
         Ok(value)
     } else {
-        Err(out_of_range(name, widen(value), min, max))
+        Err(out_of_range(
+            name,
+            widen(value),
+            min.map(widen),
+            max.map(widen),
+        ))
     }
 }
 

@@ -342,7 +342,7 @@ fn validate_spectrum(mut spectrum: Spectrum) -> Result<Spectrum, Error> {
             // on it). The Mitsuyasu spreading's s_p = 11.5 (ω_p U/g)^−2.5 relies on it:
             // far below, s overflows the cos-2s normalisation into NaN.
             let fully_developed =
-                PIERSON_MOSKOWITZ_PEAK * (1.0 - 1e-4) * G / f64::from(spectrum.wind_speed);
+                (PIERSON_MOSKOWITZ_PEAK * (1.0 - 1e-4) * G / f64::from(spectrum.wind_speed)) as f32;
             error::in_range(
                 "peak_omega",
                 peak_omega,
@@ -388,4 +388,62 @@ pub(crate) fn default_memory_limit() -> usize {
 /// The value of a missing `band_split`.
 pub(crate) fn default_band_split() -> f32 {
     crate::OceanConfig::DEFAULT_BAND_SPLIT
+}
+
+/// `serialize_with` functions for the number fields of the passive configs: a NaN or infinite
+/// value is refused when saving, naming the field, because JSON would write it as `null` and a
+/// round trip would then change the config (an `Option` would read back as `None`).
+pub(crate) mod finite {
+    use serde::{ser, Serialize, Serializer};
+
+    #[cold]
+    fn refuse<E: ser::Error>(name: &str, value: f32) -> E {
+        E::custom(format_args!(
+            "parameter `{name}` = {value} cannot be saved (expected a finite number)"
+        ))
+    }
+
+    fn check<E: ser::Error>(name: &str, value: f32) -> Result<f32, E> {
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(refuse(name, value))
+        }
+    }
+
+    macro_rules! finite_fields {
+        ($($function:ident: $name:literal),* $(,)?) => {$(
+            pub(crate) fn $function<S: Serializer>(value: &f32, s: S) -> Result<S::Ok, S::Error> {
+                check($name, *value)?.serialize(s)
+            }
+        )*};
+    }
+
+    finite_fields! {
+        length: "length",
+        k_min: "k_min",
+        choppiness: "choppiness",
+        band_split: "band_split",
+        bias: "foam.bias",
+        injection: "foam.injection",
+        decay: "foam.decay",
+        tolerance: "query.tolerance",
+    }
+
+    pub(crate) fn repeat_period<S: Serializer>(
+        value: &Option<f32>,
+        s: S,
+    ) -> Result<S::Ok, S::Error> {
+        value
+            .map(|v| check("repeat_period", v))
+            .transpose()?
+            .serialize(s)
+    }
+
+    pub(crate) fn lengths<S: Serializer>(value: &[f32], s: S) -> Result<S::Ok, S::Error> {
+        for &v in value {
+            check::<S::Error>("lengths", v)?;
+        }
+        value.serialize(s)
+    }
 }

@@ -14,9 +14,17 @@ pub struct CascadeConfig {
     pub size: usize,
     /// Side L of the square patch in metres (Δk = 2π/L), from
     /// [`MIN_LENGTH`](Self::MIN_LENGTH) to [`MAX_LENGTH`](Self::MAX_LENGTH) (default: `1000.0`).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_impls::finite::length")
+    )]
     pub length: f32,
     /// Lower band limit in rad/m, ≥ 0: wave vectors with |k| < `k_min` are left out
     /// (default: `0.0`).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_impls::finite::k_min")
+    )]
     pub k_min: f32,
     /// Upper band limit in rad/m, above `k_min`: wave vectors with |k| ≥ `k_max` are left out
     /// (may be +∞; default: `f32::INFINITY`).
@@ -30,6 +38,10 @@ pub struct CascadeConfig {
     pub k_max: f32,
     /// Choppiness λ ≥ 0 (dimensionless): grid points move by λ·D. 1 gives the Gerstner
     /// profile for a single wave (default: `1.0`).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_impls::finite::choppiness")
+    )]
     pub choppiness: f32,
     /// Seed of the random amplitudes; the same seed and L give the same waves at every N
     /// (default: `0`).
@@ -38,6 +50,10 @@ pub struct CascadeConfig {
     /// [`MAX_REPEAT_PERIOD`](Self::MAX_REPEAT_PERIOD): when set, every ω is rounded down to a
     /// multiple of 2π/T, so the fields at t and t + T are equal (for looping bakes)
     /// (default: `None`).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_impls::finite::repeat_period")
+    )]
     pub repeat_period: Option<f32>,
     /// Most bytes the cascade may hold; [`Cascade::new`](crate::Cascade::new) refuses a
     /// config whose [`memory_bytes`](Self::memory_bytes) exceed it (default:
@@ -92,8 +108,8 @@ impl CascadeConfig {
         error::in_range(
             "length",
             self.length,
-            Included(f64::from(Self::MIN_LENGTH)),
-            Included(f64::from(Self::MAX_LENGTH)),
+            Included(Self::MIN_LENGTH),
+            Included(Self::MAX_LENGTH),
         )?;
         check_band(self.k_min, self.k_max)?;
         error::non_negative("choppiness", self.choppiness)?;
@@ -101,8 +117,8 @@ impl CascadeConfig {
             error::in_range(
                 "repeat_period",
                 period,
-                Included(f64::from(Self::MIN_REPEAT_PERIOD)),
-                Included(f64::from(Self::MAX_REPEAT_PERIOD)),
+                Included(Self::MIN_REPEAT_PERIOD),
+                Included(Self::MAX_REPEAT_PERIOD),
             )?;
         }
         grid::check_memory(super::memory_bytes(self.size), self.memory_limit)

@@ -17,15 +17,27 @@ pub struct OceanConfig {
     /// [`CascadeConfig::MIN_LENGTH`] to [`CascadeConfig::MAX_LENGTH`]; 1 to
     /// [`MAX_CASCADES`](Self::MAX_CASCADES) cascades (default: `[1000.0, 230.0, 51.0]`:
     /// non-integer ratios hide the tiling).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_impls::finite::lengths")
+    )]
     pub lengths: Vec<f32>,
     /// Grid size N of every cascade: even, [`CascadeConfig::MIN_SIZE`] ≤ N ≤
     /// [`CascadeConfig::MAX_SIZE`] (default: `256`).
     pub size: usize,
     /// Choppiness λ ≥ 0 of every cascade, dimensionless (default: `1.0`).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_impls::finite::choppiness")
+    )]
     pub choppiness: f32,
     /// Seed of the random amplitudes; cascade c uses `seed + c` (default: `0`).
     pub seed: u64,
     /// Lower limit of the whole band in rad/m, ≥ 0 (default: `0.0`).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_impls::finite::k_min")
+    )]
     pub k_min: f32,
     /// Upper limit of the whole band in rad/m, above `k_min` (may be +∞; the smallest
     /// cascade's Nyquist wave number πN/L caps it; default: `f32::INFINITY`, saved as `null`
@@ -47,13 +59,20 @@ pub struct OceanConfig {
     /// length ratios of 4–5, about 14 Δk), so both resolve the band where they meet.
     #[cfg_attr(
         feature = "serde",
-        serde(default = "crate::serde_impls::default_band_split")
+        serde(
+            default = "crate::serde_impls::default_band_split",
+            serialize_with = "crate::serde_impls::finite::band_split"
+        )
     )]
     pub band_split: f32,
     /// Foam injection and decay.
     pub foam: FoamConfig,
     /// Repeat period in seconds for looping (see [`CascadeConfig::repeat_period`])
     /// (default: `None`).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_impls::finite::repeat_period")
+    )]
     pub repeat_period: Option<f32>,
     /// Update the cascades in parallel with each other, on top of the parallel rows inside
     /// each (default: `true`, measured faster for three 256² cascades on 2 cores; see the
@@ -103,6 +122,10 @@ pub struct QueryConfig {
     pub max_iterations: usize,
     /// Stop once the displaced point lands this close to the query point, in metres, > 0
     /// (default: `1e-4`).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_impls::finite::tolerance")
+    )]
     pub tolerance: f32,
 }
 
@@ -198,15 +221,10 @@ impl OceanConfig {
         for (index, &length) in self.lengths.iter().enumerate() {
             // Within the cascades' limits, and below the length before.
             let max = match index {
-                0 => Included(f64::from(CascadeConfig::MAX_LENGTH)),
-                _ => Excluded(f64::from(self.lengths[index - 1])),
+                0 => Included(CascadeConfig::MAX_LENGTH),
+                _ => Excluded(self.lengths[index - 1]),
             };
-            error::in_range(
-                "lengths",
-                length,
-                Included(f64::from(CascadeConfig::MIN_LENGTH)),
-                max,
-            )?;
+            error::in_range("lengths", length, Included(CascadeConfig::MIN_LENGTH), max)?;
         }
         error::non_negative("choppiness", self.choppiness)?;
         check_band(self.k_min, self.k_max)?;
@@ -216,8 +234,8 @@ impl OceanConfig {
             error::in_range(
                 "repeat_period",
                 period,
-                Included(f64::from(CascadeConfig::MIN_REPEAT_PERIOD)),
-                Included(f64::from(CascadeConfig::MAX_REPEAT_PERIOD)),
+                Included(CascadeConfig::MIN_REPEAT_PERIOD),
+                Included(CascadeConfig::MAX_REPEAT_PERIOD),
             )?;
         }
         self.query.validate()?;

@@ -19,12 +19,24 @@ pub struct FoamConfig {
     /// Jacobian threshold (dimensionless): foam is injected where J < `bias`, within
     /// ±[`MAX_BIAS`](Self::MAX_BIAS) (default: `0.8`, a look control: about 1 % of a fresh
     /// breeze's grid points lie below it).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_impls::finite::bias")
+    )]
     pub bias: f32,
     /// Injection rate per unit of (bias − J), in 1/s, from 0 to
     /// [`MAX_INJECTION`](Self::MAX_INJECTION) (default: `8.0`).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_impls::finite::injection")
+    )]
     pub injection: f32,
     /// Decay time constant τ in seconds, from [`MIN_DECAY`](Self::MIN_DECAY) to
     /// [`MAX_DECAY`](Self::MAX_DECAY) (default: `2.5`).
+    #[cfg_attr(
+        feature = "serde",
+        serde(serialize_with = "crate::serde_impls::finite::decay")
+    )]
     pub decay: f32,
 }
 
@@ -58,19 +70,19 @@ impl FoamConfig {
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] naming `foam.bias`, `foam.injection` or
     /// `foam.decay`.
     pub fn validate(&self) -> Result<(), Error> {
-        let bias = f64::from(Self::MAX_BIAS);
+        let bias = Self::MAX_BIAS;
         error::in_range("foam.bias", self.bias, Included(-bias), Included(bias))?;
         error::in_range(
             "foam.injection",
             self.injection,
             Included(0.0),
-            Included(f64::from(Self::MAX_INJECTION)),
+            Included(Self::MAX_INJECTION),
         )?;
         error::in_range(
             "foam.decay",
             self.decay,
-            Included(f64::from(Self::MIN_DECAY)),
-            Included(f64::from(Self::MAX_DECAY)),
+            Included(Self::MIN_DECAY),
+            Included(Self::MAX_DECAY),
         )?;
         Ok(())
     }

@@ -503,7 +503,7 @@ pub(crate) fn check_wind_speed(wind_speed: f32) -> Result<f32, Error> {
         "wind_speed",
         wind_speed,
         Excluded(0.0),
-        Included(f64::from(Spectrum::MAX_WIND_SPEED)),
+        Included(Spectrum::MAX_WIND_SPEED),
     )
 }
 

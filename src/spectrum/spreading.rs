@@ -69,7 +69,7 @@ impl Spreading {
 
     /// Checks the variant's parameters.
     pub(crate) fn validate(self) -> Result<Self, Error> {
-        let max = Included(f64::from(Self::MAX_EXPONENT));
+        let max = Included(Self::MAX_EXPONENT);
         match self {
             Spreading::Cos2s { s } => {
                 error::in_range("s", s, Excluded(0.0), max)?;
