@@ -9,7 +9,7 @@ use std::ops::Bound;
 /// Every public constructor, setter, step and query validates its inputs and returns one of
 /// these instead of panicking, and a call that fails changes nothing. Each variant names the
 /// parameter at fault as it is spelled in the function's signature or the config's field
-/// (`"wind_speed"`, `"foam.decay"`, `"lengths[1]"`), and range errors carry the bounds the
+/// (`"wind_speed"`, `"foam.decay"`, `"query.tolerance"`), and range errors carry the bounds the
 /// check used, so the message and the check cannot disagree.
 ///
 /// ```

@@ -124,7 +124,8 @@ impl CascadeConfig {
         grid::check_memory(super::memory_bytes(self.size), self.memory_limit)
     }
 
-    /// Bytes a cascade of this size holds (buffers, tables, FFT plans and scratch), about
+    /// Bytes a cascade of this size holds (buffers, tables and FFT scratch; the FFT plans'
+    /// own small twiddle tables are not counted), about
     /// 127·N² (N = `size`). Any size gives an answer, even one
     /// [`validate`](Self::validate) refuses.
     pub fn memory_bytes(&self) -> usize {

@@ -51,9 +51,10 @@ pub(crate) fn sin_cos_turns(turns: f32) -> (f32, f32) {
 ///
 /// Transform p holds A + iB for the field pair (A, B) = (η, D_x), (D_z, η_x), (η_z, D_xx),
 /// (D_zz, D_xz). With A = α h̃, B = β h̃ and Hermitian fields, the value at k is (α + iβ) h̃
-/// and at −k it is (conj α + i conj β) conj h̃. With u = k/|k| the multipliers α + iβ at k
-/// and at −k are 1 ∓ u_x, ∓k_x + i u_z, i(k_z ∓ k_x u_x) and −u_z(k_z + i k_x); the
-/// products of h̃ they share are computed once.
+/// and at −k it is (conj α + i conj β) conj h̃. With u = k/|k|, the factors of h̃ at k are
+/// 1 − u_x, −k_x + i u_z, i(k_z − k_x u_x) and −u_z(k_z + i k_x), and the factors of conj h̃
+/// at −k are 1 + u_x, k_x − i u_z, −i(k_z + k_x u_x) and −u_z(k_z + i k_x); the products of
+/// h̃ they share are computed once.
 #[inline(always)]
 pub(super) fn packed_pair(
     turns: f32,

@@ -18,8 +18,8 @@ impl Spectrum {
         if k_min.is_nan() || k_max.is_nan() || k_max <= k_min {
             return 0.0;
         }
-        // The spectra vanish faster than any power below 1e-3 k_p and carry less than
-        // 1e-6 of their energy above 1e6 k_p (tails ∝ k⁻² or steeper in the integrand S·k).
+        // The spectra vanish faster than any power below 1e-3 k_p and carry about 1e-12 of
+        // their energy above 1e6 k_p (omnidirectional tails ∝ k⁻³ or steeper).
         // The peak is taken on k: Phillips is defined there, and its ω_p under a shallow
         // dispersion says nothing about where its energy lies.
         let k_peak = self.peak_wave_number_f64();
