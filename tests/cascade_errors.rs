@@ -4,10 +4,17 @@
 
 mod common;
 
+use std::ops::Bound;
+
 use common::*;
-use ocean_fft::{
-    Cascade, CascadeConfig, Complex32, Error, Fft2d, Field, Spectrum, Vec2, Vec3, MAX_SIZE,
-};
+use ocean_fft::{Cascade, CascadeConfig, Complex32, Error, Fft2d, Field, Spectrum};
+
+const MAX_SIZE: usize = CascadeConfig::MAX_SIZE;
+
+/// Euclidean length of a 3-vector.
+fn length3(v: [f32; 3]) -> f32 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
 
 fn small() -> CascadeConfig {
     CascadeConfig {
@@ -32,15 +39,19 @@ fn assert_all_finite(cascade: &Cascade, context: &str) {
         "{context}: jacobian"
     );
     assert!(
-        cascade.displacement().iter().all(|v| v.is_finite()),
+        cascade
+            .displacement()
+            .iter()
+            .flatten()
+            .all(|v| v.is_finite()),
         "{context}: displacement"
     );
     assert!(
-        cascade.slope().iter().all(|v| v.is_finite()),
+        cascade.slope().iter().flatten().all(|v| v.is_finite()),
         "{context}: slope"
     );
     assert!(
-        cascade.normal().iter().all(|v| v.is_finite()),
+        cascade.normal().iter().flatten().all(|v| v.is_finite()),
         "{context}: normal"
     );
     for field in FIELDS {
@@ -62,8 +73,8 @@ fn assert_all_finite(cascade: &Cascade, context: &str) {
 fn snapshot(cascade: &Cascade) -> Vec<u32> {
     let mut bits: Vec<u32> = cascade.height().iter().map(|v| v.to_bits()).collect();
     bits.extend(cascade.jacobian().iter().map(|v| v.to_bits()));
-    let v2 = |v: &Vec2| [v.x.to_bits(), v.y.to_bits()];
-    let v3 = |v: &Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+    let v2 = |v: &[f32; 2]| v.map(f32::to_bits);
+    let v3 = |v: &[f32; 3]| v.map(f32::to_bits);
     bits.extend(cascade.displacement().iter().flat_map(v2));
     bits.extend(cascade.slope().iter().flat_map(v2));
     bits.extend(cascade.normal().iter().flat_map(v3));
@@ -90,7 +101,7 @@ fn invalid_sizes() {
         let result = build(CascadeConfig { size, ..small() });
         assert_eq!(
             result.err(),
-            Some(Error::InvalidSize { size }),
+            Some(Error::InvalidSize { name: "size", size }),
             "size {size}"
         );
     }
@@ -234,6 +245,22 @@ fn invalid_lengths_bands_choppiness_and_periods() {
         ),
         (
             CascadeConfig {
+                repeat_period: Some(1e-3),
+                ..small()
+            },
+            "range",
+            "repeat_period",
+        ),
+        (
+            CascadeConfig {
+                repeat_period: Some(2e6),
+                ..small()
+            },
+            "range",
+            "repeat_period",
+        ),
+        (
+            CascadeConfig {
                 repeat_period: Some(f32::NAN),
                 ..small()
             },
@@ -294,8 +321,11 @@ fn band_without_grid_vectors_is_empty_band() {
 fn enormous_phillips_amplitude_is_out_of_range() {
     let spectrum = Spectrum::phillips(30.0, 1e35).unwrap();
     match Cascade::new(&spectrum, small()) {
-        Err(Error::OutOfRange { name, .. }) => assert_eq!(name, "amplitude"),
-        other => panic!("expected OutOfRange amplitude, got {:?}", other.err()),
+        Err(Error::AmplitudeTooLarge { bound, limit }) => {
+            assert_eq!(limit, Cascade::MAX_AMPLITUDE);
+            assert!(bound > limit, "bound {bound} within the limit {limit}");
+        }
+        other => panic!("expected AmplitudeTooLarge, got {:?}", other.err()),
     }
     // A large but representable amplitude is accepted and stays finite, and raising the
     // choppiness far enough to overflow the displacement derivatives is refused.
@@ -304,10 +334,8 @@ fn enormous_phillips_amplitude_is_out_of_range() {
     assert_all_finite(&cascade, "Phillips A = 1");
     assert!(matches!(
         cascade.set_choppiness(1e30),
-        Err(Error::OutOfRange {
-            name: "amplitude",
-            ..
-        })
+        Err(Error::AmplitudeTooLarge { bound, limit })
+            if limit == Cascade::MAX_AMPLITUDE && bound > limit
     ));
     assert_eq!(cascade.config().choppiness, 1.0);
 }
@@ -338,20 +366,30 @@ fn bad_times_are_refused_and_leave_buffers_unchanged() {
         cascade.update(f64::NAN),
         Err(Error::NonFinite { name: "t" })
     ));
-    assert!(matches!(
+    assert_eq!(
         cascade.update(2e9),
-        Err(Error::OutOfRange { name: "t", .. })
-    ));
+        Err(Error::OutOfRange {
+            name: "t",
+            value: 2e9,
+            min: Bound::Included(-Cascade::MAX_TIME),
+            max: Bound::Included(Cascade::MAX_TIME),
+        })
+    );
     // The extremes of the accepted range work and stay finite.
     for t in [1e9, -1e9, -3.5] {
         cascade.update(t).unwrap();
         assert_all_finite(&cascade, &format!("t = {t}"));
     }
-    // wave_spectrum of a non-finite time is documented as zeros, not NaN.
-    assert!(cascade
-        .wave_spectrum(f64::NAN)
-        .iter()
-        .all(|c| *c == Complex32::new(0.0, 0.0)));
+    // wave_spectrum checks its time as update does: a non-finite or too large time is an
+    // error, not NaN.
+    assert_eq!(
+        cascade.wave_spectrum(f64::NAN),
+        Err(Error::NonFinite { name: "t" })
+    );
+    assert!(matches!(
+        cascade.wave_spectrum(-2e9),
+        Err(Error::OutOfRange { name: "t", .. })
+    ));
 }
 
 #[test]
@@ -364,7 +402,7 @@ fn bad_choppiness_setter_is_refused() {
     cascade.set_choppiness(0.0).unwrap();
     cascade.update(1.0).unwrap();
     assert_all_finite(&cascade, "λ = 0");
-    assert!(cascade.displacement().iter().all(|d| *d == Vec2::ZERO));
+    assert!(cascade.displacement().iter().all(|d| *d == [0.0; 2]));
 }
 
 #[test]
@@ -392,7 +430,7 @@ fn folding_storm_stays_finite() {
             assert_all_finite(&cascade, &format!("storm N={n} step {step}"));
             folded += cascade.jacobian().iter().filter(|&&j| j < 0.0).count();
             for nrm in cascade.normal() {
-                assert!((nrm.length() - 1.0).abs() < 1e-5, "normal {nrm}");
+                assert!((length3(*nrm) - 1.0).abs() < 1e-5, "normal {nrm:?}");
             }
         }
         let min_j = cascade
@@ -426,12 +464,13 @@ fn degenerate_but_valid_configs_stay_finite() {
             choppiness: 0.0,
             ..small()
         },
+        // The shortest and longest accepted repeat periods (0.01 s and 1e6 s).
         CascadeConfig {
-            repeat_period: Some(1e-3),
+            repeat_period: Some(CascadeConfig::MIN_REPEAT_PERIOD),
             ..small()
         },
         CascadeConfig {
-            repeat_period: Some(1e6),
+            repeat_period: Some(CascadeConfig::MAX_REPEAT_PERIOD),
             ..small()
         },
     ];
@@ -454,11 +493,45 @@ fn degenerate_but_valid_configs_stay_finite() {
 #[test]
 fn out_of_range_queries_do_not_panic() {
     let cascade = build(small()).unwrap();
-    assert_eq!(cascade.omega_at(16, 0), 0.0);
-    assert_eq!(cascade.omega_at(0, usize::MAX), 0.0);
-    assert!(cascade.packed_transform(4).is_empty());
-    assert!(cascade.packed_transform(usize::MAX).is_empty());
-    assert_eq!(cascade.wave_spectrum(f64::INFINITY).len(), 16 * 16);
+    assert_eq!(
+        cascade.omega_at(16, 0),
+        Err(Error::IndexOutOfRange {
+            name: "i",
+            index: 16,
+            len: 16
+        })
+    );
+    assert_eq!(
+        cascade.omega_at(0, usize::MAX),
+        Err(Error::IndexOutOfRange {
+            name: "j",
+            index: usize::MAX,
+            len: 16
+        })
+    );
+    assert_eq!(
+        cascade.packed_transform(4),
+        Err(Error::IndexOutOfRange {
+            name: "transform",
+            index: 4,
+            len: 4
+        })
+    );
+    assert_eq!(
+        cascade.packed_transform(usize::MAX),
+        Err(Error::IndexOutOfRange {
+            name: "transform",
+            index: usize::MAX,
+            len: 4
+        })
+    );
+    assert_eq!(
+        cascade.wave_spectrum(f64::INFINITY),
+        Err(Error::NonFinite { name: "t" })
+    );
+    // The last valid indices still answer.
+    assert!(cascade.omega_at(15, 15).is_ok());
+    assert_eq!(cascade.packed_transform(3).unwrap().len(), 16 * 16);
 }
 
 #[test]
@@ -466,8 +539,13 @@ fn fft2d_wrong_length_is_an_error() {
     let mut fft = Fft2d::new(8, 2).unwrap();
     for len in [0, 63, 64, 127, 129, 256] {
         let mut data = vec![Complex32::new(1.0, 0.0); len];
-        assert!(
-            matches!(fft.process(&mut data), Err(Error::OutOfRange { .. })),
+        assert_eq!(
+            fft.process(&mut data).err(),
+            Some(Error::LengthMismatch {
+                name: "data",
+                expected: 128,
+                got: len
+            }),
             "length {len}"
         );
     }
@@ -475,7 +553,19 @@ fn fft2d_wrong_length_is_an_error() {
     assert_eq!(fft.process(&mut data).unwrap().len(), 128);
     assert!(matches!(
         Fft2d::new(7, 1),
-        Err(Error::InvalidSize { size: 7 })
+        Err(Error::InvalidSize {
+            name: "size",
+            size: 7
+        })
     ));
-    assert!(Fft2d::new(8, 0).is_err());
+    for count in [0, Fft2d::MAX_COUNT + 1] {
+        assert!(
+            matches!(
+                Fft2d::new(8, count),
+                Err(Error::CountOutOfRange { name: "count", count: c, min: 1, max })
+                    if c == count && max == Fft2d::MAX_COUNT
+            ),
+            "count {count}"
+        );
+    }
 }

@@ -1,9 +1,27 @@
 //! OceanState: band coverage, foam, world queries, presets — each against an independent
 //! computation.
 
+use std::ops::Bound;
+
 use ocean_fft::{
-    Cascade, Error, FoamConfig, OceanConfig, OceanState, SeaState, Spectrum, SurfaceSample,
+    Cascade, Error, FoamConfig, OceanConfig, OceanState, QueryConfig, SeaState, Spectrum,
+    SurfaceSample,
 };
+
+/// Euclidean length of a 3-vector.
+fn length3(v: [f32; 3]) -> f32 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
+/// Distance between two horizontal vectors `[x, z]`.
+fn distance2(a: [f32; 2], b: [f32; 2]) -> f32 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
+/// Sum of two horizontal vectors `[x, z]`.
+fn add2(a: [f32; 2], b: [f32; 2]) -> [f32; 2] {
+    [a[0] + b[0], a[1] + b[1]]
+}
 
 fn small_config() -> OceanConfig {
     OceanConfig {
@@ -28,7 +46,7 @@ fn cascades_split_the_band_without_gaps_or_overlap_and_keep_all_the_energy() {
             ..OceanConfig::default()
         };
         let ocean = OceanState::new(spectrum.clone(), config.clone()).unwrap();
-        let bands = config.bands();
+        let bands = config.bands().unwrap();
         assert_eq!(ocean.cascades().len(), 3);
         for pair in bands.windows(2) {
             assert_eq!(pair[0].1, pair[1].0, "bands must meet exactly");
@@ -111,7 +129,14 @@ fn foam_is_frame_rate_independent_and_bounded() {
     );
     assert!(worst < 0.1, "largest foam difference {worst}");
     assert!(coverage > 0.0, "the test needs foam to compare");
-    assert!(once.foam(3).is_none());
+    assert_eq!(
+        once.foam(3),
+        Err(Error::IndexOutOfRange {
+            name: "index",
+            index: 3,
+            len: 3
+        })
+    );
 }
 
 #[test]
@@ -177,7 +202,7 @@ fn sample_is_the_sum_of_bilinear_cascades_and_wraps_at_any_coordinate() {
             .sum();
         // f32 bilinear weights against f64: a few ulps of the ~1 m heights.
         assert!((f64::from(s.height) - reference).abs() < 1e-5, "({x}, {z})");
-        assert!((s.normal.length() - 1.0).abs() < 1e-5 && s.normal.y > 0.0);
+        assert!((length3(s.normal) - 1.0).abs() < 1e-5 && s.normal[1] > 0.0);
     }
     // The lengths 1000, 230 and 51 m share the period lcm = 1 173 000 m: the summed
     // surface must repeat there, at coordinates where f32 would have a 0.125 m step — more
@@ -191,8 +216,8 @@ fn sample_is_the_sum_of_bilinear_cascades_and_wraps_at_any_coordinate() {
                 (far.height - base.height).abs() < 1e-5,
                 "({x}+{ox}, {z}+{oz})"
             );
-            assert!((far.displacement - base.displacement).length() < 1e-5);
-            assert!((far.slope - base.slope).length() < 1e-4);
+            assert!(distance2(far.displacement, base.displacement) < 1e-5);
+            assert!(distance2(far.slope, base.slope) < 1e-4);
         }
     }
     // Small waves survive far away: a 2 cm move at x ≈ 1e6 m changes the height as it
@@ -229,8 +254,8 @@ fn height_at_inverts_the_displacement_like_a_brute_force_search() {
                 let (x, z) = (px + f64::from(a) * step, pz + f64::from(b) * step);
                 let s = state.sample(x, z).unwrap();
                 let landed = (
-                    x + f64::from(s.displacement.x),
-                    z + f64::from(s.displacement.y),
+                    x + f64::from(s.displacement[0]),
+                    z + f64::from(s.displacement[1]),
                 );
                 let d = (landed.0 - px).hypot(landed.1 - pz);
                 if d < best {
@@ -329,7 +354,7 @@ fn set_time_reaches_the_same_waves_as_stepping() {
 fn presets_build_and_grow_with_the_wind() {
     let mut heights = Vec::new();
     for preset in SeaState::ALL {
-        let (spectrum, mut config) = preset.build().unwrap();
+        let (spectrum, mut config) = preset.build();
         config.size = 64;
         let hs = spectrum.significant_wave_height();
         let state = OceanState::new(spectrum, config).unwrap();
@@ -402,17 +427,76 @@ fn bad_input_is_an_error_and_leaves_the_state_alone() {
             repeat_period: Some(-2.0),
             ..small_config()
         },
+        OceanConfig {
+            repeat_period: Some(2e6),
+            ..small_config()
+        },
+        OceanConfig {
+            band_split: 0.0,
+            ..small_config()
+        },
+        OceanConfig {
+            band_split: 1.5,
+            ..small_config()
+        },
+        OceanConfig {
+            foam: FoamConfig {
+                bias: 11.0,
+                ..FoamConfig::default()
+            },
+            ..small_config()
+        },
+        OceanConfig {
+            foam: FoamConfig {
+                injection: 2e4,
+                ..FoamConfig::default()
+            },
+            ..small_config()
+        },
+        OceanConfig {
+            foam: FoamConfig {
+                decay: 2e6,
+                ..FoamConfig::default()
+            },
+            ..small_config()
+        },
+        OceanConfig {
+            query: QueryConfig {
+                max_iterations: 0,
+                ..QueryConfig::default()
+            },
+            ..small_config()
+        },
+        OceanConfig {
+            query: QueryConfig {
+                tolerance: 0.0,
+                ..QueryConfig::default()
+            },
+            ..small_config()
+        },
+        OceanConfig {
+            memory_limit: 1000,
+            ..small_config()
+        },
     ];
     for config in bad_configs {
         let result = OceanState::new(spectrum.clone(), config.clone());
         assert!(result.is_err(), "{config:?} was accepted");
+        // bands() checks the config first and gives the same error.
+        assert_eq!(config.bands().err(), result.err(), "{config:?}: bands()");
     }
     let mut state = OceanState::new(spectrum, small_config()).unwrap();
     state.step(1.0).unwrap();
     let before = state.cascades()[0].height().to_vec();
     assert_eq!(state.step(f64::NAN), Err(Error::NonFinite { name: "dt" }));
-    assert!(matches!(state.step(-0.1), Err(Error::OutOfRange { .. })));
-    assert!(matches!(state.step(1e5), Err(Error::OutOfRange { .. })));
+    assert!(matches!(
+        state.step(-0.1),
+        Err(Error::OutOfRange { name: "dt", .. })
+    ));
+    assert!(matches!(
+        state.step(1e5),
+        Err(Error::OutOfRange { name: "dt", .. })
+    ));
     assert!(state.set_time(f64::INFINITY).is_err());
     assert!(state.set_time(2e9).is_err());
     assert!(state.set_choppiness(f32::NAN).is_err());
@@ -421,16 +505,40 @@ fn bad_input_is_an_error_and_leaves_the_state_alone() {
     assert!(state.sample(f64::NAN, 0.0).is_err());
     assert!(state.height_at(0.0, f64::INFINITY).is_err());
     let mut out = vec![0.0; 2];
-    assert!(state.heights_at(&[[0.0, 0.0]], &mut out).is_err());
+    assert_eq!(
+        state.heights_at(&[[0.0, 0.0]], &mut out),
+        Err(Error::LengthMismatch {
+            name: "out",
+            expected: 1,
+            got: 2
+        })
+    );
     assert!(state
         .heights_at(&[[0.0, 0.0], [f64::NAN, 1.0]], &mut out)
         .is_err());
     assert_eq!(out, vec![0.0, 0.0]);
+    // A step that would carry the time past Cascade::MAX_TIME is refused and changes nothing;
+    // one that reaches it exactly is fine.
+    state.set_time(Cascade::MAX_TIME - 1.0).unwrap();
+    let before = state.cascades()[0].height().to_vec();
+    assert_eq!(
+        state.step(2.0),
+        Err(Error::OutOfRange {
+            name: "time + dt",
+            value: Cascade::MAX_TIME + 1.0,
+            min: Bound::Included(-Cascade::MAX_TIME),
+            max: Bound::Included(Cascade::MAX_TIME),
+        })
+    );
+    assert_eq!(state.time(), Cascade::MAX_TIME - 1.0);
+    assert_eq!(state.cascades()[0].height(), &before[..]);
+    state.step(1.0).unwrap();
+    assert_eq!(state.time(), Cascade::MAX_TIME);
 }
 
 #[test]
 fn outputs_stay_finite_in_a_folding_storm() {
-    let (spectrum, mut config) = SeaState::Storm.build().unwrap();
+    let (spectrum, mut config) = SeaState::Storm.build();
     config.size = 64;
     config.choppiness = 8.0;
     let mut state = OceanState::new(spectrum, config).unwrap();
@@ -441,8 +549,8 @@ fn outputs_stay_finite_in_a_folding_storm() {
     assert!(folded, "choppiness 8 should fold the storm's surface");
     for (index, c) in state.cascades().iter().enumerate() {
         assert!(c.height().iter().all(|v| v.is_finite()));
-        assert!(c.slope().iter().all(|v| v.is_finite()));
-        assert!(c.normal().iter().all(|v| v.is_finite()));
+        assert!(c.slope().iter().flatten().all(|v| v.is_finite()));
+        assert!(c.normal().iter().flatten().all(|v| v.is_finite()));
         assert!(state.foam(index).unwrap().iter().all(|v| v.is_finite()));
     }
     let y = state.height_at(100.0, 100.0).unwrap();
@@ -483,7 +591,10 @@ fn a_refused_choppiness_changes_no_cascade() {
         .iter()
         .map(|c| c.config().choppiness)
         .collect();
-    assert!(state.set_choppiness(1e12).is_err());
+    assert!(matches!(
+        state.set_choppiness(1e12),
+        Err(Error::AmplitudeTooLarge { .. })
+    ));
     let after: Vec<f32> = state
         .cascades()
         .iter()
@@ -513,13 +624,32 @@ fn sampling_a_subset_of_cascades_adds_up_to_the_whole() {
         // whole up to f32 rounding of the ~1 m values.
         let height: f32 = parts.iter().map(|p| p.height).sum();
         assert!((height - whole.height).abs() < 1e-5);
-        let slope = parts[0].slope + parts[1].slope + parts[2].slope;
-        assert!((slope - whole.slope).length() < 1e-5);
+        let slope = add2(add2(parts[0].slope, parts[1].slope), parts[2].slope);
+        assert!(distance2(slope, whole.slope) < 1e-5);
         assert_eq!(state.sample_cascades(x, z, 0..3).unwrap(), whole);
         let flat = state.sample_cascades(x, z, 1..1).unwrap();
         assert_eq!(flat.height, 0.0);
-        assert_eq!(flat.normal, ocean_fft::Vec3::Y);
+        assert_eq!(flat.normal, [0.0, 1.0, 0.0]);
     }
-    assert!(state.sample_cascades(0.0, 0.0, 0..4).is_err());
+    assert_eq!(
+        state.sample_cascades(0.0, 0.0, 0..4),
+        Err(Error::CountOutOfRange {
+            name: "cascades.end",
+            count: 4,
+            min: 0,
+            max: 3
+        })
+    );
+    // A range must not end before it starts.
+    let (start, end) = (2, 1);
+    assert_eq!(
+        state.sample_cascades(0.0, 0.0, start..end),
+        Err(Error::CountOutOfRange {
+            name: "cascades.end",
+            count: 1,
+            min: 2,
+            max: 3
+        })
+    );
     assert!(state.sample_cascades(f64::NAN, 0.0, 0..1).is_err());
 }

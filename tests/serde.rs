@@ -5,10 +5,16 @@
 #![cfg(feature = "serde")]
 
 use ocean_fft::{
-    CascadeConfig, DepthFactor, Dispersion, FoamConfig, OceanConfig, OceanState, SeaState,
-    Spectrum, Spreading,
+    CascadeConfig, DepthFactor, Dispersion, FoamConfig, OceanConfig, OceanState, QueryConfig,
+    SeaState, Spectrum, Spreading,
 };
 use serde_json::{json, Value};
+
+/// The wave vector `[k_x, k_z]` of length `k` in direction `theta` (radians).
+fn polar(theta: f32, k: f32) -> [f32; 2] {
+    let (sin, cos) = theta.sin_cos();
+    [k * cos, k * sin]
+}
 
 fn round_trip<T>(value: &T) -> T
 where
@@ -21,7 +27,7 @@ where
 #[test]
 fn every_preset_round_trips_and_builds_the_same_ocean() {
     for preset in SeaState::ALL {
-        let (spectrum, config) = preset.build().unwrap();
+        let (spectrum, config) = preset.build();
         let pair = (spectrum.clone(), config.clone());
         let back: (Spectrum, OceanConfig) = round_trip(&pair);
         assert_eq!(back, pair, "{}", preset.name());
@@ -390,6 +396,12 @@ fn an_infinite_band_limit_is_saved_as_null() {
             injection: 3.0,
             decay: 1.0,
         },
+        band_split: 0.375,
+        query: QueryConfig {
+            max_iterations: 7,
+            tolerance: 2e-3,
+        },
+        memory_limit: 123_456_789,
         ..OceanConfig::default()
     };
     let value = serde_json::to_value(&finite).unwrap();
@@ -400,9 +412,31 @@ fn an_infinite_band_limit_is_saved_as_null() {
         length: 250.0,
         k_max: 3.0,
         seed: u64::MAX,
+        memory_limit: 1 << 20,
         ..CascadeConfig::default()
     };
     assert_eq!(round_trip(&cascade), cascade);
+}
+
+#[test]
+fn fields_added_in_0_2_read_their_defaults_when_missing() {
+    // Configs saved before `band_split`, `query` and `memory_limit` existed still load.
+    let mut value = serde_json::to_value(OceanConfig::default()).unwrap();
+    for key in ["band_split", "query", "memory_limit"] {
+        assert!(
+            value.as_object_mut().unwrap().remove(key).is_some(),
+            "{key}"
+        );
+    }
+    let loaded: OceanConfig = serde_json::from_value(value).unwrap();
+    assert_eq!(loaded, OceanConfig::default());
+    assert_eq!(loaded.band_split, OceanConfig::DEFAULT_BAND_SPLIT);
+    assert_eq!(loaded.memory_limit, CascadeConfig::DEFAULT_MEMORY_LIMIT);
+
+    let mut value = serde_json::to_value(CascadeConfig::default()).unwrap();
+    value.as_object_mut().unwrap().remove("memory_limit");
+    let loaded: CascadeConfig = serde_json::from_value(value).unwrap();
+    assert_eq!(loaded, CascadeConfig::default());
 }
 
 #[test]
@@ -468,7 +502,7 @@ fn loaded_combinations_no_constructor_makes_evaluate_finite() {
             let spectrum: Spectrum = serde_json::from_value(value.clone()).unwrap();
             for k in [1e-4f32, 0.01, 0.3, 2.0, 50.0] {
                 for angle in [0.0f32, 1.0, 3.0, -2.0] {
-                    let density = spectrum.density(ocean_fft::Vec2::from_angle(angle) * k);
+                    let density = spectrum.density(polar(angle, k));
                     assert!(density.is_finite() && density >= 0.0, "{value} k {k}");
                     let d = spectrum.spreading(k, angle);
                     assert!(d.is_finite() && d >= 0.0, "{value} ω {k}");

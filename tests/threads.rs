@@ -29,21 +29,21 @@ fn fingerprint(spectrum: &Spectrum, config: CascadeConfig, times: &[f64]) -> Vec
             cascade
                 .displacement()
                 .iter()
-                .flat_map(|v| [v.x.to_bits(), v.y.to_bits()])
+                .flat_map(|v| v.map(f32::to_bits))
                 .collect(),
         );
         out.push(
             cascade
                 .slope()
                 .iter()
-                .flat_map(|v| [v.x.to_bits(), v.y.to_bits()])
+                .flat_map(|v| v.map(f32::to_bits))
                 .collect(),
         );
         out.push(
             cascade
                 .normal()
                 .iter()
-                .flat_map(|v| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()])
+                .flat_map(|v| v.map(f32::to_bits))
                 .collect(),
         );
         for field in FIELDS {
