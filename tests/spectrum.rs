@@ -139,6 +139,71 @@ fn jonswap_peaks_at_peak_omega_with_enhancement_gamma() {
 }
 
 #[test]
+fn phillips_peak_omega_is_the_maximum_of_its_omega_spectrum() {
+    // Phillips is defined on k; its peak_omega is documented as the maximum of its deep-water
+    // S(ω). Found here by a dense geometric scan of omega_spectrum over ω in [0.3, 3]·g/U,
+    // independent of where the crate puts it. S(ω) is flat at its top, so f32 values tie over
+    // ~1e-4 of ω around it; 1e-3 resolves the peak far better than any wrong closed form.
+    for wind_speed in [3.0_f32, 10.0, 25.0] {
+        let spectrum = Spectrum::phillips(wind_speed, 3e-4).unwrap();
+        let scale = G / f64::from(wind_speed);
+        let (lo, hi) = (0.3 * scale, 3.0 * scale);
+        let steps = 200_000;
+        let (mut best, mut best_omega) = (0.0f32, 0.0f64);
+        for i in 0..=steps {
+            let omega = lo * (hi / lo).powf(f64::from(i) / f64::from(steps));
+            let s = spectrum.omega_spectrum(omega as f32);
+            if s > best {
+                best = s;
+                best_omega = omega;
+            }
+        }
+        assert!(best > 0.0);
+        let wp = f64::from(spectrum.peak_omega());
+        assert!(
+            (best_omega / wp - 1.0).abs() < 1e-3,
+            "U = {wind_speed}: S(ω) largest at {best_omega}, peak_omega {wp}"
+        );
+    }
+}
+
+#[test]
+fn dispersion_limits_saturate_instead_of_overflowing() {
+    // dω/dk → +∞ as k → 0⁺ in deep water: saturated at f32::MAX rather than +∞.
+    for k in [0.0_f32, -0.0, -1.0, f32::NEG_INFINITY] {
+        assert_eq!(Dispersion::Deep.d_omega_dk(k), f32::MAX, "k = {k}");
+    }
+    // At finite depth the limit k → 0⁺ is the shallow-water speed √(g h).
+    let shallow = Dispersion::finite_depth(8.0).unwrap().d_omega_dk(0.0);
+    assert!((f64::from(shallow) / (G * 8.0).sqrt() - 1.0).abs() < 1e-6);
+    // NaN is outside every domain: 0.
+    for dispersion in [
+        Dispersion::Deep,
+        Dispersion::finite_depth(8.0).unwrap(),
+        Dispersion::capillary(8.0).unwrap(),
+    ] {
+        assert_eq!(dispersion.d_omega_dk(f32::NAN), 0.0, "{dispersion:?}");
+        assert_eq!(dispersion.omega(f32::NAN), 0.0, "{dispersion:?}");
+        assert_eq!(dispersion.k_from_omega(f32::NAN), 0.0, "{dispersion:?}");
+        // Infinite inputs give f32::MAX where the true value is infinite, never +∞.
+        assert_eq!(dispersion.omega(f32::INFINITY), f32::MAX, "{dispersion:?}");
+        assert_eq!(
+            dispersion.k_from_omega(f32::INFINITY),
+            f32::MAX,
+            "{dispersion:?}"
+        );
+    }
+    // k = +∞: gravity waves' group velocity goes to 0, capillary waves' grows without bound.
+    assert_eq!(Dispersion::Deep.d_omega_dk(f32::INFINITY), 0.0);
+    assert_eq!(
+        Dispersion::capillary(8.0)
+            .unwrap()
+            .d_omega_dk(f32::INFINITY),
+        f32::MAX
+    );
+}
+
+#[test]
 fn gamma_one_reduces_jonswap_to_pierson_moskowitz() {
     for wind_speed in [3.0_f32, 10.0, 25.0] {
         let pm = Spectrum::pierson_moskowitz(wind_speed).unwrap();
