@@ -30,7 +30,7 @@ fn spectrum() -> Spectrum {
 /// the FFT's cost does not depend on the values).
 fn fft_input(cascade: &Cascade) -> Vec<Complex32> {
     let n = cascade.size();
-    let h = cascade.wave_spectrum(0.0);
+    let h = cascade.wave_spectrum(0.0).expect("finite t");
     let mut data = Vec::with_capacity(4 * n * n);
     for transform in 0..4 {
         let scale = 1.0 + transform as f32;

@@ -19,7 +19,7 @@
 
 mod common;
 
-use ocean_fft::{OceanConfig, OceanState, Spectrum, Vec2, Vec3};
+use ocean_fft::{OceanConfig, OceanState, Spectrum};
 
 use common::{out_dir, save_rgb16, save_rgb8, to_u16, to_u8, Result};
 
@@ -31,8 +31,10 @@ const TOLERANCE: f32 = 1e-5;
 /// The largest cascade's height, displacement and normal at one time.
 struct Frame {
     height: Vec<f32>,
-    displacement: Vec<Vec2>,
-    normal: Vec<Vec3>,
+    /// `[x, z]` per grid point.
+    displacement: Vec<[f32; 2]>,
+    /// `[x, y, z]` per grid point, y up.
+    normal: Vec<[f32; 3]>,
 }
 
 fn capture(ocean: &OceanState) -> Frame {
@@ -56,7 +58,7 @@ fn max_difference(a: &Frame, b: &Frame) -> f32 {
         .displacement
         .iter()
         .zip(&b.displacement)
-        .map(|(x, y)| (*x - *y).abs().max_element())
+        .map(|(x, y)| (x[0] - y[0]).abs().max((x[1] - y[1]).abs()))
         .fold(0.0f32, f32::max);
     height.max(displacement)
 }
@@ -84,7 +86,7 @@ fn main() -> Result<()> {
             f.height
                 .iter()
                 .copied()
-                .chain(f.displacement.iter().map(|d| d.abs().max_element()))
+                .chain(f.displacement.iter().map(|d| d[0].abs().max(d[1].abs())))
         })
         .fold(0.0f32, |m, v| m.max(v.abs()))
         .max(1e-6);
@@ -95,7 +97,7 @@ fn main() -> Result<()> {
             .height
             .iter()
             .zip(&frame.displacement)
-            .flat_map(|(&h, d)| [d.x, h, d.y].map(|v| to_u16(v, scale)))
+            .flat_map(|(&h, d)| [d[0], h, d[1]].map(|v| to_u16(v, scale)))
             .collect();
         let path = dir.join(format!("displacement_{k:03}.png"));
         save_rgb16(&path, SIZE, SIZE, &pixels)?;
@@ -103,7 +105,7 @@ fn main() -> Result<()> {
         let pixels: Vec<u8> = frame
             .normal
             .iter()
-            .flat_map(|n| [n.x, n.z, n.y].map(|c| to_u8(0.5 + 0.5 * c)))
+            .flat_map(|n| [n[0], n[2], n[1]].map(|c| to_u8(0.5 + 0.5 * c)))
             .collect();
         let path = dir.join(format!("normal_{k:03}.png"));
         save_rgb8(&path, SIZE, SIZE, &pixels)?;
@@ -136,7 +138,7 @@ fn main() -> Result<()> {
     for (index, h) in cascade.h0().iter().enumerate() {
         let energy = f64::from(h.norm_sqr());
         total += energy;
-        if cascade.omega_at(index % SIZE, index / SIZE) == 0.0 {
+        if cascade.omega_at(index % SIZE, index / SIZE)? == 0.0 {
             frozen += energy;
         }
     }

@@ -56,7 +56,7 @@ fn main() -> Result<()> {
     let pixels: Vec<u8> = cascade
         .normal()
         .iter()
-        .flat_map(|v| [v.x, v.z, v.y].map(|c| to_u8(0.5 + 0.5 * c)))
+        .flat_map(|v| [v[0], v[2], v[1]].map(|c| to_u8(0.5 + 0.5 * c)))
         .collect();
     let path = dir.join("normal.png");
     save_rgb8(&path, n, n, &pixels)?;
@@ -66,7 +66,7 @@ fn main() -> Result<()> {
     );
 
     // Foam of the largest cascade.
-    let foam = ocean.foam(0).ok_or("the ocean has no cascade 0")?;
+    let foam = ocean.foam(0)?;
     let pixels: Vec<u8> = foam.iter().map(|&f| to_u8(f)).collect();
     let path = dir.join("foam.png");
     save_gray8(&path, n, n, &pixels)?;

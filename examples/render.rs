@@ -19,7 +19,8 @@
 
 mod common;
 
-use ocean_fft::{OceanConfig, OceanState, Spectrum, Vec3};
+use glam::Vec3;
+use ocean_fft::{OceanConfig, OceanState, Spectrum};
 use rayon::prelude::*;
 
 use common::{out_dir, save_rgb8, Result};
@@ -144,9 +145,11 @@ fn gap(ocean: &OceanState, eye: Vec3, dir: Vec3, t: f32) -> f32 {
     let approximate = || -> std::result::Result<f32, ocean_fft::Error> {
         let d = ocean.sample(x, z)?.displacement;
         let d = ocean
-            .sample(x - f64::from(d.x), z - f64::from(d.y))?
+            .sample(x - f64::from(d[0]), z - f64::from(d[1]))?
             .displacement;
-        Ok(ocean.sample(x - f64::from(d.x), z - f64::from(d.y))?.height)
+        Ok(ocean
+            .sample(x - f64::from(d[0]), z - f64::from(d[1]))?
+            .height)
     };
     match approximate() {
         Ok(h) => p.y - h,
@@ -225,8 +228,8 @@ fn shade_water(ocean: &OceanState, scene: &Scene, dir: Vec3, distance: f32) -> V
     // Far away a pixel covers many small waves: flatten the normal toward their mean (up)
     // instead of letting the bilinear normals alias.
     let far = (distance / 900.0).clamp(0.0, 1.0);
-    let mut normal = surface
-        .normal
+    // The crate's `[x, y, z]` arrays convert to any vector type; glam here.
+    let mut normal = Vec3::from_array(surface.normal)
         .lerp(Vec3::Y, 0.75 * far)
         .normalize_or(Vec3::Y);
     let view = -dir;

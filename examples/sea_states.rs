@@ -14,7 +14,8 @@
 
 mod common;
 
-use ocean_fft::{OceanState, SeaState, SurfaceSample, Vec3};
+use glam::Vec3;
+use ocean_fft::{OceanState, SeaState, SurfaceSample};
 
 use common::{out_dir, Canvas, Result};
 
@@ -116,7 +117,7 @@ fn main() -> Result<()> {
 fn shade(sample: &SurfaceSample, sun: Vec3, hs: f32) -> Vec3 {
     let deep = Vec3::new(0.01, 0.07, 0.14);
     let crest = Vec3::new(0.06, 0.30, 0.36);
-    let lit = sample.normal.dot(sun).max(0.0);
+    let lit = Vec3::from_array(sample.normal).dot(sun).max(0.0);
     let relative = (sample.height / hs.max(1e-6)).clamp(-0.5, 0.5) + 0.5;
     let water = deep.lerp(crest, relative) * (0.15 + 2.2 * lit * lit);
     water.lerp(Vec3::splat(0.95), sample.foam.clamp(0.0, 1.0))
