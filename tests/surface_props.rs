@@ -90,13 +90,43 @@ const LIMITS_F32: [f32; 18] = [
     0.0,
 ];
 
-/// `value` moved by `ulps` units in the last place (through zero and to ±∞ as the bits go).
+/// `value` moved by `ulps` units in the last place (through zero and to ±∞ as the bits go;
+/// NaN stays NaN).
 fn nudge(value: f32, ulps: i32) -> f32 {
     let mut v = value;
     for _ in 0..ulps.unsigned_abs() {
-        v = if ulps > 0 { v.next_up() } else { v.next_down() };
+        v = step_f32(v, ulps > 0);
     }
     v
+}
+
+/// The next f32 above (`up`) or below `v` (what `f32::next_up`/`next_down` do, which are newer
+/// than the crate's minimum Rust version).
+fn step_f32(v: f32, up: bool) -> f32 {
+    if v.is_nan() || (up && v == f32::INFINITY) || (!up && v == f32::NEG_INFINITY) {
+        return v;
+    }
+    if v == 0.0 {
+        let tiny = f32::from_bits(1);
+        return if up { tiny } else { -tiny };
+    }
+    let bits = v.to_bits();
+    let away_from_zero = (v > 0.0) == up;
+    f32::from_bits(if away_from_zero { bits + 1 } else { bits - 1 })
+}
+
+/// The same for f64.
+fn step_f64(v: f64, up: bool) -> f64 {
+    if v.is_nan() || (up && v == f64::INFINITY) || (!up && v == f64::NEG_INFINITY) {
+        return v;
+    }
+    if v == 0.0 {
+        let tiny = f64::from_bits(1);
+        return if up { tiny } else { -tiny };
+    }
+    let bits = v.to_bits();
+    let away_from_zero = (v > 0.0) == up;
+    f64::from_bits(if away_from_zero { bits + 1 } else { bits - 1 })
 }
 
 /// Any f32 a caller might pass: ordinary magnitudes, edges, every bit pattern, and values
@@ -152,7 +182,7 @@ fn any_f64() -> impl Strategy<Value = f64> {
             .prop_map(|(limit, ulps)| {
                 let mut v = limit;
                 for _ in 0..ulps.unsigned_abs() {
-                    v = if ulps > 0 { v.next_up() } else { v.next_down() };
+                    v = step_f64(v, ulps > 0);
                 }
                 v
             }),

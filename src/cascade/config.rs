@@ -5,7 +5,7 @@ use std::ops::Bound::Included;
 use crate::error::{self, Error};
 use crate::grid;
 
-/// Parameters of one [`Cascade`]: passive data, validated by [`Cascade::new`].
+/// Parameters of one [`Cascade`](crate::Cascade): passive data, validated by [`Cascade::new`](crate::Cascade::new).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct CascadeConfig {

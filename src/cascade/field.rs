@@ -4,7 +4,7 @@ use num_complex::Complex32;
 
 use crate::error;
 
-/// The eight real fields a cascade synthesises, for [`Cascade::field`]. Each is the inverse
+/// The eight real fields a cascade synthesises, for [`Cascade::field`](crate::Cascade::field). Each is the inverse
 /// DFT of h̃(k, t) times the multiplier named (k = |k|); the displacement fields are per unit
 /// choppiness.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

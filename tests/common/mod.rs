@@ -1,5 +1,5 @@
 //! Independent reference computations shared by the cascade tests: a naive O(N⁴) inverse DFT
-//! in f64, the spectral multipliers of the eight fields written out from DESIGN.md's table,
+//! in f64, the spectral multipliers of the eight fields written out from the table in docs/theory.md,
 //! seeded spectra and statistics in f64. Nothing here calls the crate's own synthesis code.
 
 #![allow(dead_code)]
@@ -54,7 +54,7 @@ pub const FIELDS: [Field; 8] = [
     Field::DisplacementXZ,
 ];
 
-/// The spectral multiplier of `field` at k = (kx, kz), in f64, written out from DESIGN.md:
+/// The spectral multiplier of `field` at k = (kx, kz), in f64, written out from the table in docs/theory.md:
 /// η: 1; D_x, D_z: i k_x/k, i k_z/k; η_x, η_z: i k_x, i k_z; D_xx, D_zz, D_xz: −k_x²/k,
 /// −k_z²/k, −k_x k_z/k; 0 at k = 0.
 pub fn multiplier(field: Field, kx: f64, kz: f64) -> C64 {
