@@ -23,6 +23,7 @@ pub(crate) const ROWS_PER_TASK: usize = 16;
 
 /// An inverse complex FFT of length N applied to many rows, with scratch for a fixed number
 /// of tasks allocated once.
+#[derive(Clone)]
 pub(crate) struct RowFft {
     fft: Arc<dyn Fft<f32>>,
     scratch_len: usize,

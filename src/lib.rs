@@ -110,6 +110,7 @@
 
 mod cascade;
 mod dispersion;
+mod engine;
 mod error;
 mod fft2d;
 mod grid;
@@ -122,9 +123,12 @@ mod spectrum;
 
 pub use cascade::{Cascade, CascadeConfig, Field};
 pub use dispersion::{Dispersion, GRAVITY, SURFACE_TENSION, WATER_DENSITY};
+pub use engine::Engine;
 pub use error::Error;
 pub use fft2d::Fft2d;
 pub use num_complex::Complex32;
-pub use ocean::{FoamConfig, OceanConfig, OceanState, QueryConfig, SurfaceSample};
+pub use ocean::{
+    FoamConfig, Location, OceanConfig, OceanSnapshot, OceanState, QueryConfig, SurfaceSample,
+};
 pub use presets::SeaState;
 pub use spectrum::{DepthFactor, Spectrum, Spreading};

@@ -242,8 +242,12 @@ fn height_at_inverts_the_displacement_like_a_brute_force_search() {
     let mut moved = 0.0f32;
     for &(px, pz) in &[(3.0, 4.0), (-250.5, 77.7), (640.0, -1000.2), (1.0e6, 3.3)] {
         let y = state.height_at(px, pz).unwrap();
-        let (x0, miss) = state.undisplaced_point(px, pz).unwrap();
-        assert!(miss < 1e-3, "fixed point did not converge: miss {miss} m");
+        let found = state.locate(px, pz).unwrap();
+        let (x0, miss) = (found.undisplaced, found.miss);
+        assert!(
+            found.converged,
+            "fixed point did not converge: miss {miss} m"
+        );
         // Brute force: scan undisplaced points on a 1 cm grid around the query (the
         // displacement here is below 1.5 m) and keep the one whose water lands closest.
         let (mut best, mut best_y) = (f64::INFINITY, 0.0f32);

@@ -54,6 +54,8 @@ fn stepping_and_querying_allocate_nothing() {
         let mut ocean = OceanState::new(spectrum.clone(), config).unwrap();
         let points: Vec<[f64; 2]> = (0..256).map(|i| [f64::from(i) * 1.7, -3.0]).collect();
         let mut heights = vec![0.0; points.len()];
+        // A rollback ring's slot, filled once before counting.
+        let mut snapshot = ocean.snapshot();
         let (before, after) = pool.install(|| {
             // Warm-up: the first parallel calls size the workers' queues.
             for _ in 0..3 {
@@ -61,10 +63,18 @@ fn stepping_and_querying_allocate_nothing() {
                 ocean.heights_at(&points, &mut heights).unwrap();
             }
             let before = ALLOCATIONS.load(Ordering::SeqCst);
-            for _ in 0..200 {
+            for frame in 0..200 {
                 ocean.step(1.0 / 60.0).unwrap();
                 ocean.heights_at(&points, &mut heights).unwrap();
                 let _ = ocean.sample(3.0, 4.0).unwrap();
+                let _ = ocean.locate(3.0, 4.0).unwrap();
+                // A networked game: follow a given clock, keep snapshots, roll back.
+                let t = ocean.time();
+                ocean.step_to(t + 0.01).unwrap();
+                ocean.snapshot_into(&mut snapshot);
+                if frame % 50 == 49 {
+                    ocean.restore(&snapshot).unwrap();
+                }
             }
             (before, ALLOCATIONS.load(Ordering::SeqCst))
         });

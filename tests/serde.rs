@@ -544,3 +544,44 @@ fn every_constructible_spectrum_loads() {
     }
     assert!(built > 200, "{built}");
 }
+
+#[test]
+fn a_saved_snapshot_restores_and_a_tampered_one_is_refused() {
+    let (spectrum, mut config) = ocean_fft::SeaState::Storm.build();
+    config.size = 16;
+    let mut ocean = OceanState::new(spectrum, config).unwrap();
+    for _ in 0..30 {
+        ocean.step(1.0 / 30.0).unwrap();
+    }
+    let snapshot = ocean.snapshot();
+    let text = serde_json::to_string(&snapshot).unwrap();
+    let loaded: ocean_fft::OceanSnapshot = serde_json::from_str(&text).unwrap();
+    assert_eq!(loaded, snapshot);
+    let heights = ocean.cascades()[0].height().to_vec();
+    ocean.step(1.0).unwrap();
+    ocean.restore(&loaded).unwrap();
+    assert_eq!(ocean.cascades()[0].height(), heights.as_slice());
+
+    // A file edited by hand: foam outside [0, 1], a time past the limit.
+    let mut value: Value = serde_json::from_str(&text).unwrap();
+    value["foam"][5] = json!(2.0);
+    let bad: ocean_fft::OceanSnapshot = serde_json::from_value(value).unwrap();
+    assert!(matches!(
+        ocean.restore(&bad),
+        Err(ocean_fft::Error::OutOfRange {
+            name: "snapshot.foam",
+            ..
+        })
+    ));
+    let mut value: Value = serde_json::from_str(&text).unwrap();
+    value["time"] = json!(1e12);
+    let bad: ocean_fft::OceanSnapshot = serde_json::from_value(value).unwrap();
+    assert!(matches!(
+        ocean.restore(&bad),
+        Err(ocean_fft::Error::OutOfRange {
+            name: "snapshot.time",
+            ..
+        })
+    ));
+    assert_eq!(ocean.cascades()[0].height(), heights.as_slice());
+}

@@ -764,9 +764,14 @@ enum OceanOp {
     SampleCascades(f64, f64, usize, usize),
     HeightAt(f64, f64),
     SurfaceAt(f64, f64),
-    Undisplaced(f64, f64),
+    Locate(f64, f64),
     Batch(Vec<[f64; 2]>, usize),
+    Grid([f64; 2], f64, [usize; 2], usize),
     Foam(usize),
+    StepTo(f64),
+    ClearFoam,
+    Snapshot,
+    Restore,
 }
 
 fn any_ocean_op() -> impl Strategy<Value = OceanOp> {
@@ -779,7 +784,18 @@ fn any_ocean_op() -> impl Strategy<Value = OceanOp> {
             .prop_map(|(x, z, a, b)| OceanOp::SampleCascades(x, z, a, b)),
         2 => (any_f64(), any_f64()).prop_map(|(x, z)| OceanOp::HeightAt(x, z)),
         1 => (any_f64(), any_f64()).prop_map(|(x, z)| OceanOp::SurfaceAt(x, z)),
-        1 => (any_f64(), any_f64()).prop_map(|(x, z)| OceanOp::Undisplaced(x, z)),
+        1 => (any_f64(), any_f64()).prop_map(|(x, z)| OceanOp::Locate(x, z)),
+        1 => (
+            (any_f64(), any_f64()),
+            prop_oneof![3 => 0.1f64..100.0, 1 => any_f64()],
+            (prop_oneof![3 => 1usize..12, 1 => any_index()], prop_oneof![3 => 1usize..12, 1 => any_index()]),
+            0usize..2,
+        )
+            .prop_map(|((x, z), spacing, (c, r), extra)| OceanOp::Grid([x, z], spacing, [c, r], extra)),
+        2 => prop_oneof![2 => -0.1f64..0.2, 1 => any_f64()].prop_map(OceanOp::StepTo),
+        1 => Just(OceanOp::ClearFoam),
+        1 => Just(OceanOp::Snapshot),
+        1 => Just(OceanOp::Restore),
         1 => (prop::collection::vec((any_f64(), any_f64()).prop_map(|(x, z)| [x, z]), 0..80), 0usize..3)
             .prop_map(|(points, extra)| OceanOp::Batch(points, extra)),
         1 => any_index().prop_map(OceanOp::Foam),
@@ -799,9 +815,27 @@ fn query(ocean: &OceanState, op: &OceanOp) -> Result<(), Error> {
         OceanOp::SurfaceAt(x, z) => ocean
             .surface_at(x, z)
             .map(|s| assert!(finite_sample(&s), "{s:?}")),
-        OceanOp::Undisplaced(x, z) => ocean.undisplaced_point(x, z).map(|(p, miss)| {
-            assert!(p[0].is_finite() && p[1].is_finite() && !miss.is_nan());
+        OceanOp::Locate(x, z) => ocean.locate(x, z).map(|found| {
+            let p = found.undisplaced;
+            assert!(p[0].is_finite() && p[1].is_finite() && !found.miss.is_nan());
+            assert_eq!(found.converged, found.miss < ocean.config().query.tolerance);
         }),
+        OceanOp::Grid(origin, spacing, [columns, rows], extra) => {
+            // Only allocate a buffer for windows of sane sizes; larger ones must fail on
+            // the length check (or before).
+            let len = columns.saturating_mul(rows).min(1 << 12) + extra;
+            let mut out = vec![SurfaceSample::default(); len];
+            let result = ocean.sample_grid(origin, spacing, [columns, rows], &mut out);
+            if result.is_ok() {
+                assert!(out.iter().all(finite_sample));
+            } else {
+                assert!(
+                    out.iter().all(|s| *s == SurfaceSample::default()),
+                    "wrote on error"
+                );
+            }
+            result
+        }
         OceanOp::Batch(ref points, extra) => {
             let mut heights = vec![f32::NAN; points.len() + extra];
             let mut surfaces = vec![SurfaceSample::default(); points.len() + extra];
@@ -854,13 +888,34 @@ proptest! {
             Ok(ocean) => ocean,
         };
         prop_assert!(ocean_finite(&ocean));
+        let mut saved = ocean.snapshot();
         for op in &ops {
             let before = ocean_bits(&ocean);
-            let mutating = matches!(op, OceanOp::Step(_) | OceanOp::SetTime(_) | OceanOp::SetChoppiness(_));
+            let mutating = matches!(
+                op,
+                OceanOp::Step(_)
+                    | OceanOp::SetTime(_)
+                    | OceanOp::SetChoppiness(_)
+                    | OceanOp::StepTo(_)
+                    | OceanOp::ClearFoam
+                    | OceanOp::Restore
+            );
             let result = match *op {
                 OceanOp::Step(dt) => ocean.step(dt),
                 OceanOp::SetTime(t) => ocean.set_time(t),
                 OceanOp::SetChoppiness(lambda) => ocean.set_choppiness(lambda),
+                OceanOp::StepTo(offset) => ocean.step_to(ocean.time() + offset),
+                OceanOp::ClearFoam => {
+                    ocean.clear_foam();
+                    Ok(())
+                }
+                OceanOp::Snapshot => {
+                    saved = ocean.snapshot();
+                    Ok(())
+                }
+                OceanOp::Restore => ocean.restore(&saved).map(|()| {
+                    assert_eq!(ocean.snapshot(), saved, "restore did not restore");
+                }),
                 _ => query(&ocean, op),
             };
             match result {

@@ -44,6 +44,10 @@ use tables::{check_amplitude, Amplitudes, EvolutionTable};
 /// assert!(eta.is_finite());
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```
+///
+/// `Clone` copies every table and buffer (about 127·N² bytes): the copy updates to the same
+/// bits as the original.
+#[derive(Clone)]
 pub struct Cascade {
     config: CascadeConfig,
     n: usize,
@@ -194,6 +198,12 @@ impl Cascade {
     /// were.
     pub fn update(&mut self, t: f64) -> Result<(), Error> {
         check_time("t", t)?;
+        self.update_checked(t);
+        Ok(())
+    }
+
+    /// [`Cascade::update`] for a time already checked with [`check_time`].
+    pub(crate) fn update_checked(&mut self, t: f64) {
         self.time = t;
         // Looping: the phases are integer multiples of t/T, so t mod T gives the same fields
         // with smaller, more precise phases.
@@ -207,7 +217,6 @@ impl Cascade {
             self.spectral_pass(phase_time);
             self.spatial_pass();
         });
-        Ok(())
     }
 
     /// Pass 1: builds the four packed spectra row by row (rows are k_x, so a row and its
@@ -357,8 +366,13 @@ impl Cascade {
     /// choppiness. The choppiness is then unchanged.
     pub fn set_choppiness(&mut self, choppiness: f32) -> Result<(), Error> {
         let lambda = self.check_choppiness(choppiness)?;
-        self.config.choppiness = lambda;
+        self.set_choppiness_checked(lambda);
         Ok(())
+    }
+
+    /// Sets a choppiness [`Cascade::check_choppiness`] accepted.
+    pub(crate) fn set_choppiness_checked(&mut self, choppiness: f32) {
+        self.config.choppiness = choppiness;
     }
 
     /// The checks of [`Cascade::set_choppiness`] without the change.

@@ -33,7 +33,7 @@ pub(super) struct Evolution {
 /// The evolution table in struct-of-arrays layout (so the evolution loop reads each
 /// component contiguously and vectorises), transposed: index `i * N + j` holds the
 /// [`Evolution`] of k_x index i in 0..N/2 and k_z index j.
-#[derive(Debug, Default)]
+#[derive(Debug, Clone, Default)]
 pub(super) struct EvolutionTable {
     p_re: Vec<f32>,
     p_im: Vec<f32>,

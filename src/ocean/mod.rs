@@ -4,6 +4,7 @@
 mod config;
 mod foam;
 mod query;
+mod snapshot;
 
 use rayon::prelude::*;
 
@@ -15,7 +16,8 @@ use crate::spectrum::Spectrum;
 
 pub use config::{OceanConfig, QueryConfig};
 pub use foam::FoamConfig;
-pub use query::SurfaceSample;
+pub use query::{Location, SurfaceSample};
+pub use snapshot::OceanSnapshot;
 
 /// An ocean: cascades of one spectrum over disjoint wave-number bands, the time, and foam.
 ///
@@ -30,13 +32,19 @@ pub use query::SurfaceSample;
 /// assert!(s.height.is_finite() && y.is_finite());
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```
-#[derive(Debug)]
+///
+/// `Clone` copies the whole ocean (every cascade's tables and buffers); for rollback and save
+/// games, [`OceanState::snapshot`] keeps only the state that cannot be recomputed.
+#[derive(Debug, Clone)]
 pub struct OceanState {
     pub(crate) spectrum: Spectrum,
     pub(crate) config: OceanConfig,
     pub(crate) cascades: Vec<Cascade>,
     pub(crate) foam: Vec<Vec<f32>>,
     pub(crate) time: f64,
+    /// The choppiness the cascades' buffers were last computed with (a new choppiness takes
+    /// effect at the next update).
+    pub(crate) applied_choppiness: f32,
 }
 
 impl OceanState {
@@ -61,6 +69,7 @@ impl OceanState {
             .collect::<Result<Vec<_>, _>>()?;
         Ok(OceanState {
             spectrum,
+            applied_choppiness: config.choppiness,
             config,
             cascades,
             foam,
@@ -77,41 +86,84 @@ impl OceanState {
     pub fn step(&mut self, dt: f64) -> Result<(), Error> {
         error::in_range_f64("dt", dt, Included(0.0), Included(Self::MAX_STEP))?;
         let t = check_time("time + dt", self.time + dt)?;
-        // One job handed to rayon per step (see `Cascade::update`).
-        rayon::scope(|_| {
-            self.update_cascades(t)?;
-            self.time = t;
-            self.advance_foam(dt as f32);
-            Ok(())
-        })
+        self.advance(t, dt);
+        Ok(())
     }
 
-    /// Jumps to time `t` in seconds (|t| ≤ [`Cascade::MAX_TIME`]) and updates every cascade.
-    /// The foam has no history across a jump: it is cleared.
+    /// Advances to the absolute time `t` in seconds, from [`time`](Self::time) up to
+    /// `time + MAX_STEP`: the cascades are evaluated at `t` itself and the foam is integrated
+    /// over `t − time`, as [`step`](Self::step) does. For a game that follows a time it is
+    /// given (a server clock, a replay's timeline) rather than accumulating steps, so that
+    /// the waves match the given time exactly whatever the frame rate. Allocates nothing
+    /// inside a rayon pool.
+    ///
+    /// ```
+    /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
+    /// let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
+    /// let mut ocean = OceanState::new(spectrum, OceanConfig { size: 16, ..Default::default() })?;
+    /// for server_time in [0.016, 0.035, 0.049] {
+    ///     ocean.step_to(server_time)?;          // s, foam carried along
+    /// }
+    /// assert_eq!(ocean.time(), 0.049);
+    /// // A time behind the ocean's is refused: jump there with `set_time` (or restore a
+    /// // snapshot) instead.
+    /// assert!(ocean.step_to(0.02).is_err());
+    /// # Ok::<(), ocean_fft::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] (naming `t`) unless
+    /// `time` ≤ `t` ≤ `time + MAX_STEP` and |t| ≤ [`Cascade::MAX_TIME`]. Nothing changes
+    /// then.
+    pub fn step_to(&mut self, t: f64) -> Result<(), Error> {
+        let t = check_time("t", t)?;
+        let max = (self.time + Self::MAX_STEP).min(Cascade::MAX_TIME);
+        error::in_range_f64("t", t, Included(self.time), Included(max))?;
+        self.advance(t, t - self.time);
+        Ok(())
+    }
+
+    /// Updates every cascade to the checked time `t` and integrates the foam over `dt`.
+    fn advance(&mut self, t: f64, dt: f64) {
+        // One job handed to rayon per step (see `Cascade::update`).
+        rayon::scope(|_| {
+            self.update_cascades(t);
+            self.time = t;
+            self.advance_foam(dt as f32);
+        });
+    }
+
+    /// Jumps to time `t` in seconds (|t| ≤ [`Cascade::MAX_TIME`]), forward or back, and
+    /// updates every cascade. The foam is kept as it is: a jump has no history, so foam
+    /// neither builds nor decays across it (call [`clear_foam`](Self::clear_foam) for a
+    /// clean sea). To follow a clock forward with the foam evolving, use
+    /// [`step_to`](Self::step_to); to go back to an earlier state exactly, use
+    /// [`restore`](Self::restore).
     ///
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `t`. Nothing changes then.
     pub fn set_time(&mut self, t: f64) -> Result<(), Error> {
-        check_time("t", t)?;
-        self.update_cascades(t)?;
+        let t = check_time("t", t)?;
+        rayon::scope(|_| self.update_cascades(t));
         self.time = t;
-        for foam in &mut self.foam {
-            foam.fill(0.0);
-        }
         Ok(())
     }
 
-    /// Updates every cascade to a time already checked, so that either every cascade is
-    /// updated or none is.
-    fn update_cascades(&mut self, t: f64) -> Result<(), Error> {
+    /// Removes all foam (coverage 0 everywhere).
+    pub fn clear_foam(&mut self) {
+        for foam in &mut self.foam {
+            foam.fill(0.0);
+        }
+    }
+
+    /// Updates every cascade to a time already checked (so none can fail).
+    fn update_cascades(&mut self, t: f64) {
+        self.applied_choppiness = self.config.choppiness;
+        let update = |cascade: &mut Cascade| cascade.update_checked(t);
         if self.config.parallel_cascades {
-            self.cascades
-                .par_iter_mut()
-                .try_for_each(|cascade| cascade.update(t))
+            self.cascades.par_iter_mut().for_each(update);
         } else {
-            self.cascades
-                .iter_mut()
-                .try_for_each(|cascade| cascade.update(t))
+            self.cascades.iter_mut().for_each(update);
         }
     }
 
@@ -150,16 +202,27 @@ impl OceanState {
     /// # Errors
     /// As [`Cascade::set_choppiness`], for any cascade; no cascade changes then.
     pub fn set_choppiness(&mut self, choppiness: f32) -> Result<(), Error> {
+        self.check_choppiness(choppiness)?;
+        self.set_choppiness_checked(choppiness);
+        Ok(())
+    }
+
+    /// The checks of [`set_choppiness`](Self::set_choppiness), for every cascade, without the
+    /// change.
+    fn check_choppiness(&self, choppiness: f32) -> Result<(), Error> {
         let lambda = error::non_negative("choppiness", choppiness)?;
-        // Check every cascade before changing any, so an error leaves them all as they were.
         for cascade in &self.cascades {
             cascade.check_choppiness(lambda)?;
         }
-        for cascade in &mut self.cascades {
-            cascade.set_choppiness(lambda)?;
-        }
-        self.config.choppiness = lambda;
         Ok(())
+    }
+
+    /// Sets a choppiness [`check_choppiness`](Self::check_choppiness) accepted.
+    fn set_choppiness_checked(&mut self, choppiness: f32) {
+        for cascade in &mut self.cascades {
+            cascade.set_choppiness_checked(choppiness);
+        }
+        self.config.choppiness = choppiness;
     }
 
     /// Expected variance of the summed height in m²: the sum over cascades of

@@ -2,6 +2,8 @@
 //! summed, and the inversion of the horizontal displacement for the water height at a point.
 
 use glam::{Vec2, Vec3};
+use std::ops::Bound::{Excluded, Included};
+
 use rayon::prelude::*;
 
 use super::OceanState;
@@ -38,6 +40,21 @@ impl Default for SurfaceSample {
             foam: 0.0,
         }
     }
+}
+
+/// Where the water at a world point comes from: the result of [`OceanState::locate`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Location {
+    /// The undisplaced world point `[x, z]` in metres whose water lands on the query point
+    /// (the best one found).
+    pub undisplaced: [f64; 2],
+    /// Distance in metres between the query point and where the water at `undisplaced`
+    /// actually lands (0 for an exact inversion).
+    pub miss: f32,
+    /// Fixed-point iterations it took to reach `undisplaced`.
+    pub iterations: usize,
+    /// Whether `miss` is below [`QueryConfig::tolerance`](crate::QueryConfig::tolerance).
+    pub converged: bool,
 }
 
 /// Bilinear weights and the four sample indices of world point (x, z) on a periodic N×N grid
@@ -175,54 +192,96 @@ impl OceanState {
             .sum()
     }
 
-    /// The undisplaced point x₀ whose water lands on world point (`x`, `z`):
-    /// x₀ + D(x₀) = (x, z), solved by the fixed-point iteration x₀ ← p − D(x₀) (at most
-    /// [`QueryConfig::max_iterations`], stopping within [`QueryConfig::tolerance`]). It
-    /// converges where the surface does not fold (J > 0); returns x₀ and the final miss in
-    /// metres.
+    /// Finds the undisplaced point x₀ whose water lands on world point (`x`, `z`), i.e.
+    /// x₀ + D(x₀) = (x, z), by the fixed-point iteration x₀ ← p − D(x₀) (at most
+    /// [`QueryConfig::max_iterations`], stopping once within [`QueryConfig::tolerance`]), and
+    /// says how well it did. The iteration converges where the surface does not fold (J > 0
+    /// and the displacement's gradient contracts); where it folds (high choppiness, breaking
+    /// crests) several points land on (x, z) or none does exactly, and the best iterate found
+    /// is returned with `converged: false`.
     ///
     /// [`QueryConfig::max_iterations`]: crate::QueryConfig::max_iterations
     /// [`QueryConfig::tolerance`]: crate::QueryConfig::tolerance
     ///
+    /// ```
+    /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
+    /// let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
+    /// let ocean = OceanState::new(spectrum, OceanConfig { size: 32, ..Default::default() })?;
+    /// let found = ocean.locate(25.0, -7.5)?;
+    /// assert!(found.converged && found.miss < 1e-4);
+    /// let water = ocean.sample(found.undisplaced[0], found.undisplaced[1])?;
+    /// assert_eq!(water.height, ocean.height_at(25.0, -7.5)?);
+    /// # Ok::<(), ocean_fft::Error>(())
+    /// ```
+    ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
-    pub fn undisplaced_point(&self, x: f64, z: f64) -> Result<([f64; 2], f32), Error> {
+    pub fn locate(&self, x: f64, z: f64) -> Result<Location, Error> {
         check_point(x, z)?;
-        Ok(self.undisplaced_unchecked(x, z))
+        Ok(self.locate_unchecked(x, z))
     }
 
-    fn undisplaced_unchecked(&self, x: f64, z: f64) -> ([f64; 2], f32) {
+    fn locate_unchecked(&self, x: f64, z: f64) -> Location {
+        let query = self.config.query;
         let mut d = self.displacement_at(x, z);
         let mut x0 = [x - f64::from(d.x), z - f64::from(d.y)];
-        let mut miss = f32::INFINITY;
-        let query = self.config.query;
-        for _ in 0..query.max_iterations {
+        let mut best = Location {
+            undisplaced: x0,
+            miss: f32::INFINITY,
+            iterations: 0,
+            converged: false,
+        };
+        // Relaxation factor ω of x₀ ← x₀ + ω (p − x₀ − D(x₀)); ω = 1 is the plain fixed point
+        // x₀ ← p − D(x₀). Where the surface is stretched by more than its own size (|∇D| > 1
+        // in troughs at high choppiness) the plain iteration overshoots; halving ω whenever
+        // the miss grows restores convergence wherever the surface does not fold.
+        let mut omega = 1.0;
+        let mut previous = f32::INFINITY;
+        for iteration in 1..=query.max_iterations {
             d = self.displacement_at(x0[0], x0[1]);
             let landed = [x0[0] + f64::from(d.x), x0[1] + f64::from(d.y)];
-            let error = [x - landed[0], z - landed[1]];
-            miss = error[0].hypot(error[1]) as f32;
-            if miss < query.tolerance {
+            let residual = [x - landed[0], z - landed[1]];
+            let miss = residual[0].hypot(residual[1]) as f32;
+            if miss < best.miss {
+                best = Location {
+                    undisplaced: x0,
+                    miss,
+                    iterations: iteration,
+                    converged: miss < query.tolerance,
+                };
+            }
+            if best.converged {
                 break;
             }
-            x0 = [x - f64::from(d.x), z - f64::from(d.y)];
+            if miss > previous {
+                omega *= 0.5;
+            }
+            previous = miss;
+            x0 = if omega == 1.0 {
+                [x - f64::from(d.x), z - f64::from(d.y)]
+            } else {
+                [x0[0] + omega * residual[0], x0[1] + omega * residual[1]]
+            };
         }
-        (x0, miss)
+        best
     }
 
     /// The surface at world point (`x`, `z`) after horizontal displacement: the sample of
-    /// the undisplaced point whose water lands there (see [`OceanState::undisplaced_point`]).
+    /// the undisplaced point whose water lands there (see [`OceanState::locate`], which also
+    /// says whether the search converged).
     /// Its height, normal and foam are what a floating object at (x, z) feels.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn surface_at(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
-        let (x0, _) = self.undisplaced_unchecked(x, z);
+        let x0 = self.locate_unchecked(x, z).undisplaced;
         Ok(self.sample_unchecked(x0[0], x0[1]))
     }
 
     /// Water height y in metres at world point (`x`, `z`), after horizontal displacement —
-    /// the query buoyancy and gameplay need.
+    /// the query buoyancy and gameplay need. Where the surface folds the inversion may not
+    /// converge; [`OceanState::locate`] reports how close it came.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
@@ -239,7 +298,7 @@ impl OceanState {
     pub fn heights_at(&self, points: &[[f64; 2]], out: &mut [f32]) -> Result<(), Error> {
         check_batch(points, out.len())?;
         for_each_point(points, out, |[x, z]| {
-            let (x0, _) = self.undisplaced_unchecked(x, z);
+            let x0 = self.locate_unchecked(x, z).undisplaced;
             self.sample_unchecked(x0[0], x0[1]).height
         });
         Ok(())
@@ -253,7 +312,7 @@ impl OceanState {
     pub fn surfaces_at(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
         for_each_point(points, out, |[x, z]| {
-            let (x0, _) = self.undisplaced_unchecked(x, z);
+            let x0 = self.locate_unchecked(x, z).undisplaced;
             self.sample_unchecked(x0[0], x0[1])
         });
         Ok(())
@@ -267,6 +326,70 @@ impl OceanState {
     pub fn sample_many(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
         for_each_point(points, out, |[x, z]| self.sample_unchecked(x, z));
+        Ok(())
+    }
+
+    /// The surface over a world-space window that sums every cascade: a `columns` × `rows`
+    /// grid of undisplaced points with spacing `spacing` metres, starting at `origin`
+    /// `[x, z]`, so sample (c, r) is [`sample`](Self::sample) at
+    /// (x + c·`spacing`, z + r·`spacing`) and is stored at index r·`columns` + c (z is the
+    /// row, as in the cascades' buffers). Rows run in parallel; the result does not depend on
+    /// the number of threads. For heightmaps, previews and textures of the whole ocean over a
+    /// region (a cascade's own buffers cover only its tile, and only its band of waves).
+    ///
+    /// ```
+    /// use ocean_fft::{OceanConfig, OceanState, Spectrum, SurfaceSample};
+    /// let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
+    /// let ocean = OceanState::new(spectrum, OceanConfig { size: 32, ..Default::default() })?;
+    /// let mut window = vec![SurfaceSample::default(); 64 * 48];
+    /// ocean.sample_grid([-100.0, 250.0], 2.0, [64, 48], &mut window)?;   // 128 m × 96 m
+    /// assert_eq!(window[5 * 64 + 7], ocean.sample(-100.0 + 7.0 * 2.0, 250.0 + 5.0 * 2.0)?);
+    /// # Ok::<(), ocean_fft::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite `origin`; [`Error::NonFinite`] or
+    /// [`Error::OutOfRange`] unless `spacing` is finite and > 0; [`Error::CountOutOfRange`]
+    /// for a zero column or row count, or one whose product overflows;
+    /// [`Error::LengthMismatch`] unless `out` holds `columns`·`rows` samples. Nothing is
+    /// written then.
+    pub fn sample_grid(
+        &self,
+        origin: [f64; 2],
+        spacing: f64,
+        [columns, rows]: [usize; 2],
+        out: &mut [SurfaceSample],
+    ) -> Result<(), Error> {
+        check_point(origin[0], origin[1])?;
+        for (name, count) in [("columns", columns), ("rows", rows)] {
+            if count == 0 {
+                return Err(Error::CountOutOfRange {
+                    name,
+                    count,
+                    min: 1,
+                    max: usize::MAX,
+                });
+            }
+        }
+        // The far corner must stay finite too.
+        let room = |start: f64, count: usize| (f64::MAX - start.abs()) / (count - 1).max(1) as f64;
+        let widest = room(origin[0], columns).min(room(origin[1], rows));
+        error::in_range_f64("spacing", spacing, Excluded(0.0), Included(widest))?;
+        let len = columns.checked_mul(rows).ok_or(Error::CountOutOfRange {
+            name: "rows",
+            count: rows,
+            min: 1,
+            max: usize::MAX / columns,
+        })?;
+        error::length("out", out.len(), len)?;
+        out.par_chunks_mut(columns)
+            .enumerate()
+            .for_each(|(r, row)| {
+                let z = origin[1] + r as f64 * spacing;
+                for (c, sample) in row.iter_mut().enumerate() {
+                    *sample = self.sample_unchecked(origin[0] + c as f64 * spacing, z);
+                }
+            });
         Ok(())
     }
 }

@@ -1,0 +1,116 @@
+//! Snapshots of an ocean's history-dependent state, for rollback, replays and save games.
+
+use std::ops::Bound::Included;
+
+use crate::cascade::check_time;
+use crate::error::{self, Error};
+
+use super::OceanState;
+
+/// Everything about an [`OceanState`] that cannot be recomputed from its spectrum and config:
+/// the time, the choppiness (the one the buffers were computed with, and the one last set if
+/// it has not been applied yet), and the foam. Everything else (the cascades' buffers)
+/// follows from these, so [`OceanState::restore`] brings an ocean back to exactly the bits it
+/// had when the snapshot was taken, and it then steps to the same bits as the original did.
+///
+/// A snapshot holds 4 bytes per grid point of every cascade (the foam). Take one with
+/// [`OceanState::snapshot`], or refill one without allocating with
+/// [`OceanState::snapshot_into`]. With the `serde` feature it can be saved and loaded; a
+/// loaded snapshot is checked when it is restored.
+///
+/// ```
+/// use ocean_fft::{OceanConfig, OceanState, Spectrum};
+/// let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
+/// let config = OceanConfig { size: 16, ..OceanConfig::default() };
+/// let mut ocean = OceanState::new(spectrum, config)?;
+/// ocean.step(0.5)?;
+/// let saved = ocean.snapshot();
+/// ocean.step(0.25)?;
+/// let later = ocean.height_at(3.0, 4.0)?;
+///
+/// ocean.restore(&saved)?;                  // back to t = 0.5 s, foam and all
+/// ocean.step(0.25)?;
+/// assert_eq!(ocean.height_at(3.0, 4.0)?, later);
+/// # Ok::<(), ocean_fft::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct OceanSnapshot {
+    time: f64,
+    /// The choppiness last set, applied at the next update.
+    choppiness: f32,
+    /// The choppiness the buffers were computed with.
+    applied_choppiness: f32,
+    /// Every cascade's foam, one after another.
+    foam: Vec<f32>,
+}
+
+impl OceanSnapshot {
+    /// Simulated time of the snapshot, in seconds.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+}
+
+impl OceanState {
+    /// The state that cannot be recomputed: time, choppiness and foam (allocates the foam's
+    /// copy; see [`snapshot_into`](Self::snapshot_into) to reuse one).
+    pub fn snapshot(&self) -> OceanSnapshot {
+        let mut snapshot = OceanSnapshot {
+            time: 0.0,
+            choppiness: 0.0,
+            applied_choppiness: 0.0,
+            foam: Vec::new(),
+        };
+        self.snapshot_into(&mut snapshot);
+        snapshot
+    }
+
+    /// Overwrites `snapshot` with this ocean's state. Allocates nothing when `snapshot` was
+    /// taken from an ocean of the same config (its foam buffer is reused), so a game can keep a
+    /// ring of snapshots for rollback.
+    pub fn snapshot_into(&self, snapshot: &mut OceanSnapshot) {
+        snapshot.time = self.time;
+        snapshot.choppiness = self.config.choppiness;
+        snapshot.applied_choppiness = self.applied_choppiness;
+        snapshot.foam.clear();
+        for foam in &self.foam {
+            snapshot.foam.extend_from_slice(foam);
+        }
+    }
+
+    /// Brings the ocean back to the state `snapshot` holds: its time, choppiness and foam, and
+    /// every cascade updated to that time. The result is bit-identical to the ocean the
+    /// snapshot was taken from, and steps on identically. Allocates nothing inside a rayon
+    /// pool.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`] (naming `snapshot.foam`) if the snapshot comes from an ocean
+    /// with other grids; for a snapshot loaded from a file, [`Error::NonFinite`] or
+    /// [`Error::OutOfRange`] for a time beyond [`Cascade::MAX_TIME`](crate::Cascade::MAX_TIME)
+    /// or a foam value outside [0, 1], and the errors of
+    /// [`set_choppiness`](Self::set_choppiness). Nothing changes then.
+    pub fn restore(&mut self, snapshot: &OceanSnapshot) -> Result<(), Error> {
+        let points: usize = self.foam.iter().map(Vec::len).sum();
+        error::length("snapshot.foam", snapshot.foam.len(), points)?;
+        let t = check_time("snapshot.time", snapshot.time)?;
+        for &value in &snapshot.foam {
+            error::in_range("snapshot.foam", value, Included(0.0), Included(1.0))?;
+        }
+        self.check_choppiness(snapshot.applied_choppiness)?;
+        self.check_choppiness(snapshot.choppiness)?;
+        let mut rest = snapshot.foam.as_slice();
+        for foam in &mut self.foam {
+            let (mine, tail) = rest.split_at(foam.len());
+            foam.copy_from_slice(mine);
+            rest = tail;
+        }
+        // The buffers as they were (with the choppiness they were computed with), then the
+        // choppiness set since, for the next update.
+        self.set_choppiness_checked(snapshot.applied_choppiness);
+        rayon::scope(|_| self.update_cascades(t));
+        self.set_choppiness_checked(snapshot.choppiness);
+        self.time = t;
+        Ok(())
+    }
+}
