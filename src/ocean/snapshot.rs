@@ -16,7 +16,9 @@ use super::OceanState;
 /// A snapshot holds 4 bytes per grid point of every cascade (the foam). Take one with
 /// [`OceanState::snapshot`], or refill one without allocating with
 /// [`OceanState::snapshot_into`]. With the `serde` feature it can be saved and loaded; a
-/// loaded snapshot is checked when it is restored.
+/// loaded snapshot is checked when it is restored. For a restore that is bit-exact, the format
+/// must read numbers back exactly: binary formats do, and so does `serde_json` with its
+/// `float_roundtrip` feature (its default parser may be one ulp off).
 ///
 /// ```
 /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
