@@ -121,7 +121,7 @@ mod rng;
 mod serde_impls;
 mod spectrum;
 
-pub use cascade::{Cascade, CascadeConfig, Field};
+pub use cascade::{Cascade, CascadeConfig, Field, LoopError};
 pub use dispersion::{Dispersion, GRAVITY, SURFACE_TENSION, WATER_DENSITY};
 pub use engine::Engine;
 pub use error::Error;

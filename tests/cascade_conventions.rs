@@ -359,7 +359,7 @@ fn looping_repeats_after_the_period() {
 }
 
 #[test]
-fn looping_quantises_omega_down_to_multiples_of_two_pi_over_t() {
+fn looping_moves_omega_to_the_nearest_multiple_of_two_pi_over_t_and_never_to_zero() {
     let period = 20.0f64;
     let (n, length) = (32usize, 200.0f32);
     let cascade = Cascade::new(
@@ -388,14 +388,21 @@ fn looping_quantises_omega_down_to_multiples_of_two_pi_over_t() {
                 (multiple - multiple.round()).abs() < 1e-9,
                 "({i},{j}): ω = {q} is {multiple} × 2π/T"
             );
-            assert!(
-                q <= exact * (1.0 + 1e-12),
-                "({i},{j}): ω {q} above √(gk) {exact}"
-            );
-            assert!(
-                exact - q < step * (1.0 + 1e-9),
-                "({i},{j}): ω {q} more than 2π/T below {exact}"
-            );
+            // The nearest multiple (half a step away at most), and never fewer than one
+            // cycle per loop: no wave stands still.
+            assert!(q >= step * (1.0 - 1e-12), "({i},{j}): ω {q} below 2π/T");
+            if exact >= step {
+                assert!(
+                    (q - exact).abs() <= 0.5 * step * (1.0 + 1e-9),
+                    "({i},{j}): ω {q} more than π/T from {exact}"
+                );
+            } else {
+                assert_eq!(
+                    multiple.round(),
+                    1.0,
+                    "({i},{j}): ω {q} for a wave longer than T"
+                );
+            }
             distinct.insert(multiple.round() as i64);
         }
     }

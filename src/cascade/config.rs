@@ -47,8 +47,9 @@ pub struct CascadeConfig {
     /// (default: `0`).
     pub seed: u64,
     /// Repeat period T in seconds, from [`MIN_REPEAT_PERIOD`](Self::MIN_REPEAT_PERIOD) to
-    /// [`MAX_REPEAT_PERIOD`](Self::MAX_REPEAT_PERIOD): when set, every ω is rounded down to a
-    /// multiple of 2π/T, so the fields at t and t + T are equal (for looping bakes)
+    /// [`MAX_REPEAT_PERIOD`](Self::MAX_REPEAT_PERIOD): when set, every ω becomes the nearest
+    /// multiple of 2π/T and at least 2π/T, so the fields at t and t + T are equal and no wave
+    /// stands still (for looping bakes; see [`Cascade::loop_error`](crate::Cascade::loop_error))
     /// (default: `None`).
     #[cfg_attr(
         feature = "serde",

@@ -25,6 +25,7 @@ pub use field::Field;
 
 use evolve::{evolve_row_pair, fract_turns, packed_pair};
 use outputs::write_outputs;
+pub use tables::LoopError;
 use tables::{check_amplitude, Amplitudes, EvolutionTable};
 
 /// One N×N patch of ocean surface of side L: the wave amplitudes h0(k) drawn once from a
@@ -56,6 +57,8 @@ pub struct Cascade {
     expected_variance: f64,
     /// Σ 2|h0| · max(1, k_grid_max): a bound on every synthesised field's magnitude.
     amplitude_bound: f64,
+    /// How far looping moved the frequencies (None without a repeat period).
+    loop_error: Option<LoopError>,
     h0: Vec<Complex32>,
     /// Evolution table, transposed layout: rows are k_x index i in 0..N/2, columns k_z
     /// index j.
@@ -162,6 +165,8 @@ impl Cascade {
         check_amplitude(amplitude_bound, config.choppiness)?;
         let looping = config.repeat_period.map(f64::from);
         let evolution = EvolutionTable::new(&h0, n, dk64, spectrum.dispersion(), looping);
+        let loop_error =
+            looping.map(|period| LoopError::new(&h0, n, dk64, spectrum.dispersion(), period));
         let kz = (0..n).map(|j| wave_index(j, n) as f32 * dk).collect();
         let rows = RowFft::new(n);
         let points = n * n;
@@ -172,6 +177,7 @@ impl Cascade {
             time: 0.0,
             expected_variance,
             amplitude_bound,
+            loop_error,
             h0,
             evolution,
             kz,
@@ -380,6 +386,13 @@ impl Cascade {
         let lambda = error::non_negative("choppiness", choppiness)?;
         check_amplitude(self.amplitude_bound, lambda)?;
         Ok(lambda)
+    }
+
+    /// How far the repeat period moved the waves' frequencies from the dispersion relation
+    /// (`None` without one): every ω becomes the nearest whole number of cycles per loop, at
+    /// least one, so waves longer than the loop speed up and none stands still.
+    pub fn loop_error(&self) -> Option<LoopError> {
+        self.loop_error
     }
 
     /// Expected variance of η in m²: Σ S(k) Δk² over the wave vectors of the grid in the

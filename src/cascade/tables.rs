@@ -184,7 +184,8 @@ impl Amplitudes {
 impl EvolutionTable {
     /// The table of an N×N grid with spacing `dk` (rad/m) from its amplitudes `h0`: p and q
     /// of every wave vector with k_x index i in 0..N/2, ω(k)/2π from `dispersion` (rounded
-    /// down to a multiple of 1/T when `looping` gives a period T in seconds), and 1/|k|.
+    /// to the nearest multiple of 1/T, at least 1/T, when `looping` gives a period T in
+    /// seconds: see [`frequency`]), and 1/|k|.
     pub(super) fn new(
         h0: &[Complex32],
         n: usize,
@@ -207,10 +208,7 @@ impl EvolutionTable {
                     let kz = f64::from(wave_index(j, n)) * dk;
                     let k = kx.hypot(kz);
                     let omega = dispersion.omega_f64(k);
-                    let freq = match looping {
-                        Some(period) => (omega * period / TAU).floor() / period,
-                        None => omega / TAU,
-                    };
+                    let freq = frequency(omega, looping);
                     let inv_k = if k > 0.0 { (1.0 / k) as f32 } else { 0.0 };
                     *entry = (
                         Evolution {
@@ -223,5 +221,91 @@ impl EvolutionTable {
                 }
             });
         EvolutionTable::from_entries(&evolution)
+    }
+}
+
+/// The frequency ω/2π in Hz a wave of angular frequency `omega` (rad/s) is evolved with: as it
+/// is, or on a loop of period T (`looping`, s) the nearest whole number of cycles per loop,
+/// and at least one, so that the fields repeat after T and no wave stands still.
+pub(super) fn frequency(omega: f64, looping: Option<f64>) -> f64 {
+    match looping {
+        Some(period) => (omega * period / TAU).round().max(1.0) / period,
+        None => omega / TAU,
+    }
+}
+
+/// How far looping moves the waves' frequencies from the dispersion relation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoopError {
+    /// The largest relative frequency error |ω_loop − ω|/ω over the wave vectors that carry
+    /// energy, dimensionless. Waves much longer than the loop get one cycle per loop, so this
+    /// grows without bound as T shrinks.
+    pub max_relative: f64,
+    /// The mean of |ω_loop − ω|/ω weighted by each wave's share of the height variance,
+    /// dimensionless: what the eye sees on average.
+    pub mean_relative: f64,
+    /// The time-averaged height variance of the waves weighed, in m² (2 Σ|h0|² of this
+    /// realisation), by which cascades' errors are combined.
+    pub variance: f64,
+}
+
+impl LoopError {
+    /// The loop error of the wave vectors with amplitudes `h0` on an N×N grid of spacing `dk`
+    /// (rad/m) under `dispersion`, looping with period `period` in seconds.
+    pub(super) fn new(
+        h0: &[Complex32],
+        n: usize,
+        dk: f64,
+        dispersion: Dispersion,
+        period: f64,
+    ) -> Self {
+        let mut out = LoopError {
+            max_relative: 0.0,
+            mean_relative: 0.0,
+            variance: 0.0,
+        };
+        for j in 0..n {
+            for i in 0..n {
+                let energy = f64::from(h0[j * n + i].norm_sqr());
+                if energy == 0.0 {
+                    continue;
+                }
+                let kx = f64::from(wave_index(i, n)) * dk;
+                let kz = f64::from(wave_index(j, n)) * dk;
+                let omega = dispersion.omega_f64(kx.hypot(kz));
+                let looped = frequency(omega, Some(period)) * TAU;
+                let relative = (looped - omega).abs() / omega;
+                out.max_relative = out.max_relative.max(relative);
+                out.mean_relative += energy * relative;
+                out.variance += energy;
+            }
+        }
+        if out.variance > 0.0 {
+            out.mean_relative /= out.variance;
+        }
+        // The time-averaged variance of η is Σ_k (|h0(k)|² + |h0(−k)|²) = 2 Σ_k |h0(k)|².
+        out.variance *= 2.0;
+        out
+    }
+
+    /// The errors of several cascades together, each weighted by its variance.
+    pub(crate) fn combine(errors: impl IntoIterator<Item = LoopError>) -> Option<LoopError> {
+        let mut total: Option<LoopError> = None;
+        for e in errors {
+            let t = total.get_or_insert(LoopError {
+                max_relative: 0.0,
+                mean_relative: 0.0,
+                variance: 0.0,
+            });
+            t.max_relative = t.max_relative.max(e.max_relative);
+            t.mean_relative += e.mean_relative * e.variance;
+            t.variance += e.variance;
+        }
+        if let Some(t) = total.as_mut() {
+            if t.variance > 0.0 {
+                t.mean_relative /= t.variance;
+            }
+        }
+        total
     }
 }

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use std::ops::Bound::Included;
 
-use crate::cascade::{check_time, Cascade};
+use crate::cascade::{check_time, Cascade, LoopError};
 use crate::error::{self, Error};
 use crate::spectrum::Spectrum;
 
@@ -223,6 +223,13 @@ impl OceanState {
             cascade.set_choppiness_checked(choppiness);
         }
         self.config.choppiness = choppiness;
+    }
+
+    /// How far the repeat period moved the waves' frequencies, over every cascade (`None`
+    /// without one): the largest relative error, and the mean weighted by each wave's share
+    /// of the height variance.
+    pub fn loop_error(&self) -> Option<LoopError> {
+        LoopError::combine(self.cascades.iter().filter_map(Cascade::loop_error))
     }
 
     /// Expected variance of the summed height in m²: the sum over cascades of
