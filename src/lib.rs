@@ -63,11 +63,12 @@
 //! # Performance
 //!
 //! Each [`Cascade::update`] runs four packed complex 2D inverse FFTs plus the evolution and
-//! output passes around them; `cargo bench --bench cascade` measures it beside the four bare
-//! transforms of [`Fft2d`] in the same process, and `cargo bench --bench ocean` a step of the
-//! default ocean beside its twelve bare transforms. The guide's performance section lists a
-//! measured table with the CPU it ran on (on a 2-vCPU AMD EPYC Zen 4: an update costs
-//! 0.9–1.5× its bare transforms from 64² to 512², a default step 1.2–1.75×).
+//! output passes around them; `cargo bench -p ocean-fft-benches --bench cascade` (run in the
+//! repository) measures it beside the four bare transforms of [`Fft2d`] in the same process,
+//! and `cargo bench -p ocean-fft-benches --bench ocean` a step of the default ocean beside its
+//! twelve bare transforms. The guide's performance section lists a measured table with the CPU
+//! it ran on (on a 2-vCPU AMD EPYC Zen 4: an update costs 0.9–1.5× its bare transforms from 64²
+//! to 512², a default step 1.2–1.75×).
 //!
 //! # Features
 //!
