@@ -3,7 +3,7 @@
 //! one criterion group per N so that the ratio can be read off; plus `Cascade::new` (h0
 //! generation and tables) once at N = 256.
 //!
-//! `cargo bench --bench cascade`. The project's target is update ≤ 1.3 × four_ffts.
+//! `cargo bench -p ocean-fft-benches --bench cascade`. The project's target is update ≤ 1.3 × four_ffts.
 
 use std::hint::black_box;
 use std::time::Duration;

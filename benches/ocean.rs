@@ -1,6 +1,7 @@
 //! `OceanState::step` with the cascades updated one after another or in parallel, beside the
 //! bare floor of its FFTs (the three cascades' twelve packed complex 2D inverse FFTs done by
-//! one `Fft2d`), and the world queries. Run with `cargo bench --bench ocean`.
+//! one `Fft2d`), and the world queries. Run with
+//! `cargo bench -p ocean-fft-benches --bench ocean`.
 
 use std::hint::black_box;
 use std::time::Duration;

@@ -15,7 +15,7 @@
 //! `set_time(T)` and by stepping from 0 at 60 Hz as a game loop would, and prints the
 //! largest differences (and, as a sanity check, how different the frame at T/2 is).
 //!
-//! Run with `cargo run --release --example bake_loop`.
+//! Run with `cargo run --release -p ocean-fft-examples --example bake_loop`.
 
 mod common;
 

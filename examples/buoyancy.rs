@@ -13,7 +13,7 @@
 //! sea (a box this small follows the long waves, so they should be close; over only 60 s of
 //! one point the estimate scatters by tens of per cent).
 //!
-//! Run with `cargo run --release --example buoyancy`.
+//! Run with `cargo run --release -p ocean-fft-examples --example buoyancy`.
 
 mod common;
 

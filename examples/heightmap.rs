@@ -13,8 +13,9 @@
 //! points (all cascades summed, via `sample_many`) beside the spectrum's 4√m0 and the
 //! expected 4√(Σ S(k)Δk²) of the grids.
 //!
-//! Run with `cargo run --release --example heightmap`. Pixel (i, j) of every image is grid
-//! sample (i, j) at x = i·L/N, z = j·L/N (image rows are z).
+//! Run with `cargo run --release -p ocean-fft-examples --example heightmap` from the repository
+//! root. Pixel (i, j) of every image is grid sample (i, j) at x = i·L/N, z = j·L/N (image rows
+//! are z).
 
 mod common;
 

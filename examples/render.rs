@@ -15,7 +15,7 @@
 //! - distance fog to the horizon colour.
 //!
 //! Rows are rendered in parallel with rayon. Run with
-//! `cargo run --release --example render`.
+//! `cargo run --release -p ocean-fft-examples --example render`.
 
 mod common;
 

@@ -10,7 +10,7 @@
 //! surface normal (hill shading, which shows the slopes of small and large seas alike), a
 //! tint that brightens crests by η/H_s of that preset, and foam blended to white.
 //!
-//! Run with `cargo run --release --example sea_states`.
+//! Run with `cargo run --release -p ocean-fft-examples --example sea_states`.
 
 mod common;
 

@@ -2,7 +2,7 @@
 //! the peak for each spreading function into `out/spectrum.png`, and prints each sea state's
 //! significant wave height and peak period.
 //!
-//! Run with `cargo run --release --example spectrum`.
+//! Run with `cargo run --release -p ocean-fft-examples --example spectrum`.
 
 mod common;
 

@@ -63,16 +63,17 @@
 //! # Performance
 //!
 //! Each [`Cascade::update`] runs four packed complex 2D inverse FFTs plus the evolution and
-//! output passes around them; `cargo bench --bench cascade` measures it beside the four bare
-//! transforms of [`Fft2d`] in the same process, and `cargo bench --bench ocean` a step of the
-//! default ocean beside its twelve bare transforms. The guide's performance section lists a
-//! measured table with the CPU it ran on (on a 2-vCPU AMD EPYC Zen 4: an update costs
-//! 0.9–1.5× its bare transforms from 64² to 512², a default step 1.2–1.75×).
+//! output passes around them; `cargo bench -p ocean-fft-benches --bench cascade` (run in the
+//! repository) measures it beside the four bare transforms of [`Fft2d`] in the same process,
+//! and `cargo bench -p ocean-fft-benches --bench ocean` a step of the default ocean beside its
+//! twelve bare transforms. The guide's performance section lists a measured table with the CPU
+//! it ran on (on a 2-vCPU AMD EPYC Zen 4: an update costs 0.9–1.5× its bare transforms from 64²
+//! to 512², a default step 1.2–1.75×).
 //!
 //! # Features
 //!
-//! The crate always builds the whole simulation, with rayon for threads. One optional
-//! feature, off by default:
+//! The crate always builds the whole simulation, with rayon for threads. Two optional
+//! features, off by default:
 //!
 //! - **`serde`**: `Serialize` and `Deserialize` for [`Spectrum`], [`Spreading`],
 //!   [`DepthFactor`], [`Dispersion`], [`CascadeConfig`], [`OceanConfig`], [`FoamConfig`] and
@@ -101,6 +102,37 @@
 //! # }
 //! # Ok::<(), ocean_fft::Error>(())
 //! ```
+//!
+//! - **`bytemuck`**: `bytemuck::Pod` and `bytemuck::Zeroable` (derived) for
+//!   [`SurfaceSample`], so that `bytemuck::cast_slice` views the results of
+//!   [`OceanState::surfaces_at`] as `&[f32]`, or as any `#[repr(C)]` struct of the same nine
+//!   `f32`, without copying. The cascade buffers need no feature: they are `&[f32]`,
+//!   `&[[f32; 2]]` and `&[[f32; 3]]`, which bytemuck already casts to an engine's `Vec2` and
+//!   `Vec3` whatever its version (glam's with its own `bytemuck` feature, for example).
+//!
+//! ```
+//! # #[cfg(feature = "bytemuck")] {
+//! use ocean_fft::{OceanConfig, OceanState, Spectrum, SurfaceSample};
+//!
+//! let config = OceanConfig { size: 16, ..OceanConfig::default() };
+//! let mut ocean = OceanState::new(Spectrum::jonswap(10.0, 100_000.0)?, config)?;
+//! ocean.step(1.0 / 60.0)?;
+//! let mut samples = [SurfaceSample::default(); 3];
+//! ocean.surfaces_at(&[[0.0, 0.0], [10.0, -4.0], [250.0, 80.0]], &mut samples)?;
+//!
+//! let floats: &[f32] = bytemuck::cast_slice(&samples);   // 9 f32 a sample, no copy
+//! assert_eq!(floats.as_ptr(), samples.as_ptr().cast::<f32>());
+//! assert_eq!(floats.len(), 3 * 9);
+//! assert_eq!(floats[9], samples[1].height);
+//! assert_eq!(floats[9 + 5..9 + 8], samples[1].normal);
+//! # }
+//! # Ok::<(), ocean_fft::Error>(())
+//! ```
+//!
+//! There is no `mint` feature, as it would add nothing to the arrays: `mint::Vector2<f32>`
+//! and `mint::Vector3<f32>` implement `From<[f32; 2]>` and `From<[f32; 3]>`, so
+//! `mint::Vector3::from(cascade.normal()[i])` (or `.into()`) converts a buffer element, as the
+//! same `From` does for glam's, nalgebra's and cgmath's vectors.
 //!
 //! The formulas, their sources and the choices made where sources differ are in the
 //! repository's `docs/theory.md`; how to pick parameters and embed the crate in a game is in

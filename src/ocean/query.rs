@@ -11,7 +11,13 @@ use crate::cascade::Cascade;
 use crate::error::{self, Error};
 
 /// The surface at one undisplaced world point, summed over the cascades.
+///
+/// `#[repr(C)]`: nine `f32` in the order of the fields, without padding (36 bytes). With the
+/// `bytemuck` feature it is `bytemuck::Pod` and `bytemuck::Zeroable`, so
+/// `bytemuck::cast_slice` views a `&[SurfaceSample]` as `&[f32]` (or as a GPU buffer of
+/// structs with the same layout) without copying.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
 #[repr(C)]
 pub struct SurfaceSample {
     /// Height η in metres.
