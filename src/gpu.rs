@@ -193,7 +193,8 @@ impl<'a> Sources<'a> {
 
     /// RGBA16F texels of `layout` into `out` (N² long), row blocks in parallel: each block
     /// packed in f32 on the stack, saturated to ±[`F16_MAX`], then converted by `half`'s
-    /// slice conversion (round to nearest, ties to even).
+    /// slice conversion (round to nearest, ties to even; F16C or the Arm fp16 instructions
+    /// where the CPU has them).
     #[cfg(feature = "half")]
     fn pack_f16(&self, n: usize, layout: TexelLayout, out: &mut [[half::f16; 4]]) {
         use half::slice::HalfFloatSliceExt;
@@ -240,11 +241,43 @@ fn check_cascade_layout(layout: TexelLayout) -> Result<(), Error> {
     Ok(())
 }
 
-/// Encodes one component c ∈ [−1, 1] as ⌊127.5·(c + 1) + 0.5⌋ (saturating to 0..=255).
+/// One row of vertices at z₀ = `z0` (m) from its sources: a function of its own, indexed
+/// over slices of one length, so that the loop needs no bounds checks.
+#[inline(never)]
+fn vertex_row(
+    z0: f64,
+    spacing: f64,
+    height: &[f32],
+    displacement: &[[f32; 2]],
+    normal: &[[f32; 3]],
+    out: &mut [Vertex],
+) {
+    let len = out.len();
+    let (height, displacement, normal) = (&height[..len], &displacement[..len], &normal[..len]);
+    for i in 0..len {
+        let x0 = f64::from(i as u32) * spacing;
+        let d = displacement[i];
+        out[i] = Vertex {
+            position: [
+                (x0 + f64::from(d[0])) as f32,
+                height[i],
+                (z0 + f64::from(d[1])) as f32,
+            ],
+            normal: normal[i],
+        };
+    }
+}
+
+/// Encodes one component c ∈ [−1, 1] as the integer nearest to 127.5·(c + 1), ties to even,
+/// clamped to 0..=255, as a u32 (0 for a NaN, which no normal holds).
 #[inline]
-fn unorm8(c: f32) -> u8 {
-    // `as u8` truncates toward zero and saturates, so the result is the rounded value.
-    ((c + 1.0) * 127.5 + 0.5) as u8
+#[allow(clippy::manual_clamp)] // max/min, not clamp: a NaN becomes 0
+fn unorm8(c: f32) -> u32 {
+    const ROUNDER: f32 = 8_388_608.0; // 2²³: adding it rounds to an integer, ties to even
+    let x = ((c + 1.0) * 127.5).max(0.0).min(255.0);
+    // 2²³ + x has x's rounded value in the low mantissa bits (without a float-to-int
+    // conversion, so that the loop vectorises).
+    (x + ROUNDER).to_bits() - ROUNDER.to_bits()
 }
 
 impl Cascade {
@@ -306,25 +339,17 @@ impl Cascade {
             .for_each(|(b, block)| {
                 for (r, row) in block.chunks_mut(n).enumerate() {
                     let j = b * rows + r;
-                    let z0 = j as f64 * spacing;
+                    // Through u32 (N ≤ 4096): a u32 converts to f64 in one instruction.
+                    let z0 = f64::from(j as u32) * spacing;
                     let range = j * n..(j + 1) * n;
-                    let sources = height[range.clone()]
-                        .iter()
-                        .zip(&displacement[range.clone()])
-                        .zip(&normal[range]);
-                    for (i, (vertex, ((&eta, d), &normal))) in
-                        row.iter_mut().zip(sources).enumerate()
-                    {
-                        let x0 = i as f64 * spacing;
-                        *vertex = Vertex {
-                            position: [
-                                (x0 + f64::from(d[0])) as f32,
-                                eta,
-                                (z0 + f64::from(d[1])) as f32,
-                            ],
-                            normal,
-                        };
-                    }
+                    vertex_row(
+                        z0,
+                        spacing,
+                        &height[range.clone()],
+                        &displacement[range.clone()],
+                        &normal[range],
+                        row,
+                    );
                 }
             });
         Ok(())
@@ -359,11 +384,12 @@ impl Cascade {
     /// `out[j * N + i]` is column i (+x, to the right) and row j (+z, down the image, row 0
     /// first), with
     ///
-    /// R = ⌊127.5·(n_x + 1) + 0.5⌋, G = ⌊127.5·(g + 1) + 0.5⌋, B = ⌊127.5·(n_y + 1) + 0.5⌋,
+    /// R = round(127.5·(n_x + 1)), G = round(127.5·(g + 1)), B = round(127.5·(n_y + 1)),
     /// A = 255,
     ///
     /// where g = −n_z for [`NormalMapGreen::OpenGl`] (green up the image) and g = +n_z for
-    /// [`NormalMapGreen::DirectX`] (green down the image). Flat water is (128, 128, 255, 255).
+    /// [`NormalMapGreen::DirectX`] (green down the image), and round() the nearest integer,
+    /// ties to even (clamped to 0..=255). Flat water is (128, 128, 255, 255).
     /// The normal of texel (i, j) is that of the water displaced from grid point (i, j), as
     /// for the other textures. Where the surface folds, n_y < 0 and B < 128. Row blocks in
     /// parallel; allocates nothing inside a rayon pool; the result does not depend on the
@@ -390,7 +416,9 @@ impl Cascade {
                 let start = b * block;
                 let normals = &normal[start..start + pixels.len()];
                 for (pixel, n) in pixels.iter_mut().zip(normals) {
-                    *pixel = [unorm8(n[0]), unorm8(sign * n[2]), unorm8(n[1]), 255];
+                    let rgba =
+                        unorm8(n[0]) | unorm8(sign * n[2]) << 8 | unorm8(n[1]) << 16 | 255 << 24;
+                    *pixel = rgba.to_le_bytes();
                 }
             });
         Ok(())
