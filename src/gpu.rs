@@ -103,7 +103,7 @@ impl Default for Vertex {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum NormalMapGreen {
     /// Green points up the image (toward row 0, i.e. −z): G encodes −n_z. The "Y+" maps of
-    /// OpenGL, Blender, Godot, Unity and Maya (a right-handed tangent frame, T × B = N).
+    /// OpenGL, Bevy, Blender, Godot, Unity and Maya (a right-handed tangent frame, T × B = N).
     OpenGl,
     /// Green points down the image (toward larger rows, i.e. +z): G encodes +n_z. The "Y−"
     /// maps of DirectX, Unreal, 3ds Max and Substance's DirectX preset.
