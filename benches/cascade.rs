@@ -1,15 +1,20 @@
 //! `Cascade::update` beside the bare time of its four packed complex 2D inverse FFTs done the
 //! same way (rows in parallel, blocked transpose, rows again) with the public [`Fft2d`], in
 //! one criterion group per N so that the ratio can be read off; plus `Cascade::new` (h0
-//! generation and tables) once at N = 256.
+//! generation and tables) once at N = 256. In the N = 256 group, beside `update`, the GPU
+//! upload writers: `pack_f32` (RGBA32F `DisplacementJacobian` texels), `pack_f16` (the same in
+//! RGBA16F, with `--features half`), `vertices` and `normal_map` (RGBA8).
 //!
-//! `cargo bench -p ocean-fft-benches --bench cascade`. The project's target is update ≤ 1.3 × four_ffts.
+//! `cargo bench -p ocean-fft-benches --bench cascade [--features half]`. The project's target
+//! is update ≤ 1.3 × four_ffts.
 
 use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
-use ocean_fft::{Cascade, CascadeConfig, Complex32, Fft2d, Spectrum};
+use ocean_fft::{
+    Cascade, CascadeConfig, Complex32, Fft2d, NormalMapGreen, Spectrum, TexelLayout, Vertex,
+};
 
 const SIZES: [usize; 4] = [64, 128, 256, 512];
 
@@ -72,8 +77,56 @@ fn update_vs_fft(c: &mut Criterion) {
                 BatchSize::PerIteration,
             )
         });
+        if n == 256 {
+            bench_upload(&mut group, &cascade);
+        }
         group.finish();
     }
+}
+
+/// The GPU upload writers on one updated cascade, into buffers allocated once.
+fn bench_upload(
+    group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    cascade: &Cascade,
+) {
+    let points = cascade.size() * cascade.size();
+    let mut texels = vec![[0.0f32; 4]; points];
+    group.bench_function("pack_f32", |b| {
+        b.iter(|| {
+            cascade
+                .pack_texels(TexelLayout::DisplacementJacobian, &mut texels)
+                .expect("right length");
+            black_box(texels[0]);
+        })
+    });
+    #[cfg(feature = "half")]
+    {
+        let mut texels = vec![[ocean_fft::half::f16::ZERO; 4]; points];
+        group.bench_function("pack_f16", |b| {
+            b.iter(|| {
+                cascade
+                    .pack_texels_f16(TexelLayout::DisplacementJacobian, &mut texels)
+                    .expect("right length");
+                black_box(texels[0]);
+            })
+        });
+    }
+    let mut vertices = vec![Vertex::default(); points];
+    group.bench_function("vertices", |b| {
+        b.iter(|| {
+            cascade.write_vertices(&mut vertices).expect("right length");
+            black_box(vertices[0]);
+        })
+    });
+    let mut pixels = vec![[0u8; 4]; points];
+    group.bench_function("normal_map", |b| {
+        b.iter(|| {
+            cascade
+                .write_normal_map(NormalMapGreen::OpenGl, &mut pixels)
+                .expect("right length");
+            black_box(pixels[0]);
+        })
+    });
 }
 
 fn cascade_new(c: &mut Criterion) {

@@ -34,6 +34,12 @@
 //!   normal and Jacobian.
 //! - [`OceanState`]: several cascades on disjoint wave-number bands, the time, foam, and the
 //!   world queries [`OceanState::sample`] and [`OceanState::height_at`].
+//! - GPU upload into buffers you own: [`Cascade::pack_texels`] and
+//!   [`OceanState::pack_texels`] interleave the buffers into RGBA32F texels of a
+//!   [`TexelLayout`] (RGBA16F with the `half` feature), [`Cascade::write_vertices`] writes a
+//!   [`Vertex`] array with [`Cascade::triangle_indices`], and [`Cascade::write_normal_map`]
+//!   an RGBA8 tangent-space normal map with OpenGL- or DirectX-style green
+//!   ([`NormalMapGreen`]).
 //!
 //! # Conventions
 //!
@@ -50,6 +56,9 @@
 //! - Grids: N×N over a patch of side L; sample (i, j) at x = i·L/N, z = j·L/N is at index
 //!   `j * N + i` (z is the row). Spectral index (i, j) holds k = Δk·(m(i), m(j)) in plain FFT
 //!   order.
+//! - Textures: texel (i, j) is grid sample (i, j), row j = z with row 0 first; a cascade's
+//!   textures tile the world with period L (wrap mode repeat): texel (i, j) ↔ world
+//!   (x₀ + i·L/N, z₀ + j·L/N) for any tile origin (x₀, z₀) on a multiple of L.
 //!
 //! # Errors, threads, allocation
 //!
@@ -72,9 +81,13 @@
 //!
 //! # Features
 //!
-//! The crate always builds the whole simulation, with rayon for threads. Two optional
-//! features, off by default:
+//! The crate always builds the whole simulation, with rayon for threads. Optional features,
+//! all off by default:
 //!
+//! - **`half`**: RGBA16F texel packing, `Cascade::pack_texels_f16` and
+//!   `OceanState::pack_texels_f16`, into `[half::f16; 4]` texels of the `half` crate (2.x,
+//!   re-exported as `ocean_fft::half`). Each channel is rounded to the nearest f16 (ties to
+//!   even) and values beyond the f16 range saturate to ±65504, never ±∞ or NaN.
 //! - **`serde`**: `Serialize` and `Deserialize` for [`Spectrum`], [`Spreading`],
 //!   [`DepthFactor`], [`Dispersion`], [`CascadeConfig`], [`OceanConfig`], [`FoamConfig`] and
 //!   [`SeaState`], to save and load sea configurations. Deserialising a [`Spectrum`] (or a
@@ -104,7 +117,8 @@
 //! ```
 //!
 //! - **`bytemuck`**: `bytemuck::Pod` and `bytemuck::Zeroable` (derived) for
-//!   [`SurfaceSample`], so that `bytemuck::cast_slice` views the results of
+//!   [`SurfaceSample`] and [`Vertex`] (and `half`'s f16 when `half` is on too), so that
+//!   `bytemuck::cast_slice` gives a vertex array's bytes to upload and views the results of
 //!   [`OceanState::surfaces_at`] as `&[f32]`, or as any `#[repr(C)]` struct of the same nine
 //!   `f32`, without copying. The cascade buffers need no feature: they are `&[f32]`,
 //!   `&[[f32; 2]]` and `&[[f32; 3]]`, which bytemuck already casts to an engine's `Vec2` and
@@ -145,6 +159,7 @@ mod dispersion;
 mod engine;
 mod error;
 mod fft2d;
+mod gpu;
 mod grid;
 mod ocean;
 mod presets;
@@ -158,6 +173,11 @@ pub use dispersion::{Dispersion, GRAVITY, SURFACE_TENSION, WATER_DENSITY};
 pub use engine::Engine;
 pub use error::Error;
 pub use fft2d::Fft2d;
+pub use gpu::{NormalMapGreen, TexelLayout, Vertex};
+/// The `half` crate (with the `half` feature), whose `f16` the `pack_texels_f16` functions
+/// write: `ocean_fft::half::f16` is the version this crate was built with.
+#[cfg(feature = "half")]
+pub use half;
 pub use num_complex::Complex32;
 pub use ocean::{
     FoamConfig, Location, OceanConfig, OceanSnapshot, OceanState, QueryConfig, SurfaceSample,
