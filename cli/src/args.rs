@@ -75,7 +75,12 @@ pub struct SeaArgs {
     #[arg(long, value_name = "M", help_heading = "Overrides")]
     pub depth: Option<f32>,
     /// Override: the direction the wind blows toward, in degrees from +x toward +z.
-    #[arg(long, value_name = "D", allow_negative_numbers = true, help_heading = "Overrides")]
+    #[arg(
+        long,
+        value_name = "D",
+        allow_negative_numbers = true,
+        help_heading = "Overrides"
+    )]
     pub direction_deg: Option<f32>,
     /// Override: grid size N of every cascade (even, 16 to 4096; presets use 256).
     #[arg(long, value_name = "N", help_heading = "Overrides")]
@@ -95,12 +100,22 @@ pub struct SeaArgs {
     pub loop_seconds: Option<f64>,
     /// Foam pre-roll tolerance: how far the foam may be from that of an ocean simulated
     /// forever (the pre-roll is long enough for its decay to reach this; 1e-6 to 0.1).
-    #[arg(long, value_name = "EPS", default_value_t = 1e-4, help_heading = "Foam pre-roll")]
+    #[arg(
+        long,
+        value_name = "EPS",
+        default_value_t = 1e-4,
+        help_heading = "Foam pre-roll"
+    )]
     pub foam_tolerance: f64,
     /// Foam anchors: the foam of frame f is simulated from the anchor frame a ≤ f (a
     /// multiple of this) minus the pre-roll, so a farm chunk that starts on an anchor pays
     /// one pre-roll. Ignored for loops.
-    #[arg(long, value_name = "FRAMES", default_value_t = 240, help_heading = "Foam pre-roll")]
+    #[arg(
+        long,
+        value_name = "FRAMES",
+        default_value_t = 240,
+        help_heading = "Foam pre-roll"
+    )]
     pub anchor_every: u32,
 }
 

@@ -208,21 +208,22 @@ pub fn bake(args: &BakeArgs, progress: &mut dyn Progress) -> Result<Report, CliE
             });
         }
         drop(done_tx);
-        let mut collect = |result: Result<Done, CliError>,
-                           report: &mut Report,
-                           first_error: &mut Option<CliError>| match result {
-            Ok(done) => {
-                for path in &done.paths {
-                    progress.written(path);
+        let mut collect =
+            |result: Result<Done, CliError>,
+             report: &mut Report,
+             first_error: &mut Option<CliError>| match result {
+                Ok(done) => {
+                    for path in &done.paths {
+                        progress.written(path);
+                    }
+                    report.encode += done.time;
+                    report.clamped += done.clamped;
+                    report.written.extend(done.paths);
                 }
-                report.encode += done.time;
-                report.clamped += done.clamped;
-                report.written.extend(done.paths);
-            }
-            Err(e) => {
-                first_error.get_or_insert(e);
-            }
-        };
+                Err(e) => {
+                    first_error.get_or_insert(e);
+                }
+            };
         'frames: for (frame, jobs) in &plan {
             let t = Instant::now();
             if let Err(e) = simulator.advance_to(*frame) {

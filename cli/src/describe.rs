@@ -55,7 +55,13 @@ fn cascades(ocean: &OceanState) -> Vec<Value> {
         .enumerate()
         .map(|(c, cascade)| {
             let (lo, hi) = bands.get(c).copied().unwrap_or((0.0, 0.0));
-            let wavelength = |k: f32| if k > 0.0 { Some(std::f64::consts::TAU / f64::from(k)) } else { None };
+            let wavelength = |k: f32| {
+                if k > 0.0 {
+                    Some(std::f64::consts::TAU / f64::from(k))
+                } else {
+                    None
+                }
+            };
             json!({
                 "index": c,
                 "length_m": cascade.length(),
@@ -182,7 +188,9 @@ pub fn info(sea: &Sea, ocean: &OceanState, convergence: Option<LoopConvergence>)
         "  wind {:.2} m/s toward {:.1}° (from +x toward +z), fetch {}, depth {}",
         spectrum.wind_speed(),
         spectrum.wind_direction().to_degrees(),
-        spectrum.fetch().map_or("none".into(), |f| format!("{f:.0} m")),
+        spectrum
+            .fetch()
+            .map_or("none".into(), |f| format!("{f:.0} m")),
         spectrum.depth().map_or("deep".into(), |d| format!("{d} m")),
     );
     let _ = writeln!(
@@ -198,7 +206,12 @@ pub fn info(sea: &Sea, ocean: &OceanState, convergence: Option<LoopConvergence>)
         config.choppiness, config.seed, config.foam.bias, config.foam.injection, config.foam.decay
     );
     let bands = config.bands().unwrap_or_default();
-    let _ = writeln!(s, "cascades ({} of {}²):", ocean.cascades().len(), config.size);
+    let _ = writeln!(
+        s,
+        "cascades ({} of {}²):",
+        ocean.cascades().len(),
+        config.size
+    );
     for (c, cascade) in ocean.cascades().iter().enumerate() {
         let (lo, hi) = bands.get(c).copied().unwrap_or((0.0, 0.0));
         let longest = if lo > 0.0 {

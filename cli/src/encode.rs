@@ -27,26 +27,106 @@ pub struct Channel {
 /// The EXR's channels: RGBA is the library's `DisplacementFoam` layout, so a reader of RGBA
 /// alone gets the displacement and the foam; the normal and the Jacobian are layers.
 pub const EXR_CHANNELS: [Channel; 8] = [
-    Channel { file: "", channel: "R", meaning: "D_x: horizontal displacement along +x", unit: "m" },
-    Channel { file: "", channel: "G", meaning: "η: height (displacement along +y, up)", unit: "m" },
-    Channel { file: "", channel: "B", meaning: "D_z: horizontal displacement along +z", unit: "m" },
-    Channel { file: "", channel: "A", meaning: "foam coverage in [0, 1]", unit: "1" },
-    Channel { file: "", channel: "normal.X", meaning: "n_x of the unit normal (world axes, y up)", unit: "1" },
-    Channel { file: "", channel: "normal.Y", meaning: "n_y of the unit normal (up; < 0 where the surface folds)", unit: "1" },
-    Channel { file: "", channel: "normal.Z", meaning: "n_z of the unit normal", unit: "1" },
-    Channel { file: "", channel: "jacobian.Y", meaning: "J: Jacobian of the horizontal map (1 flat, < 0 folded)", unit: "1" },
+    Channel {
+        file: "",
+        channel: "R",
+        meaning: "D_x: horizontal displacement along +x",
+        unit: "m",
+    },
+    Channel {
+        file: "",
+        channel: "G",
+        meaning: "η: height (displacement along +y, up)",
+        unit: "m",
+    },
+    Channel {
+        file: "",
+        channel: "B",
+        meaning: "D_z: horizontal displacement along +z",
+        unit: "m",
+    },
+    Channel {
+        file: "",
+        channel: "A",
+        meaning: "foam coverage in [0, 1]",
+        unit: "1",
+    },
+    Channel {
+        file: "",
+        channel: "normal.X",
+        meaning: "n_x of the unit normal (world axes, y up)",
+        unit: "1",
+    },
+    Channel {
+        file: "",
+        channel: "normal.Y",
+        meaning: "n_y of the unit normal (up; < 0 where the surface folds)",
+        unit: "1",
+    },
+    Channel {
+        file: "",
+        channel: "normal.Z",
+        meaning: "n_z of the unit normal",
+        unit: "1",
+    },
+    Channel {
+        file: "",
+        channel: "jacobian.Y",
+        meaning: "J: Jacobian of the horizontal map (1 flat, < 0 folded)",
+        unit: "1",
+    },
 ];
 
 /// The PNGs' channels (decode with the scales in the sidecar, see [`PngScale`]).
 pub const PNG_CHANNELS: [Channel; 8] = [
-    Channel { file: "disp", channel: "R", meaning: "D_x = (2p/65535 − 1)·displacement_scale", unit: "m" },
-    Channel { file: "disp", channel: "G", meaning: "η = (2p/65535 − 1)·displacement_scale", unit: "m" },
-    Channel { file: "disp", channel: "B", meaning: "D_z = (2p/65535 − 1)·displacement_scale", unit: "m" },
-    Channel { file: "disp", channel: "A", meaning: "foam = p/65535", unit: "1" },
-    Channel { file: "normal", channel: "R", meaning: "n_x = 2p/65535 − 1", unit: "1" },
-    Channel { file: "normal", channel: "G", meaning: "n_y = 2p/65535 − 1 (up)", unit: "1" },
-    Channel { file: "normal", channel: "B", meaning: "n_z = 2p/65535 − 1", unit: "1" },
-    Channel { file: "normal", channel: "A", meaning: "J = 1 + (2p/65535 − 1)·jacobian_scale", unit: "1" },
+    Channel {
+        file: "disp",
+        channel: "R",
+        meaning: "D_x = (2p/65535 − 1)·displacement_scale",
+        unit: "m",
+    },
+    Channel {
+        file: "disp",
+        channel: "G",
+        meaning: "η = (2p/65535 − 1)·displacement_scale",
+        unit: "m",
+    },
+    Channel {
+        file: "disp",
+        channel: "B",
+        meaning: "D_z = (2p/65535 − 1)·displacement_scale",
+        unit: "m",
+    },
+    Channel {
+        file: "disp",
+        channel: "A",
+        meaning: "foam = p/65535",
+        unit: "1",
+    },
+    Channel {
+        file: "normal",
+        channel: "R",
+        meaning: "n_x = 2p/65535 − 1",
+        unit: "1",
+    },
+    Channel {
+        file: "normal",
+        channel: "G",
+        meaning: "n_y = 2p/65535 − 1 (up)",
+        unit: "1",
+    },
+    Channel {
+        file: "normal",
+        channel: "B",
+        meaning: "n_z = 2p/65535 − 1",
+        unit: "1",
+    },
+    Channel {
+        file: "normal",
+        channel: "A",
+        meaning: "J = 1 + (2p/65535 − 1)·jacobian_scale",
+        unit: "1",
+    },
 ];
 
 /// The file names of frame `frame` of cascade `cascade`.
@@ -158,7 +238,13 @@ pub fn png_scales(ocean: &OceanState) -> Vec<PngScale> {
         .map(|cascade| {
             let n = cascade.size();
             let dk = f64::from(cascade.delta_k());
-            let m = |i: usize| if i < n / 2 { i as f64 } else { i as f64 - n as f64 };
+            let m = |i: usize| {
+                if i < n / 2 {
+                    i as f64
+                } else {
+                    i as f64 - n as f64
+                }
+            };
             let (mut eta, mut dx, mut dz, mut div) = (0.0, 0.0, 0.0, 0.0);
             for (index, h) in cascade.h0().iter().enumerate() {
                 let e = 2.0 * f64::from(h.norm_sqr());
@@ -251,7 +337,10 @@ pub fn encode_png(t: &Texels, scale: PngScale) -> Result<(Vec<Vec<u8>>, u64), St
 /// The temporary name `path` is written under before its rename: `.NAME.PID.tmp` in the same
 /// directory (never matched as a frame, so a resumed bake ignores leftovers of a killed one).
 pub fn temporary_path(path: &Path) -> PathBuf {
-    let name = path.file_name().map(|n| n.to_string_lossy()).unwrap_or_default();
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy())
+        .unwrap_or_default();
     path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
 }
 

@@ -44,7 +44,10 @@ impl FrameList {
         for raw in text.split(',') {
             let item = raw.trim();
             if item.is_empty() {
-                return Err(err(raw, "empty item (two commas in a row, or a trailing comma)"));
+                return Err(err(
+                    raw,
+                    "empty item (two commas in a row, or a trailing comma)",
+                ));
             }
             if item.starts_with('-') {
                 return Err(err(item, "frames are whole numbers ≥ 0"));
@@ -73,7 +76,10 @@ impl FrameList {
                 }
             };
             if first > last {
-                return Err(err(item, "the range is reversed (write the smaller frame first)"));
+                return Err(err(
+                    item,
+                    "the range is reversed (write the smaller frame first)",
+                ));
             }
             let count = (last - first) / step + 1;
             if frames.len() + count as usize > Self::MAX_FRAMES {
@@ -105,7 +111,10 @@ fn number(text: &str) -> Result<u32, String> {
     }
     match text.parse::<u64>() {
         Ok(n) if n <= u64::from(FrameList::MAX_FRAME) => Ok(n as u32),
-        _ => Err(format!("`{text}` is beyond the last frame {}", FrameList::MAX_FRAME)),
+        _ => Err(format!(
+            "`{text}` is beyond the last frame {}",
+            FrameList::MAX_FRAME
+        )),
     }
 }
 

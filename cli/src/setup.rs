@@ -90,7 +90,11 @@ fn read_config(path: &Path) -> Result<(Spectrum, OceanConfig), CliError> {
 }
 
 /// An override's value checked against the library: its error names the flag.
-fn flag<T>(flag: &str, value: impl std::fmt::Display, r: Result<T, ocean_fft::Error>) -> Result<T, CliError> {
+fn flag<T>(
+    flag: &str,
+    value: impl std::fmt::Display,
+    r: Result<T, ocean_fft::Error>,
+) -> Result<T, CliError> {
     r.map_err(|e| CliError::usage(format!("{flag} {value}: {e}")))
 }
 
@@ -192,8 +196,7 @@ pub fn build(args: &SeaArgs) -> Result<Sea, CliError> {
     };
     let spectrum = override_spectrum(spectrum, args)?;
     if let Some(size) = args.size {
-        if !(CascadeConfig::MIN_SIZE..=CascadeConfig::MAX_SIZE).contains(&size) || size % 2 != 0
-        {
+        if !(CascadeConfig::MIN_SIZE..=CascadeConfig::MAX_SIZE).contains(&size) || size % 2 != 0 {
             return Err(CliError::usage(format!(
                 "--size {size}: expected an even grid size from {} to {}",
                 CascadeConfig::MIN_SIZE,
@@ -216,7 +219,9 @@ pub fn build(args: &SeaArgs) -> Result<Sea, CliError> {
     let fps = in_range("--fps", args.fps, FPS_RANGE)?;
     let tolerance = in_range("--foam-tolerance", args.foam_tolerance, TOLERANCE_RANGE)?;
     if args.anchor_every == 0 {
-        return Err(CliError::usage("--anchor-every 0: expected at least 1 frame"));
+        return Err(CliError::usage(
+            "--anchor-every 0: expected at least 1 frame",
+        ));
     }
 
     // The loop: from --loop, else from the config file's repeat period.

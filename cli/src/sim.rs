@@ -69,7 +69,11 @@ pub fn foam_texels(ocean: &OceanState, cascade: usize, out: &mut [f32]) -> Resul
 pub fn capture(ocean: &OceanState, cascade: usize, out: &mut Texels) -> Result<(), CliError> {
     let internal = |e: ocean_fft::Error| CliError::new(crate::error::Kind::Internal, e.to_string());
     ocean
-        .pack_texels(cascade, TexelLayout::DisplacementJacobian, &mut out.displacement_jacobian)
+        .pack_texels(
+            cascade,
+            TexelLayout::DisplacementJacobian,
+            &mut out.displacement_jacobian,
+        )
         .map_err(internal)?;
     ocean
         .pack_texels(cascade, TexelLayout::Normal, &mut out.normal)
@@ -164,10 +168,15 @@ impl<'a> Simulator<'a> {
                 let k = i64::from(self.sea.preroll.anchor_every);
                 let anchor = frame - frame % k;
                 let from = match self.position {
-                    Position::Block { anchor: a, frame: f } if a == anchor && f <= frame => f,
+                    Position::Block {
+                        anchor: a,
+                        frame: f,
+                    } if a == anchor && f <= frame => f,
                     _ => {
                         let start = anchor - i64::from(self.sea.preroll.frames);
-                        self.ocean.set_time(self.sea.time(start)).map_err(internal)?;
+                        self.ocean
+                            .set_time(self.sea.time(start))
+                            .map_err(internal)?;
                         self.ocean.clear_foam();
                         start
                     }
