@@ -59,6 +59,9 @@ pub struct Report {
     pub convergence: Option<LoopConvergence>,
 }
 
+/// The files of one cascade to write at a frame: (cascade, paths).
+type CascadeFiles = (usize, Vec<PathBuf>);
+
 /// One cascade of one frame, to encode.
 struct Job {
     paths: Vec<PathBuf>,
@@ -153,7 +156,7 @@ pub fn bake(args: &BakeArgs, progress: &mut dyn Progress) -> Result<Report, CliE
 
     // What to write: every cascade of every frame, less the files that exist.
     let cascades = simulator.ocean().cascades().len();
-    let mut plan: Vec<(u32, Vec<(usize, Vec<PathBuf>)>)> = Vec::new();
+    let mut plan: Vec<(u32, Vec<CascadeFiles>)> = Vec::new();
     let mut skipped = 0;
     let mut files = 0u64;
     for &frame in args.frames.frames() {

@@ -310,8 +310,8 @@ fn png_files_decode_with_the_sidecar_scales() {
                 ocean.foam(c).unwrap()[i],
                 0.5,
             );
-            for a in 0..3 {
-                check("n", signed(normal[i][a]), cascade.normal()[i][a], 1.0);
+            for (&p, &n) in normal[i].iter().zip(&cascade.normal()[i]) {
+                check("n", signed(p), n, 1.0);
             }
             check(
                 "J",
