@@ -163,4 +163,8 @@ pub struct InfoArgs {
     /// The sea and the frame times.
     #[command(flatten)]
     pub sea: SeaArgs,
+    /// For a loop: also pre-roll the foam as a bake does and print how it converged (takes
+    /// as long as simulating several loops).
+    #[arg(long)]
+    pub measure_foam: bool,
 }

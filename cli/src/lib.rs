@@ -31,7 +31,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Info(args) => {
             let sea = setup::build(&args.sea)?;
             let mut simulator = sim::Simulator::new(&sea)?;
-            if sea.looping.is_some() {
+            if sea.looping.is_some() && args.measure_foam {
                 // The loop's foam pre-roll, to report how it converged.
                 simulator.advance_to(0)?;
             }

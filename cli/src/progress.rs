@@ -42,6 +42,8 @@ impl Progress for Bar {
     fn finish(&mut self) {
         if let Some(bar) = &self.0 {
             bar.finish();
+            // The summary that follows starts on a line of its own.
+            eprintln!();
         }
     }
 }
