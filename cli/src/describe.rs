@@ -167,9 +167,34 @@ pub fn sidecar(sea: &Sea, format: Format, ocean: &OceanState, scales: &[PngScale
             "engines": engines(),
         },
     });
+    let mut value = value;
+    shorten_f32(&mut value);
     let mut text = serde_json::to_string_pretty(&value).expect("JSON of plain data");
     text.push('\n');
     text
+}
+
+/// Writes every number that is exactly an f32 (the configs' fields are f32, and a JSON value
+/// holds them as f64) with the f32's shortest digits: 0.8 rather than 0.800000011920929.
+/// Parsed as f32, those digits give the same f32 back, so the sidecar still loads as a
+/// `--config` bit for bit; a number that is not an f32 is left as it is.
+fn shorten_f32(value: &mut Value) {
+    match value {
+        Value::Number(n) => {
+            if let Some(x) = n.as_f64().filter(|_| n.is_f64()) {
+                let single = x as f32;
+                if f64::from(single) == x && single.is_finite() {
+                    let short: f64 = single.to_string().parse().expect("a float's digits");
+                    if let Some(m) = serde_json::Number::from_f64(short) {
+                        *n = m;
+                    }
+                }
+            }
+        }
+        Value::Array(items) => items.iter_mut().for_each(shorten_f32),
+        Value::Object(map) => map.values_mut().for_each(shorten_f32),
+        _ => {}
+    }
 }
 
 /// Bytes as "12.3 MiB".
