@@ -45,6 +45,11 @@ mod engines {
             let n2 = cascade.size() * cascade.size();
             // Each channel is the f16 nearest to the buffer it comes from, after this step.
             let near = |texel: f16, value: f32| texel == f16::from_f32(value);
+            assert_eq!(
+                (texels.displacement[c].len(), texels.slope[c].len()),
+                (n2, n2)
+            );
+            #[allow(clippy::needless_range_loop)] // one index into eight buffers
             for k in 0..n2 {
                 let (d, s) = (texels.displacement[c][k], texels.slope[c][k]);
                 assert!(near(d[0], cascade.displacement()[k][0]));
