@@ -32,8 +32,8 @@ pub fn create_ocean_textures(device: &wgpu::Device, ocean: &OceanState) -> Vec<[
 }
 
 /// The cascades tile the plane with period L: wrap mode repeat, bilinear. A shader samples
-/// world point (x, z) of cascade c at uv = (x, z) / L_c (texel (i, j) at its centre
-/// ((i + ½)/N, (j + ½)/N): v = 0 is row 0, z = 0).
+/// world point (x, z) of cascade c at uv = (x, z)/L_c + ½/N: texel (i, j), the water of grid
+/// point (i, j)·L/N, has its centre at ((i + ½)/N, (j + ½)/N), v = 0 at row 0 (z = 0).
 pub fn create_ocean_sampler(device: &wgpu::Device) -> wgpu::Sampler {
     device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some("ocean"),
