@@ -3,12 +3,12 @@
 //! the code between the `// guide:` markers verbatim; the root crate's test `tests/guide.rs`
 //! fails if the two drift apart.
 
+// guide: macroquad
 use macroquad::math::{Vec2, Vec3};
 use macroquad::models::{Mesh, Vertex as MqVertex};
 use macroquad::texture::Texture2D;
 use ocean_fft::{Cascade, Error, NormalMapGreen, OceanState, Vertex};
 
-// guide: macroquad
 /// macroquad draws a mesh in one draw call only if its buffers hold it: raise the capacities
 /// (the defaults are 10 000 vertices and 5 000 indices) for an N×N cascade mesh.
 pub fn window_conf(n: usize) -> macroquad::conf::Conf {

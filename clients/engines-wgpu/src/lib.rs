@@ -4,9 +4,10 @@
 //! the two drift apart.
 
 use client_glam_0_33::OceanTexels;
-use ocean_fft::{Error, OceanState};
 
 // guide: wgpu
+use ocean_fft::{Error, OceanState};
+
 /// One texture per packed layout and cascade: `[c][0]` displacement + foam, `[c][1]` slope +
 /// Jacobian + foam. Rgba16Float is filterable on every adapter; Rgba32Float is only with
 /// `Features::FLOAT32_FILTERABLE` (or read it with `textureLoad`).

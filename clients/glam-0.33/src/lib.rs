@@ -6,11 +6,11 @@
 //! The guide quotes the code between the `// guide:` markers verbatim; the root crate's test
 //! `tests/guide.rs` fails if the two drift apart.
 
+// guide: OceanTexels
 use glam::Vec3;
 use ocean_fft::half::f16;
 use ocean_fft::{Cascade, Engine, Error, OceanState, TexelLayout};
 
-// guide: OceanTexels
 /// Two RGBA16F textures per cascade, allocated once and refilled every frame:
 /// `displacement[c]` holds cascade c's `DisplacementFoam` texels (D_x, η, D_z, foam),
 /// `slope[c]` its `SlopeJacobianFoam` texels (∂y/∂x, ∂y/∂z, J, foam); N×N, row j = z.
