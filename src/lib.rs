@@ -184,3 +184,16 @@ pub use ocean::{
 };
 pub use presets::SeaState;
 pub use spectrum::{DepthFactor, Spectrum, Spreading};
+
+// docs/guide.md's Rust blocks are doc-tests when every optional feature is on (its serde block
+// needs `serde`), as CI runs them: `cargo test --release --doc --all-features`. A `rust,ignore`
+// block there is a verbatim copy of code compiled in clients/ or says why it is not compiled;
+// tests/guide.rs checks both.
+#[cfg(all(doctest, feature = "serde", feature = "half", feature = "bytemuck"))]
+#[doc = include_str!("../docs/guide.md")]
+struct GuideDocTests;
+
+// The README's example is a doc-test with or without features.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDocTests;
