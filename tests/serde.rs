@@ -5,8 +5,8 @@
 #![cfg(feature = "serde")]
 
 use ocean_fft::{
-    CascadeConfig, DepthFactor, Dispersion, FoamConfig, OceanConfig, OceanState, QueryConfig,
-    SeaState, Spectrum, Spreading,
+    CascadeConfig, DepthFactor, Dispersion, FoamConfig, Interpolation, OceanConfig, OceanState,
+    QueryConfig, SeaState, Spectrum, Spreading,
 };
 use serde_json::{json, Value};
 
@@ -400,6 +400,7 @@ fn an_infinite_band_limit_is_saved_as_null() {
         query: QueryConfig {
             max_iterations: 7,
             tolerance: 2e-3,
+            interpolation: Interpolation::Bilinear,
         },
         memory_limit: 123_456_789,
         ..OceanConfig::default()

@@ -16,8 +16,9 @@
 use std::ops::Bound;
 
 use ocean_fft::{
-    Cascade, CascadeConfig, DepthFactor, Dispersion, Error, Fft2d, Field, FoamConfig, OceanConfig,
-    OceanState, QueryConfig, SeaState, Spectrum, Spreading, SurfaceSample,
+    Cascade, CascadeConfig, DepthFactor, Dispersion, Error, Fft2d, Field, FoamConfig,
+    Interpolation, OceanConfig, OceanState, QueryConfig, SeaState, Spectrum, Spreading,
+    SurfaceSample,
 };
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
@@ -711,6 +712,7 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
         (
             mostly(1usize..40, any_index()),
             mostly(1e-6f32..1.0, any_f32()),
+            any::<bool>(),
         ),
         any_memory_limit(),
         any::<bool>(),
@@ -725,7 +727,7 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
                 band_split,
                 foam,
                 repeat_period,
-                (max_iterations, tolerance),
+                (max_iterations, tolerance, bilinear),
                 memory_limit,
                 parallel_cascades,
             )| {
@@ -748,6 +750,11 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
                     query: QueryConfig {
                         max_iterations,
                         tolerance,
+                        interpolation: if bilinear {
+                            Interpolation::Bilinear
+                        } else {
+                            Interpolation::CubicBSpline
+                        },
                     },
                     memory_limit,
                 }
