@@ -26,7 +26,13 @@ impl Rng {
 /// cubic spline's transfer function (Unser, Aldroubi & Eden 1991), and distinct frequencies
 /// are orthogonal over positions.
 fn spline_transfer(omega: f64) -> f64 {
-    let sinc = |w: f64| if w == 0.0 { 1.0 } else { (w / 2.0).sin() / (w / 2.0) };
+    let sinc = |w: f64| {
+        if w == 0.0 {
+            1.0
+        } else {
+            (w / 2.0).sin() / (w / 2.0)
+        }
+    };
     let denominator = (4.0 + 2.0 * omega.cos()) / 6.0;
     (-40..=40)
         .map(|j| {
@@ -244,7 +250,10 @@ fn random_points_have_the_statistics_of_the_grid_nodes() {
              mean-square slope {:.4} ± {:.4}; bilinear: {:.4}, {:.4}",
             heave[0], heave[1], slope[0], slope[1], heave_b[0], slope_b[0]
         );
-        assert!(4.0 * heave[1] < 0.01 && 4.0 * slope[1] < 0.03, "{name}: too few points");
+        assert!(
+            4.0 * heave[1] < 0.01 && 4.0 * slope[1] < 0.03,
+            "{name}: too few points"
+        );
         assert!((heave[0] - 1.0).abs() < 0.01, "{name}: heave {heave:?}");
         assert!((slope[0] - 1.0).abs() < 0.03, "{name}: slope {slope:?}");
         // The test has the power to see the bilinear loss.
