@@ -142,7 +142,10 @@ fn mean_level_per_choppiness(h0: &[Complex32], n: usize, dk: f64) -> f64 {
         for i in 0..n {
             let kx = f64::from(wave_index(i, n)) * dk;
             let h = h0[j * n + i];
-            sum += kx.hypot(kz) * f64::from(h.norm_sqr());
+            // In f64: |h0|² of an extreme (but accepted) spectrum can overflow f32, while
+            // λ Σ|k||h0|² stays below the square of the amplitude bound (≤ 1e30).
+            let (re, im) = (f64::from(h.re), f64::from(h.im));
+            sum += kx.hypot(kz) * (re * re + im * im);
         }
     }
     2.0 * sum

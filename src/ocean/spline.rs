@@ -87,127 +87,141 @@ impl Spline {
 
 /// The interpolation filter along both axes of an N×N periodic grid, in place.
 fn filter_2d<const C: usize>(data: &mut [[f32; C]], scratch: &mut [[f32; C]], n: usize) {
-    data.par_chunks_mut(ROWS_PER_TASK * n)
-        .for_each(|rows| rows.chunks_mut(n).for_each(filter_row));
+    data.par_chunks_mut(ROWS_PER_TASK * n).for_each(|rows| {
+        let mut groups = rows.chunks_exact_mut(INTERLEAVE * n);
+        for group in &mut groups {
+            filter_rows::<C, INTERLEAVE>(group, n);
+        }
+        for row in groups.into_remainder().chunks_mut(n) {
+            filter_rows::<C, 1>(row, n);
+        }
+    });
     filter_columns(data, scratch, n);
 }
 
-/// z^N's correction 1/(1 − z^N) of the periodic initial sums (1 to f32 precision for large
+/// Rows filtered together by [`filter_rows`]: their recursions are independent, so
+/// interleaving them hides the latency of each one's dependency chain.
+const INTERLEAVE: usize = 8;
+
+/// 1/(1 − z^N), the correction of the periodic initial sums (1 to f32 precision for large
 /// N, exact for small ones, whose sums run over the whole period).
 fn periodic_factor(n: usize) -> f32 {
     1.0 / (1.0 - POLE.powi(n.min(64) as i32))
 }
 
-/// The interpolation filter along one periodic row of values, in place.
-fn filter_row<const C: usize>(row: &mut [[f32; C]]) {
-    let n = row.len();
+/// The interpolation filter along each of the R periodic rows of N values in `group`, in
+/// place, the R recursions interleaved. The gain is applied in the anticausal pass,
+/// c'[n] = G·y[n] + z·c'[n + 1] (the same as G·c, without a pass of its own).
+fn filter_rows<const C: usize, const R: usize>(group: &mut [[f32; C]], n: usize) {
+    let mut chunks = group.chunks_exact_mut(n);
+    let rows: [&mut [[f32; C]]; R] = std::array::from_fn(|_| {
+        chunks
+            .next()
+            .expect("the group holds R rows of N values")
+    });
     let terms = n.min(INIT_TERMS);
     let factor = periodic_factor(n);
     // Causal: y[−1] = Σ_k z^k f[N − 1 − k] / (1 − z^N).
-    let mut previous = [0.0f32; C];
-    let mut weight = 1.0f32;
-    for k in 0..terms {
-        let v = row[n - 1 - k];
-        for ch in 0..C {
-            previous[ch] += weight * v[ch];
+    let mut state = [[0.0f32; C]; R];
+    for (s, row) in state.iter_mut().zip(rows.iter()) {
+        let mut weight = factor;
+        for k in 0..terms {
+            let v = row[n - 1 - k];
+            for ch in 0..C {
+                s[ch] += weight * v[ch];
+            }
+            weight *= POLE;
         }
-        weight *= POLE;
     }
-    for ch in 0..C {
-        previous[ch] *= factor;
-    }
-    for v in row.iter_mut() {
-        for ch in 0..C {
-            v[ch] += POLE * previous[ch];
+    let mut rows = rows;
+    for i in 0..n {
+        for (s, row) in state.iter_mut().zip(rows.iter_mut()) {
+            let v = &mut row[i];
+            for ch in 0..C {
+                v[ch] += POLE * s[ch];
+            }
+            *s = *v;
         }
-        previous = *v;
     }
-    // Anticausal: c[N − 1] = Σ_k z^k y[(N − 1 + k) mod N] / (1 − z^N).
-    let mut next = [0.0f32; C];
-    let mut weight = 1.0f32;
-    for k in 0..terms {
-        let v = row[(n - 1 + k) % n];
-        for ch in 0..C {
-            next[ch] += weight * v[ch];
+    // Anticausal: c'[N − 1] = G Σ_k z^k y[(N − 1 + k) mod N] / (1 − z^N).
+    for (s, row) in state.iter_mut().zip(rows.iter_mut()) {
+        *s = [0.0; C];
+        let mut weight = GAIN * factor;
+        for k in 0..terms {
+            let v = row[(n - 1 + k) % n];
+            for ch in 0..C {
+                s[ch] += weight * v[ch];
+            }
+            weight *= POLE;
         }
-        weight *= POLE;
+        row[n - 1] = *s;
     }
-    for ch in 0..C {
-        next[ch] *= factor;
-    }
-    row[n - 1] = next;
-    for v in row[..n - 1].iter_mut().rev() {
-        for ch in 0..C {
-            v[ch] += POLE * next[ch];
-        }
-        next = *v;
-    }
-    for v in row.iter_mut() {
-        for ch in 0..C {
-            v[ch] *= GAIN;
+    for i in (0..n - 1).rev() {
+        for (s, row) in state.iter_mut().zip(rows.iter_mut()) {
+            let v = &mut row[i];
+            for ch in 0..C {
+                v[ch] = GAIN * v[ch] + POLE * s[ch];
+            }
+            *s = *v;
         }
     }
 }
 
 /// The interpolation filter along z (down the columns) of an N×N grid, in place, a whole
-/// row at a time; `scratch` holds one row.
+/// row at a time, on the rows as flat f32 slices (so that it vectorises whatever C is);
+/// `scratch` holds one row. The gain is applied in the anticausal pass, as in
+/// [`filter_rows`].
 fn filter_columns<const C: usize>(data: &mut [[f32; C]], scratch: &mut [[f32; C]], n: usize) {
+    let data = data.as_flattened_mut();
+    let scratch = scratch.as_flattened_mut();
+    let width = C * n;
     let terms = n.min(INIT_TERMS);
     let factor = periodic_factor(n);
-    let row = |j: usize| j * n..(j + 1) * n;
     // Causal: the row y[−1] = Σ_k z^k f[N − 1 − k] / (1 − z^N), into the scratch row.
-    weighted_sum(data, scratch, n, (0..terms).map(|k| n - 1 - k), factor);
-    add_scaled(&mut data[row(0)], scratch);
+    weighted_sum(data, scratch, width, (0..terms).map(|k| n - 1 - k), factor);
+    recurse(&mut data[..width], scratch, 1.0);
     for j in 1..n {
-        let (done, rest) = data.split_at_mut(j * n);
-        add_scaled(&mut rest[..n], &done[(j - 1) * n..]);
+        let (done, rest) = data.split_at_mut(j * width);
+        recurse(&mut rest[..width], &done[(j - 1) * width..], 1.0);
     }
-    // Anticausal: c[N − 1] = Σ_k z^k y[(N − 1 + k) mod N] / (1 − z^N).
+    // Anticausal: c'[N − 1] = G Σ_k z^k y[(N − 1 + k) mod N] / (1 − z^N).
     weighted_sum(
         data,
         scratch,
-        n,
+        width,
         (0..terms).map(|k| (n - 1 + k) % n),
-        factor,
+        GAIN * factor,
     );
-    data[row(n - 1)].copy_from_slice(scratch);
+    data[(n - 1) * width..].copy_from_slice(scratch);
     for j in (0..n - 1).rev() {
-        let (head, tail) = data.split_at_mut((j + 1) * n);
-        add_scaled(&mut head[j * n..], &tail[..n]);
-    }
-    for v in data.iter_mut() {
-        for ch in 0..C {
-            v[ch] *= GAIN;
-        }
+        let (head, tail) = data.split_at_mut((j + 1) * width);
+        recurse(&mut head[j * width..], &tail[..width], GAIN);
     }
 }
 
-/// `out` = factor · Σ_k z^k · row(rows_k).
-fn weighted_sum<const C: usize>(
-    data: &[[f32; C]],
-    out: &mut [[f32; C]],
-    n: usize,
+/// `out` = factor · Σ_k z^k · row(rows_k), rows of `width` values.
+fn weighted_sum(
+    data: &[f32],
+    out: &mut [f32],
+    width: usize,
     rows: impl Iterator<Item = usize>,
     factor: f32,
 ) {
-    out.fill([0.0; C]);
+    out.fill(0.0);
     let mut weight = factor;
     for j in rows {
-        for (o, v) in out.iter_mut().zip(&data[j * n..(j + 1) * n]) {
-            for ch in 0..C {
-                o[ch] += weight * v[ch];
-            }
+        for (o, v) in out.iter_mut().zip(&data[j * width..(j + 1) * width]) {
+            *o += weight * v;
         }
         weight *= POLE;
     }
 }
 
-/// `row` += z · `other`, element-wise over one row.
-fn add_scaled<const C: usize>(row: &mut [[f32; C]], other: &[[f32; C]]) {
+/// `row` = `gain` · `row` + z · `other`, element-wise.
+#[inline]
+fn recurse(row: &mut [f32], other: &[f32], gain: f32) {
     for (v, o) in row.iter_mut().zip(other) {
-        for ch in 0..C {
-            v[ch] += POLE * o[ch];
-        }
+        *v = gain * *v + POLE * o;
     }
 }
 
@@ -273,3 +287,4 @@ impl SplineStencil {
         sum
     }
 }
+
