@@ -20,7 +20,9 @@ const GAIN: f32 = 1.607_695_2;
 /// Terms of the periodic initial sums (z^24 ≈ 2·10⁻¹⁴, far below f32 precision).
 const INIT_TERMS: usize = 24;
 /// Rows one parallel task of the row pass filters.
-const ROWS_PER_TASK: usize = 16;
+const ROWS_PER_TASK: usize = 32;
+/// Smallest grid whose coefficients are computed with parallel tasks.
+const PARALLEL_SIZE: usize = 256;
 
 /// The cubic B-spline coefficients of one cascade's displacement `[D_x, D_z]` and surface
 /// `[η, ∂y/∂x, ∂y/∂z]` (z rows, as the cascade's buffers), with the scratch rows of the
@@ -53,12 +55,15 @@ impl Spline {
             .saturating_add(n.saturating_mul(20))
     }
 
-    /// Recomputes the coefficients from the cascade's buffers: the two arrays in parallel,
-    /// each a copy, a row pass (row blocks in parallel) and a column pass (whole rows at a
-    /// time, so that it vectorises). Allocates nothing; the split into tasks depends only on
-    /// N, so the result does not depend on the number of threads.
+    /// Recomputes the coefficients from the cascade's buffers: each array a copy, a row pass
+    /// and a column pass (whole rows at a time, so that it vectorises). From N =
+    /// [`PARALLEL_SIZE`] on the two arrays and the row blocks run in parallel; below, the
+    /// work is too small to be worth handing to the pool. Allocates nothing; the split into
+    /// tasks depends only on N, and every value is computed the same way in any task, so
+    /// the result does not depend on the number of threads.
     pub(crate) fn compute(&mut self, cascade: &Cascade) {
         let n = self.n;
+        let parallel = n >= PARALLEL_SIZE;
         let Spline {
             displacement,
             surface,
@@ -66,36 +71,51 @@ impl Spline {
             scratch3,
             ..
         } = self;
-        rayon::join(
-            || {
-                displacement.copy_from_slice(cascade.displacement());
-                filter_2d(displacement, scratch2, n);
-            },
-            || {
-                for ((c, &eta), s) in surface
-                    .iter_mut()
-                    .zip(cascade.height())
-                    .zip(cascade.slope())
-                {
-                    *c = [eta, s[0], s[1]];
-                }
-                filter_2d(surface, scratch3, n);
-            },
-        );
+        let mut first = || {
+            displacement.copy_from_slice(cascade.displacement());
+            filter_2d(displacement, scratch2, n, parallel);
+        };
+        let mut second = || {
+            for ((c, &eta), s) in surface
+                .iter_mut()
+                .zip(cascade.height())
+                .zip(cascade.slope())
+            {
+                *c = [eta, s[0], s[1]];
+            }
+            filter_2d(surface, scratch3, n, parallel);
+        };
+        if parallel {
+            rayon::join(first, second);
+        } else {
+            first();
+            second();
+        }
     }
 }
 
-/// The interpolation filter along both axes of an N×N periodic grid, in place.
-fn filter_2d<const C: usize>(data: &mut [[f32; C]], scratch: &mut [[f32; C]], n: usize) {
-    data.par_chunks_mut(ROWS_PER_TASK * n).for_each(|rows| {
-        let mut groups = rows.chunks_exact_mut(INTERLEAVE * n);
+/// The interpolation filter along both axes of an N×N periodic grid, in place; the row
+/// blocks in parallel if `parallel`.
+fn filter_2d<const C: usize>(
+    data: &mut [[f32; C]],
+    scratch: &mut [[f32; C]],
+    n: usize,
+    parallel: bool,
+) {
+    let rows = |block: &mut [[f32; C]]| {
+        let mut groups = block.chunks_exact_mut(INTERLEAVE * n);
         for group in &mut groups {
             filter_rows::<C, INTERLEAVE>(group, n);
         }
         for row in groups.into_remainder().chunks_mut(n) {
             filter_rows::<C, 1>(row, n);
         }
-    });
+    };
+    if parallel {
+        data.par_chunks_mut(ROWS_PER_TASK * n).for_each(rows);
+    } else {
+        rows(data);
+    }
     filter_columns(data, scratch, n);
 }
 
@@ -114,11 +134,8 @@ fn periodic_factor(n: usize) -> f32 {
 /// c'[n] = G·y[n] + z·c'[n + 1] (the same as G·c, without a pass of its own).
 fn filter_rows<const C: usize, const R: usize>(group: &mut [[f32; C]], n: usize) {
     let mut chunks = group.chunks_exact_mut(n);
-    let rows: [&mut [[f32; C]]; R] = std::array::from_fn(|_| {
-        chunks
-            .next()
-            .expect("the group holds R rows of N values")
-    });
+    let rows: [&mut [[f32; C]]; R] =
+        std::array::from_fn(|_| chunks.next().expect("the group holds R rows of N values"));
     let terms = n.min(INIT_TERMS);
     let factor = periodic_factor(n);
     // Causal: y[−1] = Σ_k z^k f[N − 1 − k] / (1 − z^N).
@@ -287,4 +304,3 @@ impl SplineStencil {
         sum
     }
 }
-
