@@ -264,8 +264,8 @@ impl OceanState {
     /// The mean-level correction in metres in the summed height: the sum of every cascade's
     /// [`Cascade::mean_level_offset`], λ·2 Σ_k |k| |h0(k)|² over all of them. With it the
     /// Eulerian mean of the displaced surface is still water (y = 0) for any choppiness;
-    /// without it the sea would sit about λ ∫ k S(k) d²k lower (−4.6 cm for the default
-    /// sea at λ = 1, −33 cm for the storm preset).
+    /// without it the sea would sit about λ ∫ k S(k) d²k lower (about 4.8 cm for the
+    /// default sea at λ = 1, 34 cm for the storm preset at its λ = 1.2).
     pub fn mean_level_offset(&self) -> f32 {
         self.cascades.iter().map(Cascade::mean_level_offset).sum()
     }

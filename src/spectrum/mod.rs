@@ -67,11 +67,12 @@ pub(crate) enum Model {
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```
 ///
-/// The default spreading is [`Spreading::DonelanBanner`] for the oceanographic spectra and
-/// `Spreading::Cosine { exponent: 2.0, upwind: 1.0 }` (Tessendorf's |k̂·ŵ|²) for Phillips.
+/// The default spreading is [`Spreading::DonelanBanner`] for the oceanographic spectra,
+/// `Spreading::Cosine { exponent: 2.0, upwind: 1.0 }` (Tessendorf's |k̂·ŵ|²) for Phillips
+/// and [`Spreading::Elfouhaily`] for [`Spectrum::elfouhaily`].
 ///
 /// With the `serde` feature a spectrum serialises as its stored parameters (the model's α,
-/// ω_p and γ or amplitude, the wind, fetch, spreading, swell, blend, short-wave length,
+/// ω_p and γ, amplitude or inverse wave age, the wind, fetch, spreading, swell, blend, short-wave length,
 /// dispersion and depth factor), and deserialising re-runs the checks of the constructors and
 /// setters on every one of them: invalid data gives a deserialisation error naming the
 /// parameter, never an invalid spectrum.
