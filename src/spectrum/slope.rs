@@ -40,7 +40,7 @@ impl Spectrum {
     /// Computed as ∫ k² S(k) m(k) dk and ∫ k² S(k) (1 − m(k)) dk over the omnidirectional
     /// spectrum S(k), with m(k) = ∫ cos²θ D(ω(k), θ) dθ the share along the wind (closed
     /// forms for every spreading but Donelan–Banner, whose m is a Simpson quadrature over θ),
-    /// by composite Simpson quadrature in ln k with 200 nodes a decade. `k_max` may be +∞
+    /// by composite Simpson quadrature in ln k with 100 nodes a decade. `k_max` may be +∞
     /// (the tails above 10⁶ k_p are left out); an empty or invalid band gives zero.
     ///
     /// The grid of a cascade holds its band's share; the rest, above the finest cascade's
@@ -63,7 +63,7 @@ impl Spectrum {
         }
         let (a, b) = (lo.ln(), hi.ln());
         let decades = (b - a) / std::f64::consts::LN_10;
-        let intervals = ((decades * 200.0).ceil() as usize)
+        let intervals = ((decades * 100.0).ceil() as usize)
             .max(2)
             .next_multiple_of(2);
         let h = (b - a) / intervals as f64;
