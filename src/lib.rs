@@ -180,10 +180,11 @@ pub use gpu::{NormalMapGreen, TexelLayout, Vertex};
 pub use half;
 pub use num_complex::Complex32;
 pub use ocean::{
-    FoamConfig, Location, OceanConfig, OceanSnapshot, OceanState, QueryConfig, SurfaceSample,
+    FoamConfig, Interpolation, Location, OceanConfig, OceanSnapshot, OceanState, QueryConfig,
+    SurfaceSample,
 };
 pub use presets::SeaState;
-pub use spectrum::{DepthFactor, Spectrum, Spreading};
+pub use spectrum::{DepthFactor, SlopeVariance, Spectrum, Spreading};
 
 // docs/guide.md's Rust blocks are doc-tests when every optional feature is on (its serde block
 // needs `serde`), as CI runs them: `cargo test --release --doc --all-features`. A `rust,ignore`

@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use crate::error::{self, Error};
 use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
 use crate::grid::{self, wave_index};
-use crate::spectrum::Spectrum;
+use crate::spectrum::{SlopeVariance, Spectrum};
 
 pub(crate) use config::check_band;
 pub use config::CascadeConfig;
@@ -59,6 +59,12 @@ pub struct Cascade {
     amplitude_bound: f64,
     /// How far looping moved the frequencies (None without a repeat period).
     loop_error: Option<LoopError>,
+    /// 2 Σ |k| |h0(k)|² in m: the mean-level correction per unit choppiness.
+    mean_level: f64,
+    /// The correction in m the buffers were last computed with (λ · `mean_level`).
+    mean_level_offset: f32,
+    /// Slope variance the spectrum holds above this cascade's band (to the cut-off).
+    subgrid_slope: SlopeVariance,
     h0: Vec<Complex32>,
     /// Evolution table, transposed layout: rows are k_x index i in 0..N/2, columns k_z
     /// index j.
@@ -126,6 +132,25 @@ pub(crate) fn memory_bytes(n: usize) -> usize {
         })
 }
 
+/// 2 Σ_k |k| |h0(k)|² in m over the grid's wave vectors (h0 in FFT order, index j·N + i at
+/// k = Δk·(m(i), m(j))): the time-averaged Σ_k |k| |h̃(k, t)|², since |h̃(k)|² averages to
+/// |h0(k)|² + |h0(−k)|².
+fn mean_level_per_choppiness(h0: &[Complex32], n: usize, dk: f64) -> f64 {
+    let mut sum = 0.0;
+    for j in 0..n {
+        let kz = f64::from(wave_index(j, n)) * dk;
+        for i in 0..n {
+            let kx = f64::from(wave_index(i, n)) * dk;
+            let h = h0[j * n + i];
+            // In f64: |h0|² of an extreme (but accepted) spectrum can overflow f32, while
+            // λ Σ|k||h0|² stays below the square of the amplitude bound (≤ 1e30).
+            let (re, im) = (f64::from(h.re), f64::from(h.im));
+            sum += kx.hypot(kz) * (re * re + im * im);
+        }
+    }
+    2.0 * sum
+}
+
 /// Parallel tasks of one update, each with its own scratch: the row pairs of pass 1 and the
 /// row blocks of pass 2 at once.
 fn tasks(n: usize) -> usize {
@@ -168,6 +193,11 @@ impl Cascade {
         let loop_error =
             looping.map(|period| LoopError::new(&h0, n, dk64, spectrum.dispersion(), period));
         let kz = (0..n).map(|j| wave_index(j, n) as f32 * dk).collect();
+        let mean_level = mean_level_per_choppiness(&h0, n, dk64);
+        let nyquist = std::f64::consts::PI * n as f64 / f64::from(config.length);
+        let band_top = f64::from(config.k_max).min(nyquist);
+        let subgrid_slope =
+            spectrum.slope_variance_f64(band_top, f64::from(SlopeVariance::DEFAULT_CUTOFF));
         let rows = RowFft::new(n);
         let points = n * n;
         let mut cascade = Cascade {
@@ -178,6 +208,9 @@ impl Cascade {
             expected_variance,
             amplitude_bound,
             loop_error,
+            mean_level,
+            mean_level_offset: 0.0,
+            subgrid_slope,
             h0,
             evolution,
             kz,
@@ -289,6 +322,8 @@ impl Cascade {
         let n = self.n;
         let row_len = TRANSFORMS * n;
         let lambda = self.config.choppiness;
+        let offset = (f64::from(lambda) * self.mean_level) as f32;
+        self.mean_level_offset = offset;
         let spectral = &self.spectral;
         let rows = &self.rows;
         let s = rows.scratch_len();
@@ -327,6 +362,7 @@ impl Cascade {
                             row,
                             n,
                             lambda,
+                            offset,
                             &mut height[out.clone()],
                             &mut displacement[out.clone()],
                             &mut slope[out.clone()],
@@ -401,7 +437,34 @@ impl Cascade {
         self.expected_variance
     }
 
-    /// Height η in metres at every grid point (undisplaced positions).
+    /// The mean-level correction in metres that the last update added to every height:
+    /// λ · 2 Σ_k |k| |h0(k)|², the time average of λ Σ_k |k| |h̃(k, t)|².
+    ///
+    /// Horizontal displacement moves water toward the crests (J < 1 there), so without it
+    /// the Eulerian mean of the displaced surface, the mean of η·J over the undisplaced grid,
+    /// would sit λ ∫ k S(k) d²k below still water (Nouguier, Guérin & Chapron 2009; the
+    /// mean-level term of Guérin et al.'s 2019 improved choppy wave model): to first order
+    /// ⟨η J⟩ = λ⟨η ∇·D⟩ = −λ Σ_k |k| |h̃(k)|², and the second-order term of J adds a third
+    /// moment of a Gaussian field, zero on average. Adding this constant to η puts the
+    /// mean water level back at y = 0 for any λ; it is 0 at λ = 0. The height buffer, the
+    /// texels and vertices packed from it and every world query include it. See
+    /// docs/theory.md.
+    pub fn mean_level_offset(&self) -> f32 {
+        self.mean_level_offset
+    }
+
+    /// Slope variance along and across the wind that the spectrum holds between the top of
+    /// this cascade's band (min(`k_max`, πN/L)) and [`SlopeVariance::DEFAULT_CUTOFF`]: the
+    /// slopes too short for this grid, computed once at construction by
+    /// [`Spectrum::slope_variance`]. A renderer that draws this cascade and the larger ones
+    /// adds it as BRDF roughness; it is the alpha channel of
+    /// [`TexelLayout::Normal`](crate::TexelLayout::Normal).
+    pub fn subgrid_slope_variance(&self) -> SlopeVariance {
+        self.subgrid_slope
+    }
+
+    /// Height η in metres at every grid point (undisplaced positions), including the
+    /// [mean-level correction](Self::mean_level_offset).
     pub fn height(&self) -> &[f32] {
         &self.height
     }

@@ -1,11 +1,13 @@
-//! World-space queries on an [`OceanState`]: periodic bilinear sampling of every cascade,
-//! summed, and the inversion of the horizontal displacement for the water height at a point.
+//! World-space queries on an [`OceanState`]: periodic cubic B-spline sampling of every
+//! cascade's height, displacement and slope (bilinear for the foam), summed, and the
+//! inversion of the horizontal displacement for the water height at a point.
 
 use glam::{Vec2, Vec3};
 use std::ops::Bound::{Excluded, Included};
 
 use rayon::prelude::*;
 
+use super::spline::SplineStencil;
 use super::OceanState;
 use crate::cascade::Cascade;
 use crate::error::{self, Error};
@@ -63,22 +65,27 @@ pub struct Location {
     pub converged: bool,
 }
 
-/// Bilinear weights and the four sample indices of world point (x, z) on a periodic N×N grid
-/// of side `length`. The wrap is done in f64, so a point a million metres out keeps the grid's
-/// sub-millimetre resolution.
+/// Bilinear weights and the four sample indices of a grid cell on a periodic N×N grid (for
+/// the foam).
 #[derive(Debug, Clone, Copy)]
 struct Stencil {
     index: [usize; 4],
     weight: [f32; 4],
 }
 
+/// The grid cell (ix, iz) of world point (x, z) on a periodic N×N grid of side `length`, and
+/// the fractions (fx, fz) in [0, 1] of the way across it, wrapped in f64.
+fn cell(x: f64, z: f64, length: f64, n: usize) -> (usize, f32, usize, f32) {
+    let cells = n as f64 / length;
+    let gx = x.rem_euclid(length) * cells;
+    let gz = z.rem_euclid(length) * cells;
+    let (ix, fx) = split(gx, n);
+    let (iz, fz) = split(gz, n);
+    (ix, fx, iz, fz)
+}
+
 impl Stencil {
-    fn new(x: f64, z: f64, length: f64, n: usize) -> Stencil {
-        let cells = n as f64 / length;
-        let gx = x.rem_euclid(length) * cells;
-        let gz = z.rem_euclid(length) * cells;
-        let (ix, fx) = split(gx, n);
-        let (iz, fz) = split(gz, n);
+    fn new((ix, fx, iz, fz): (usize, f32, usize, f32), n: usize) -> Stencil {
         let ix1 = (ix + 1) % n;
         let iz1 = (iz + 1) % n;
         Stencil {
@@ -123,14 +130,26 @@ fn check_point(x: f64, z: f64) -> Result<(), Error> {
     Ok(())
 }
 
-fn stencil_of(cascade: &Cascade, x: f64, z: f64) -> Stencil {
-    Stencil::new(x, z, f64::from(cascade.length()), cascade.size())
+/// The cell of (x, z) on `cascade`'s grid.
+#[inline]
+fn cell_of(cascade: &Cascade, x: f64, z: f64) -> (usize, f32, usize, f32) {
+    cell(x, z, f64::from(cascade.length()), cascade.size())
+}
+
+/// The cubic B-spline stencil of a cell on an N×N grid.
+#[inline]
+fn spline_of((ix, fx, iz, fz): (usize, f32, usize, f32), n: usize) -> SplineStencil {
+    SplineStencil::new(ix, fx, iz, fz, n)
 }
 
 impl OceanState {
     /// The surface at the undisplaced world point (`x`, `z`) in metres (any finite
-    /// coordinates; every cascade wraps periodically): each cascade sampled bilinearly and
-    /// summed.
+    /// coordinates; every cascade wraps periodically): each cascade's height, displacement
+    /// and slope interpolated by a cubic B-spline through its grid values (exact at the grid
+    /// points, smooth between them, with the same statistics wherever the point lies in a
+    /// cell; see docs/theory.md), its foam bilinearly, and summed. With
+    /// [`Interpolation::Bilinear`](crate::Interpolation::Bilinear) every field is
+    /// bilinear.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
@@ -173,13 +192,25 @@ impl OceanState {
         let (mut height, mut displacement, mut slope) = (0.0f32, Vec2::ZERO, Vec2::ZERO);
         let mut clear = 1.0f32;
         let cascades = &self.cascades[range.clone()];
+        // Empty with bilinear queries.
+        let splines = self.splines.get(range.clone()).unwrap_or_default();
         let foams = &self.foam[range];
-        for (cascade, foam) in cascades.iter().zip(foams) {
-            let s = stencil_of(cascade, x, z);
-            height += s.scalar(cascade.height());
-            displacement += s.vector(cascade.displacement());
-            slope += s.vector(cascade.slope());
-            clear *= 1.0 - s.scalar(foam);
+        for (c, (cascade, foam)) in cascades.iter().zip(foams).enumerate() {
+            let n = cascade.size();
+            let at = cell_of(cascade, x, z);
+            let bilinear = Stencil::new(at, n);
+            if let Some(spline) = splines.get(c) {
+                let s = spline_of(at, n);
+                let [eta, sx, sz] = s.apply(&spline.surface);
+                height += eta;
+                displacement += Vec2::from_array(s.apply(&spline.displacement));
+                slope += Vec2::new(sx, sz);
+            } else {
+                height += bilinear.scalar(cascade.height());
+                displacement += bilinear.vector(cascade.displacement());
+                slope += bilinear.vector(cascade.slope());
+            }
+            clear *= 1.0 - bilinear.scalar(foam);
         }
         SurfaceSample {
             height,
@@ -192,9 +223,23 @@ impl OceanState {
 
     /// Summed horizontal displacement at the undisplaced point, in metres.
     fn displacement_at(&self, x: f64, z: f64) -> Vec2 {
+        if self.splines.is_empty() {
+            return self
+                .cascades
+                .iter()
+                .map(|cascade| {
+                    Stencil::new(cell_of(cascade, x, z), cascade.size())
+                        .vector(cascade.displacement())
+                })
+                .sum();
+        }
         self.cascades
             .iter()
-            .map(|cascade| stencil_of(cascade, x, z).vector(cascade.displacement()))
+            .zip(&self.splines)
+            .map(|(cascade, spline)| {
+                let s = spline_of(cell_of(cascade, x, z), cascade.size());
+                Vec2::from_array(s.apply(&spline.displacement))
+            })
             .sum()
     }
 

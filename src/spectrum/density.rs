@@ -1,5 +1,6 @@
 //! Evaluation of a [`Spectrum`]: S(ω), D(ω, θ) and S(k), infallible and NaN-free.
 
+use super::elfouhaily;
 use super::omega;
 use super::spreading::SpreadingParams;
 use super::{wrap_angle, DepthFactor, Model, Spectrum};
@@ -20,14 +21,14 @@ impl Spectrum {
         }
         match self.model {
             Model::Jonswap { .. } => self.jonswap_shape(omega) * self.depth_factor_at(omega, None),
-            Model::Phillips { .. } => {
+            Model::Phillips { .. } | Model::Elfouhaily { .. } => {
                 // S(ω) = S(k) dk/dω with k = k(ω) of this spectrum's dispersion.
                 let k = self.dispersion.k_from_omega_f64(omega);
                 let group = self.dispersion.d_omega_dk_f64(k);
                 if !(group > 0.0 && group.is_finite()) {
                     return 0.0;
                 }
-                self.phillips_omni(k) / group
+                self.k_model_omni(k) / group
             }
         }
     }
@@ -63,14 +64,18 @@ impl Spectrum {
                 f64::from(peak_omega),
                 f64::from(gamma),
             ),
-            Model::Phillips { .. } => 0.0,
+            _ => 0.0,
         }
     }
 
-    fn phillips_omni(&self, k: f64) -> f64 {
+    /// The omnidirectional S(k) of the models defined on k (0 for JONSWAP).
+    fn k_model_omni(&self, k: f64) -> f64 {
         match self.model {
             Model::Phillips { amplitude } => {
                 omega::phillips_omni(k, f64::from(amplitude), self.wind_length())
+            }
+            Model::Elfouhaily { inverse_wave_age } => {
+                elfouhaily::omni(k, f64::from(self.wind_speed), f64::from(inverse_wave_age))
             }
             Model::Jonswap { .. } => 0.0,
         }
@@ -116,7 +121,7 @@ impl Spectrum {
         }
         let omega = self.dispersion.omega_f64(k);
         let theta = wrap_angle(kz.atan2(kx) - f64::from(self.wind_direction));
-        omni * spreading.evaluate(omega, theta) / k
+        omni * spreading.evaluate_at(omega, Some(k), theta) / k
     }
 
     /// Omnidirectional wave-number spectrum ∫ S(k) k dθ in m³ at |k| = `k`, with the fade.
@@ -136,7 +141,7 @@ impl Spectrum {
                 let group = self.dispersion.d_omega_dk_f64(k);
                 self.jonswap_shape(omega) * self.depth_factor_at(omega, Some(k)) * group
             }
-            Model::Phillips { .. } => self.phillips_omni(k),
+            Model::Phillips { .. } | Model::Elfouhaily { .. } => self.k_model_omni(k),
         };
         value * fade
     }

@@ -5,6 +5,7 @@ use std::ops::Bound::{Excluded, Included};
 
 use crate::error::{self, Error};
 
+use super::elfouhaily;
 use super::omega::G;
 
 /// Directional spreading D(ω, θ) in 1/rad: how a frequency's energy is shared among the
@@ -48,6 +49,15 @@ pub enum Spreading {
     DonelanBanner,
     /// Energy in every direction alike: 1/(2π).
     Flat,
+    /// Elfouhaily et al.'s (1997) centrosymmetric spreading (1 + Δ(k) cos 2θ)/(2π), with
+    /// Δ(k) = tanh(ln 2/4 + 4 (c/c_p)^2.5 + 0.13 (u*/c_m) (c_m/c)^2.5): c(k) the phase speed
+    /// of ω² = g k (1 + (k/k_m)²), k_m = 370 rad/m, c_m = 0.23 m/s, c_p that of the peak and
+    /// u* the friction velocity of the wind (Wu's 1982 drag law). Nearly cos²θ/π at the peak
+    /// (Δ → 1), broadening toward the short gravity waves and narrowing again near k_m. The
+    /// default of [`Spectrum::elfouhaily`](crate::Spectrum::elfouhaily); usable with any
+    /// spectrum (k is taken from ω under that dispersion). Like the paper's, it puts equal
+    /// energy upwind and downwind.
+    Elfouhaily,
     /// (2/π) cos²θ for |θ| < π/2 and 0 upwind.
     Cos2,
     /// |cos θ|^p with upwind waves (|θ| > π/2) scaled by `upwind`: Tessendorf's (2001) Phillips
@@ -128,15 +138,75 @@ pub(crate) struct SpreadingParams {
 impl SpreadingParams {
     /// D(ω, θ) in 1/rad, θ relative to the wind and already wrapped to [−π, π].
     pub(crate) fn evaluate(&self, omega: f64, theta: f64) -> f64 {
+        self.evaluate_at(omega, None, theta)
+    }
+
+    /// D at ω and, when known, the wave number `k` of ω (the Elfouhaily spreading is a
+    /// function of k; without it k is solved from ω under its own dispersion).
+    pub(crate) fn evaluate_at(&self, omega: f64, k: Option<f64>, theta: f64) -> f64 {
         let flat = 1.0 / (2.0 * PI);
         if self.spread_blend == 0.0 {
             return flat;
         }
-        let d = self.shaped(omega, theta);
+        let d = self.shaped(omega, k, theta);
         flat + self.spread_blend * (d - flat)
     }
 
-    fn shaped(&self, omega: f64, theta: f64) -> f64 {
+    /// The Elfouhaily Δ at ω (or at `k` when given).
+    fn elfouhaily_delta(&self, omega: f64, k: Option<f64>) -> f64 {
+        let k = k.unwrap_or_else(|| elfouhaily::wave_number(omega));
+        let k_p = elfouhaily::wave_number(self.peak_omega);
+        elfouhaily::delta(k, k_p, self.wind_speed)
+    }
+
+    /// ∫_{−π}^{π} cos²θ D(ω, θ) dθ: the share of a frequency's slope variance that lies
+    /// along the wind (the rest, 1 − this, lies across it). Closed forms where they exist
+    /// (cos-2s: E[cos 2θ] = s(s − 1)/((s + 1)(s + 2)); |cos θ|^p: (p + 1)/(p + 2) on either
+    /// lobe; Elfouhaily: ½ + Δ/4; flat: ½), composite Simpson over θ for Donelan–Banner.
+    pub(crate) fn cos2_moment(&self, omega: f64, k: Option<f64>) -> f64 {
+        let flat = 0.5;
+        if self.spread_blend == 0.0 {
+            return flat;
+        }
+        let shaped = self.shaped_cos2_moment(omega, k);
+        flat + self.spread_blend * (shaped - flat)
+    }
+
+    fn shaped_cos2_moment(&self, omega: f64, k: Option<f64>) -> f64 {
+        if omega.is_nan() || omega <= 0.0 {
+            return 0.5;
+        }
+        if let Some(s) = self
+            .spreading
+            .cos_2s_exponent(omega, self.peak_omega, self.wind_speed)
+        {
+            let s = s + 16.0 * (self.peak_omega / omega).tanh() * self.swell * self.swell;
+            // E[cos 2θ] = Γ(s+1)² / (Γ(s−1)Γ(s+3)) = s(s − 1)/((s + 1)(s + 2)).
+            let cos_2theta = s * (s - 1.0) / ((s + 1.0) * (s + 2.0));
+            return 0.5 * (1.0 + cos_2theta);
+        }
+        match self.spreading {
+            Spreading::DonelanBanner => {
+                // Even in θ: twice the integral over [0, π], Simpson with 64 intervals
+                // (h = π/64; with β ≤ 2.61 the fourth derivative of cos²θ sech²(βθ) stays
+                // below ~10³, so the error h⁴/180·π·max|f⁗| is below 1e-4).
+                let r = omega / self.peak_omega;
+                simpson(0.0, PI, 64, |theta| {
+                    let c = theta.cos();
+                    2.0 * c * c * donelan_banner(r, theta)
+                })
+            }
+            Spreading::Cos2 => 0.75,
+            Spreading::Cosine { exponent, .. } => {
+                let p = f64::from(exponent);
+                (p + 1.0) / (p + 2.0)
+            }
+            Spreading::Elfouhaily => 0.5 + 0.25 * self.elfouhaily_delta(omega, k),
+            _ => 0.5,
+        }
+    }
+
+    fn shaped(&self, omega: f64, k: Option<f64>, theta: f64) -> f64 {
         if omega.is_nan() || omega <= 0.0 {
             return 1.0 / (2.0 * PI);
         }
@@ -161,9 +231,23 @@ impl SpreadingParams {
             Spreading::Cosine { exponent, upwind } => {
                 cosine_power(f64::from(exponent), f64::from(upwind), theta)
             }
+            Spreading::Elfouhaily => {
+                (1.0 + self.elfouhaily_delta(omega, k) * (2.0 * theta).cos()) / (2.0 * PI)
+            }
             _ => 1.0 / (2.0 * PI),
         }
     }
+}
+
+/// Composite Simpson rule of `f` over [a, b] with `intervals` (even) intervals.
+pub(crate) fn simpson(a: f64, b: f64, intervals: usize, f: impl Fn(f64) -> f64) -> f64 {
+    let h = (b - a) / intervals as f64;
+    let mut sum = f(a) + f(b);
+    for i in 1..intervals {
+        let weight = if i % 2 == 1 { 4.0 } else { 2.0 };
+        sum += weight * f(a + i as f64 * h);
+    }
+    sum * h / 3.0
 }
 
 /// Normalisation Q(s) of the cos-2s spreading, computed exactly with log-gamma:
