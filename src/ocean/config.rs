@@ -122,9 +122,10 @@ pub enum Interpolation {
     /// grid points, C² between them, and its statistics hardly depend on where a point lies
     /// in a cell: averaged over positions it keeps 97 % of the variance of a wave with 4
     /// grid points per wavelength (bilinear keeps 67 %). 16 taps per cascade and field, and
-    /// a prefilter of the height, displacement and slope buffers on every update (about
-    /// 0.4 ms per 256² cascade on one core, a third of the cascade's own update; see the
-    /// guide's performance section). The default.
+    /// a prefilter of the height, displacement and slope buffers, computed by the first
+    /// query after each update (about 0.4 ms per 256² cascade on one core, a third of the
+    /// cascade's own update; a step that is never queried does not pay it; see the guide's
+    /// performance section). The default.
     #[default]
     CubicBSpline,
     /// Bilinear between the four surrounding grid points: the cheapest query and no work on

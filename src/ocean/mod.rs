@@ -14,7 +14,7 @@ use std::ops::Bound::Included;
 use crate::cascade::{check_time, Cascade, LoopError};
 use crate::error::{self, Error};
 use crate::spectrum::{SlopeVariance, Spectrum};
-use spline::Spline;
+use spline::{QuerySplines, Spline};
 
 pub use config::{Interpolation, OceanConfig, QueryConfig};
 pub use foam::FoamConfig;
@@ -43,9 +43,9 @@ pub struct OceanState {
     pub(crate) config: OceanConfig,
     pub(crate) cascades: Vec<Cascade>,
     pub(crate) foam: Vec<Vec<f32>>,
-    /// Cubic B-spline coefficients of each cascade's fields for the world queries,
-    /// recomputed with every update (none with [`Interpolation::Bilinear`]).
-    pub(crate) splines: Vec<Spline>,
+    /// Cubic B-spline coefficients of each cascade's fields for the world queries, computed
+    /// on the first query after an update (none with [`Interpolation::Bilinear`]).
+    pub(crate) splines: QuerySplines,
     pub(crate) time: f64,
     /// The choppiness the cascades' buffers were last computed with (a new choppiness takes
     /// effect at the next update).
@@ -73,14 +73,13 @@ impl OceanState {
             .map(|c| error::try_vec(c.size() * c.size(), 0.0))
             .collect::<Result<Vec<_>, _>>()?;
         let cubic = config.query.interpolation == Interpolation::CubicBSpline;
-        let mut splines = cascades
-            .iter()
-            .filter(|_| cubic)
-            .map(|c| Spline::new(c.size()))
-            .collect::<Result<Vec<_>, _>>()?;
-        for (spline, cascade) in splines.iter_mut().zip(&cascades) {
-            spline.compute(cascade);
-        }
+        let splines = QuerySplines::new(
+            cascades
+                .iter()
+                .filter(|_| cubic)
+                .map(|c| Spline::new(c.size()))
+                .collect::<Result<Vec<_>, _>>()?,
+        );
         Ok(OceanState {
             spectrum,
             applied_choppiness: config.choppiness,
@@ -171,28 +170,16 @@ impl OceanState {
         }
     }
 
-    /// Updates every cascade to a time already checked (so none can fail), and the spline
-    /// coefficients of the queries from each (see docs/theory.md for their cost).
+    /// Updates every cascade to a time already checked (so none can fail); the spline
+    /// coefficients of the queries become stale, to be recomputed by the next query.
     fn update_cascades(&mut self, t: f64) {
         self.applied_choppiness = self.config.choppiness;
-        let update = |cascade: &mut Cascade, spline: Option<&mut Spline>| {
-            cascade.update_checked(t);
-            if let Some(spline) = spline {
-                spline.compute(cascade);
-            }
-        };
-        let (cascades, splines) = (&mut self.cascades, &mut self.splines);
-        match (self.config.parallel_cascades, splines.is_empty()) {
-            (true, true) => cascades.par_iter_mut().for_each(|c| update(c, None)),
-            (true, false) => cascades
-                .par_iter_mut()
-                .zip(splines)
-                .for_each(|(c, s)| update(c, Some(s))),
-            (false, true) => cascades.iter_mut().for_each(|c| update(c, None)),
-            (false, false) => cascades
-                .iter_mut()
-                .zip(splines)
-                .for_each(|(c, s)| update(c, Some(s))),
+        self.splines.invalidate();
+        let update = |cascade: &mut Cascade| cascade.update_checked(t);
+        if self.config.parallel_cascades {
+            self.cascades.par_iter_mut().for_each(update);
+        } else {
+            self.cascades.iter_mut().for_each(update);
         }
     }
 

@@ -7,7 +7,7 @@ use std::ops::Bound::{Excluded, Included};
 
 use rayon::prelude::*;
 
-use super::spline::SplineStencil;
+use super::spline::{Spline, SplineStencil};
 use super::OceanState;
 use crate::cascade::Cascade;
 use crate::error::{self, Error};
@@ -155,11 +155,17 @@ impl OceanState {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn sample(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
-        Ok(self.sample_unchecked(x, z))
+        Ok(self.sample_unchecked(x, z, &self.fresh_splines()))
     }
 
-    fn sample_unchecked(&self, x: f64, z: f64) -> SurfaceSample {
-        self.sample_range(x, z, 0..self.cascades.len())
+    /// The spline coefficients the queries need, fresh (computed now if the last update made
+    /// them stale).
+    fn fresh_splines(&self) -> super::spline::FreshSplines<'_> {
+        self.splines.fresh(&self.cascades)
+    }
+
+    fn sample_unchecked(&self, x: f64, z: f64, splines: &[Spline]) -> SurfaceSample {
+        self.sample_range(x, z, 0..self.cascades.len(), splines)
     }
 
     /// [`OceanState::sample`] summed over the cascades in `cascades` only (indices into
@@ -185,15 +191,21 @@ impl OceanState {
                 max: self.cascades.len(),
             });
         }
-        Ok(self.sample_range(x, z, cascades))
+        Ok(self.sample_range(x, z, cascades, &self.fresh_splines()))
     }
 
-    fn sample_range(&self, x: f64, z: f64, range: std::ops::Range<usize>) -> SurfaceSample {
+    fn sample_range(
+        &self,
+        x: f64,
+        z: f64,
+        range: std::ops::Range<usize>,
+        splines: &[Spline],
+    ) -> SurfaceSample {
         let (mut height, mut displacement, mut slope) = (0.0f32, Vec2::ZERO, Vec2::ZERO);
         let mut clear = 1.0f32;
         let cascades = &self.cascades[range.clone()];
         // Empty with bilinear queries.
-        let splines = self.splines.get(range.clone()).unwrap_or_default();
+        let splines = splines.get(range.clone()).unwrap_or_default();
         let foams = &self.foam[range];
         for (c, (cascade, foam)) in cascades.iter().zip(foams).enumerate() {
             let n = cascade.size();
@@ -222,8 +234,8 @@ impl OceanState {
     }
 
     /// Summed horizontal displacement at the undisplaced point, in metres.
-    fn displacement_at(&self, x: f64, z: f64) -> Vec2 {
-        if self.splines.is_empty() {
+    fn displacement_at(&self, x: f64, z: f64, splines: &[Spline]) -> Vec2 {
+        if splines.is_empty() {
             return self
                 .cascades
                 .iter()
@@ -235,7 +247,7 @@ impl OceanState {
         }
         self.cascades
             .iter()
-            .zip(&self.splines)
+            .zip(splines)
             .map(|(cascade, spline)| {
                 let s = spline_of(cell_of(cascade, x, z), cascade.size());
                 Vec2::from_array(s.apply(&spline.displacement))
@@ -269,12 +281,12 @@ impl OceanState {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn locate(&self, x: f64, z: f64) -> Result<Location, Error> {
         check_point(x, z)?;
-        Ok(self.locate_unchecked(x, z))
+        Ok(self.locate_unchecked(x, z, &self.fresh_splines()))
     }
 
-    fn locate_unchecked(&self, x: f64, z: f64) -> Location {
+    fn locate_unchecked(&self, x: f64, z: f64, splines: &[Spline]) -> Location {
         let query = self.config.query;
-        let mut d = self.displacement_at(x, z);
+        let mut d = self.displacement_at(x, z, splines);
         let mut x0 = [x - f64::from(d.x), z - f64::from(d.y)];
         let mut best = Location {
             undisplaced: x0,
@@ -289,7 +301,7 @@ impl OceanState {
         let mut omega = 1.0;
         let mut previous = f32::INFINITY;
         for iteration in 1..=query.max_iterations {
-            d = self.displacement_at(x0[0], x0[1]);
+            d = self.displacement_at(x0[0], x0[1], splines);
             let landed = [x0[0] + f64::from(d.x), x0[1] + f64::from(d.y)];
             let residual = [x - landed[0], z - landed[1]];
             let miss = residual[0].hypot(residual[1]) as f32;
@@ -326,8 +338,9 @@ impl OceanState {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn surface_at(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
-        let x0 = self.locate_unchecked(x, z).undisplaced;
-        Ok(self.sample_unchecked(x0[0], x0[1]))
+        let splines = self.fresh_splines();
+        let x0 = self.locate_unchecked(x, z, &splines).undisplaced;
+        Ok(self.sample_unchecked(x0[0], x0[1], &splines))
     }
 
     /// Water height y in metres at world point (`x`, `z`), after horizontal displacement —
@@ -348,9 +361,10 @@ impl OceanState {
     /// for a NaN or infinite coordinate. Nothing is written then.
     pub fn heights_at(&self, points: &[[f64; 2]], out: &mut [f32]) -> Result<(), Error> {
         check_batch(points, out.len())?;
+        let splines = self.fresh_splines();
         for_each_point(points, out, |[x, z]| {
-            let x0 = self.locate_unchecked(x, z).undisplaced;
-            self.sample_unchecked(x0[0], x0[1]).height
+            let x0 = self.locate_unchecked(x, z, &splines).undisplaced;
+            self.sample_unchecked(x0[0], x0[1], &splines).height
         });
         Ok(())
     }
@@ -362,9 +376,10 @@ impl OceanState {
     /// As [`OceanState::heights_at`].
     pub fn surfaces_at(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
+        let splines = self.fresh_splines();
         for_each_point(points, out, |[x, z]| {
-            let x0 = self.locate_unchecked(x, z).undisplaced;
-            self.sample_unchecked(x0[0], x0[1])
+            let x0 = self.locate_unchecked(x, z, &splines).undisplaced;
+            self.sample_unchecked(x0[0], x0[1], &splines)
         });
         Ok(())
     }
@@ -376,7 +391,8 @@ impl OceanState {
     /// As [`OceanState::heights_at`].
     pub fn sample_many(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
-        for_each_point(points, out, |[x, z]| self.sample_unchecked(x, z));
+        let splines = self.fresh_splines();
+        for_each_point(points, out, |[x, z]| self.sample_unchecked(x, z, &splines));
         Ok(())
     }
 
@@ -433,12 +449,14 @@ impl OceanState {
             max: usize::MAX / columns,
         })?;
         error::length("out", out.len(), len)?;
+        let splines = self.fresh_splines();
+        let splines: &[Spline] = &splines;
         out.par_chunks_mut(columns)
             .enumerate()
             .for_each(|(r, row)| {
                 let z = origin[1] + r as f64 * spacing;
                 for (c, sample) in row.iter_mut().enumerate() {
-                    *sample = self.sample_unchecked(origin[0] + c as f64 * spacing, z);
+                    *sample = self.sample_unchecked(origin[0] + c as f64 * spacing, z, splines);
                 }
             });
         Ok(())

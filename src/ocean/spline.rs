@@ -8,6 +8,8 @@
 //! c[n] = y[n] + z·c[n+1], and the gain −6z, each pass started from its exact periodic
 //! initial value (a geometric sum over the period; terms beyond z²⁴ ≈ 2·10⁻¹⁴ dropped).
 
+use std::sync::{PoisonError, RwLock, RwLockReadGuard};
+
 use rayon::prelude::*;
 
 use crate::cascade::Cascade;
@@ -302,5 +304,89 @@ impl SplineStencil {
             }
         }
         sum
+    }
+}
+
+/// The spline coefficients of every cascade for the world queries, computed on the first query
+/// after an update rather than in the step: a step whose ocean is never queried (a game that
+/// only draws the buffers, a bake) does not pay for them, and one that is queried pays once.
+///
+/// Queries take `&self` and may run on many threads at once, so the coefficients sit behind a
+/// read–write lock: a query takes the read lock (uncontended, a few nanoseconds); the first
+/// one after an update finds them stale, takes the write lock and computes them (any
+/// concurrent query waits for it). The computation does not depend on which thread does it,
+/// so the results are the same bits however the queries are scheduled.
+#[derive(Debug)]
+pub(crate) struct QuerySplines {
+    state: RwLock<SplineState>,
+}
+
+#[derive(Debug, Clone)]
+struct SplineState {
+    /// Whether `splines` hold the coefficients of the cascades' current buffers.
+    fresh: bool,
+    /// One per cascade; empty with bilinear queries.
+    splines: Vec<Spline>,
+}
+
+/// Read access to coefficients that are fresh: the cascades' splines, largest first (empty
+/// with bilinear queries).
+pub(crate) struct FreshSplines<'a>(RwLockReadGuard<'a, SplineState>);
+
+impl std::ops::Deref for FreshSplines<'_> {
+    type Target = [Spline];
+
+    fn deref(&self) -> &[Spline] {
+        &self.0.splines
+    }
+}
+
+impl QuerySplines {
+    /// Holds `splines` (one per cascade, or none), stale until the first query.
+    pub(crate) fn new(splines: Vec<Spline>) -> Self {
+        QuerySplines {
+            state: RwLock::new(SplineState {
+                fresh: false,
+                splines,
+            }),
+        }
+    }
+
+    /// Marks the coefficients stale after the cascades changed (no locking: `&mut self`).
+    pub(crate) fn invalidate(&mut self) {
+        let state = self.state.get_mut().unwrap_or_else(PoisonError::into_inner);
+        state.fresh = false;
+    }
+
+    /// The coefficients of `cascades` as their buffers are now, computing them first if an
+    /// update made them stale. Allocates nothing.
+    pub(crate) fn fresh(&self, cascades: &[Cascade]) -> FreshSplines<'_> {
+        {
+            let state = self.state.read().unwrap_or_else(PoisonError::into_inner);
+            if state.fresh || state.splines.is_empty() {
+                return FreshSplines(state);
+            }
+        }
+        {
+            let mut state = self.state.write().unwrap_or_else(PoisonError::into_inner);
+            if !state.fresh {
+                state
+                    .splines
+                    .par_iter_mut()
+                    .zip(cascades)
+                    .for_each(|(spline, cascade)| spline.compute(cascade));
+                state.fresh = true;
+            }
+        }
+        FreshSplines(self.state.read().unwrap_or_else(PoisonError::into_inner))
+    }
+}
+
+impl Clone for QuerySplines {
+    fn clone(&self) -> Self {
+        let state = self.state.read().unwrap_or_else(PoisonError::into_inner);
+        QuerySplines {
+            state: RwLock::new(state.clone()),
+        }
     }
 }
