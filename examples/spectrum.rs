@@ -1,167 +1,230 @@
-//! Plots the frequency spectrum S(ω) of a few sea states and the directional spreading D(θ) at
-//! the peak for each spreading function into `out/spectrum.png`, and prints each sea state's
+//! Plots the frequency spectra and the directional spreading functions, and prints each preset's
 //! significant wave height and peak period.
+//!
+//! - `out/spectrum.png`: S(ω) in m²·s/rad of every preset in `SeaState::ALL` against the
+//!   angular frequency ω in rad/s, both axes logarithmic (the presets' spectra span six
+//!   decades; on a linear scale the calm ones would be flat lines near zero), with the ω⁻⁵
+//!   slope of the Phillips saturation range for reference;
+//! - `out/spreading.png`: D(ω_p, θ) in 1/rad at the peak frequency of
+//!   `Spectrum::jonswap(10.0, 100_000.0)` for each spreading function, against the angle θ from
+//!   the wind direction in degrees (each integrates to 1 over the circle).
+//!
+//! Options: `--width PIXELS` and `--height PIXELS` of both plots (default 900 × 560).
 //!
 //! Run with `cargo run --release -p ocean-fft-examples --example spectrum`.
 
 mod common;
 
 use std::f32::consts::PI;
-use std::path::Path;
 
-use ocean_fft::{Spectrum, Spreading};
+use ocean_fft::{SeaState, Spectrum, Spreading};
+use plotters::prelude::*;
 
-const WIDTH: usize = 1200;
-const HEIGHT: usize = 500;
-const PANEL: usize = 600;
-const MARGIN: usize = 40;
-const COLORS: [[u8; 3]; 6] = [
-    [31, 119, 180],
-    [255, 127, 14],
-    [44, 160, 44],
-    [214, 39, 40],
-    [148, 103, 189],
-    [23, 190, 207],
-];
+use common::plot::{draw_png, FONT, SERIES};
+use common::{out_dir, Args, Result};
 
-struct Canvas {
-    pixels: Vec<u8>,
-}
+fn main() -> Result<()> {
+    let args = Args::parse(&["width", "height"])?;
+    let width: u32 = args.get("width", 900)?;
+    let height: u32 = args.get("height", 560)?;
+    let dir = out_dir("")?;
+    let text = (f64::from(height) / 36.0).clamp(11.0, 18.0);
 
-impl Canvas {
-    fn new() -> Self {
-        Canvas {
-            pixels: vec![255; WIDTH * HEIGHT * 3],
-        }
-    }
-
-    fn dot(&mut self, x: i64, y: i64, color: [u8; 3]) {
-        for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-            let (px, py) = (x + dx, y + dy);
-            if px >= 0 && py >= 0 && (px as usize) < WIDTH && (py as usize) < HEIGHT {
-                let i = (py as usize * WIDTH + px as usize) * 3;
-                self.pixels[i..i + 3].copy_from_slice(&color);
-            }
-        }
-    }
-
-    /// Plots `points` (x, y in [0, 1]) as a polyline in panel `panel` (0 or 1).
-    fn curve(&mut self, panel: usize, points: &[(f32, f32)], color: [u8; 3]) {
-        let to_px = |(x, y): (f32, f32)| {
-            let w = (PANEL - 2 * MARGIN) as f32;
-            let h = (HEIGHT - 2 * MARGIN) as f32;
-            (
-                (panel * PANEL + MARGIN) as f32 + x * w,
-                (HEIGHT - MARGIN) as f32 - y * h,
-            )
-        };
-        for pair in points.windows(2) {
-            let (a, b) = (to_px(pair[0]), to_px(pair[1]));
-            let steps = ((b.0 - a.0).abs().max((b.1 - a.1).abs()).ceil() as usize).max(1);
-            for s in 0..=steps {
-                let t = s as f32 / steps as f32;
-                let x = a.0 + t * (b.0 - a.0);
-                let y = a.1 + t * (b.1 - a.1);
-                self.dot(x as i64, y as i64, color);
-            }
-        }
-    }
-
-    fn axes(&mut self, panel: usize) {
-        let grey = [120, 120, 120];
-        self.curve(panel, &[(0.0, 0.0), (1.0, 0.0)], grey);
-        self.curve(panel, &[(0.0, 0.0), (0.0, 1.0)], grey);
-    }
-
-    fn save(&self, path: &str) -> common::Result<()> {
-        common::save_rgb8(Path::new(path), WIDTH, HEIGHT, &self.pixels)
-    }
-}
-
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let sea_states = [
-        (
-            "Pierson-Moskowitz U=10 m/s",
-            Spectrum::pierson_moskowitz(10.0)?,
-        ),
-        (
-            "JONSWAP U=10 m/s F=100 km",
-            Spectrum::jonswap(10.0, 100_000.0)?,
-        ),
-        (
-            "JONSWAP U=15 m/s F=300 km",
-            Spectrum::jonswap(15.0, 300_000.0)?,
-        ),
-        (
-            "TMA U=10 m/s F=100 km h=5 m",
-            Spectrum::tma(10.0, 100_000.0, 5.0)?,
-        ),
-        ("JONSWAP U=6 m/s F=20 km", Spectrum::jonswap(6.0, 20_000.0)?),
-    ];
-    let mut canvas = Canvas::new();
-
-    // Left: S(ω) for ω in [0, 3] rad/s, normalised by the largest peak.
-    let omegas: Vec<f32> = (1..=600).map(|i| i as f32 * 3.0 / 600.0).collect();
-    let peak = sea_states
-        .iter()
-        .flat_map(|(_, s)| omegas.iter().map(move |&w| s.omega_spectrum(w)))
-        .fold(0.0_f32, f32::max);
-    canvas.axes(0);
+    // S(ω) of every preset, log–log.
+    let omegas: Vec<f32> = (0..=800)
+        .map(|i| 0.15 * (40.0f32 / 0.15).powf(i as f32 / 800.0))
+        .collect();
     println!(
-        "{:<30} {:>8} {:>8} {:>10}",
-        "sea state", "Hs [m]", "Tp [s]", "ω_p [rad/s]"
+        "{:<16} {:>8} {:>8} {:>11}",
+        "preset", "Hs [m]", "Tp [s]", "ω_p [rad/s]"
     );
-    for (i, (name, spectrum)) in sea_states.iter().enumerate() {
-        let points: Vec<(f32, f32)> = omegas
-            .iter()
-            .map(|&w| (w / 3.0, spectrum.omega_spectrum(w) / peak))
-            .collect();
-        canvas.curve(0, &points, COLORS[i]);
+    let mut curves = Vec::new();
+    for state in SeaState::ALL {
+        let (spectrum, _) = state.build();
         println!(
-            "{name:<30} {:>8.3} {:>8.2} {:>10.3}",
+            "{:<16} {:>8.3} {:>8.2} {:>11.3}",
+            state.name(),
             spectrum.significant_wave_height(),
             spectrum.peak_period(),
             spectrum.peak_omega()
         );
+        let points: Vec<(f64, f64)> = omegas
+            .iter()
+            .map(|&w| (f64::from(w), f64::from(spectrum.omega_spectrum(w))))
+            .filter(|&(_, s)| s > 0.0)
+            .collect();
+        let label = format!(
+            "{}: Hs {:.2} m, Tp {:.1} s",
+            state.name().replace('_', " "),
+            spectrum.significant_wave_height(),
+            spectrum.peak_period()
+        );
+        curves.push((label, points));
     }
+    let top = curves
+        .iter()
+        .flat_map(|(_, p)| p.iter().map(|&(_, s)| s))
+        .fold(0.0f64, f64::max);
+    let (y_max, y_min) = (
+        10f64.powf((top * 3.0).log10().ceil()),
+        10f64.powf((top * 3.0).log10().ceil() - 8.0),
+    );
+    let path = dir.join("spectrum.png");
+    draw_png(&path, width, height, |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                "Frequency spectra of the presets",
+                (FONT, text * 1.25).into_font(),
+            )
+            .margin(12)
+            .x_label_area_size(text * 3.0)
+            .y_label_area_size(text * 4.5)
+            .build_cartesian_2d(
+                (0.15f64..40.0)
+                    .log_scale()
+                    .with_key_points(vec![0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0]),
+                (y_min..y_max).log_scale(),
+            )?;
+        chart
+            .configure_mesh()
+            .x_desc("angular frequency ω [rad/s]")
+            .y_desc("S(ω) [m²·s/rad]")
+            .label_style((FONT, text).into_font())
+            .axis_desc_style((FONT, text).into_font())
+            .y_label_formatter(&|v| power_of_ten(*v))
+            .x_label_formatter(&|v| format!("{v}"))
+            .light_line_style(RGBColor(235, 235, 235))
+            .draw()?;
+        for (index, (label, points)) in curves.iter().enumerate() {
+            let colour = SERIES[index % SERIES.len()];
+            chart
+                .draw_series(LineSeries::new(
+                    points.iter().copied().filter(|&(_, s)| s >= y_min),
+                    colour.stroke_width(2),
+                ))?
+                .label(label.clone())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
+        }
+        // The ω⁻⁵ slope of the saturation range (Phillips 1958), through the storm's tail.
+        let reference = |w: f64| 0.5 * 9.81f64.powi(2) * 0.008 * w.powi(-5);
+        let grey = RGBColor(120, 120, 120);
+        chart
+            .draw_series(LineSeries::new(
+                omegas
+                    .iter()
+                    .map(|&w| (f64::from(w), reference(f64::from(w))))
+                    .filter(|&(_, s)| (y_min..y_max).contains(&s)),
+                ShapeStyle::from(&grey).stroke_width(1),
+            ))?
+            .label("ω⁻⁵ slope (Phillips)")
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font((FONT, text * 0.95).into_font())
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(180, 180, 180))
+            .draw()?;
+        Ok(())
+    })?;
+    println!(
+        "wrote {} (S(ω) of the presets, log–log, {width}×{height})",
+        path.display()
+    );
 
-    // Right: D(ω_p, θ) for θ in [−π, π] for each spreading, normalised by the largest.
+    // D(ω_p, θ) of every spreading function.
     let base = Spectrum::jonswap(10.0, 100_000.0)?;
     let spreadings = [
-        Spreading::DonelanBanner,
-        Spreading::Mitsuyasu,
-        Spreading::Hasselmann,
-        Spreading::Cos2s { s: 4.0 },
-        Spreading::Cos2,
-        Spreading::Flat,
+        ("Donelan–Banner (default)", Spreading::DonelanBanner),
+        ("Mitsuyasu cos-2s", Spreading::Mitsuyasu),
+        ("Hasselmann cos-2s", Spreading::Hasselmann),
+        ("cos-2s, s = 4", Spreading::Cos2s { s: 4.0 }),
+        ("Elfouhaily", Spreading::Elfouhaily),
+        ("cos² (downwind only)", Spreading::Cos2),
+        ("flat", Spreading::Flat),
     ];
-    let thetas: Vec<f32> = (0..=720)
-        .map(|i| -PI + i as f32 * 2.0 * PI / 720.0)
-        .collect();
-    let curves: Vec<Vec<f32>> = spreadings
-        .iter()
-        .map(|&s| {
-            let spectrum = base.clone().with_spreading(s)?;
-            Ok(thetas
-                .iter()
-                .map(|&t| spectrum.spreading(spectrum.peak_omega(), t))
-                .collect())
-        })
-        .collect::<Result<_, ocean_fft::Error>>()?;
-    let top = curves.iter().flatten().fold(0.0_f32, |a, &b| a.max(b));
-    canvas.axes(1);
-    for (i, curve) in curves.iter().enumerate() {
-        let points: Vec<(f32, f32)> = thetas
+    let thetas: Vec<f32> = (0..=720).map(|i| -PI + i as f32 * PI / 360.0).collect();
+    let mut curves = Vec::new();
+    for (label, spreading) in spreadings {
+        let spectrum = base.clone().with_spreading(spreading)?;
+        let wp = spectrum.peak_omega();
+        let points: Vec<(f64, f64)> = thetas
             .iter()
-            .zip(curve)
-            .map(|(&t, &d)| ((t + PI) / (2.0 * PI), d / top))
+            .map(|&t| {
+                (
+                    f64::from(t.to_degrees()),
+                    f64::from(spectrum.spreading(wp, t)),
+                )
+            })
             .collect();
-        canvas.curve(1, &points, COLORS[i]);
+        curves.push((label, points));
     }
-    println!("spreading at ω_p (right panel, colours in order): {spreadings:?}");
-
-    std::fs::create_dir_all("out")?;
-    canvas.save("out/spectrum.png")?;
-    println!("wrote out/spectrum.png (left: S(ω), ω from 0 to 3 rad/s; right: D(θ) at ω_p, θ from −π to π)");
+    let top = curves
+        .iter()
+        .flat_map(|(_, p)| p.iter().map(|&(_, d)| d))
+        .fold(0.0f64, f64::max);
+    let path = dir.join("spreading.png");
+    draw_png(&path, width, height, |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                format!(
+                    "Directional spreading at the peak, ωₚ = {:.2} rad/s (JONSWAP, U10 = 10 m/s, 100 km fetch)",
+                    base.peak_omega()
+                ),
+                (FONT, text * 1.1).into_font(),
+            )
+            .margin(12)
+            .x_label_area_size(text * 3.0)
+            .y_label_area_size(text * 4.0)
+            .build_cartesian_2d(-180.0f64..180.0, 0.0..top * 1.08)?;
+        chart
+            .configure_mesh()
+            .x_desc("direction θ from the wind [degrees]")
+            .y_desc("D(ωₚ, θ) [1/rad]")
+            .x_labels(9)
+            .label_style((FONT, text).into_font())
+            .axis_desc_style((FONT, text).into_font())
+            .x_label_formatter(&|v| format!("{v:.0}°"))
+            .y_label_formatter(&|v| format!("{v:.1}"))
+            .light_line_style(RGBColor(235, 235, 235))
+            .draw()?;
+        for (index, (label, points)) in curves.iter().enumerate() {
+            let colour = SERIES[index % SERIES.len()];
+            chart
+                .draw_series(LineSeries::new(points.clone(), colour.stroke_width(2)))?
+                .label(*label)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font((FONT, text * 0.95).into_font())
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(180, 180, 180))
+            .draw()?;
+        Ok(())
+    })?;
+    println!(
+        "wrote {} (D(θ) at ω_p of each spreading function, {width}×{height})",
+        path.display()
+    );
     Ok(())
+}
+
+/// A power of ten as "10⁻³" (the labels of a logarithmic axis).
+fn power_of_ten(value: f64) -> String {
+    let exponent = value.log10().round() as i32;
+    let digits: String = exponent
+        .to_string()
+        .chars()
+        .map(|c| match c {
+            '-' => '⁻',
+            d => ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'][d as usize - '0' as usize],
+        })
+        .collect();
+    format!("10{digits}")
 }

@@ -4,9 +4,77 @@
 //! Each example includes this with `mod common;`; not every example uses every helper.
 #![allow(dead_code)]
 
+pub mod plot;
+
 use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
+
+/// The command-line options of an example: `--name value` pairs (and bare `--flag`s).
+pub struct Args {
+    pairs: Vec<(String, Option<String>)>,
+}
+
+impl Args {
+    /// Reads the process's arguments; `allowed` lists the option names the example takes
+    /// (without `--`). An unknown option is an error naming it.
+    pub fn parse(allowed: &[&str]) -> Result<Args> {
+        let mut pairs = Vec::new();
+        let mut args = std::env::args().skip(1).peekable();
+        while let Some(arg) = args.next() {
+            let Some(name) = arg.strip_prefix("--") else {
+                return Err(format!("unexpected argument {arg:?} (options start with --)").into());
+            };
+            if !allowed.contains(&name) {
+                return Err(format!("unknown option --{name} (options: --{})", allowed.join(", --")).into());
+            }
+            let value = match args.peek() {
+                Some(next) if !next.starts_with("--") => args.next(),
+                _ => None,
+            };
+            pairs.push((name.to_string(), value));
+        }
+        Ok(Args { pairs })
+    }
+
+    /// The value of `--name`, if given.
+    pub fn value(&self, name: &str) -> Option<&str> {
+        self.pairs
+            .iter()
+            .rev()
+            .find(|(n, _)| n == name)
+            .and_then(|(_, v)| v.as_deref())
+    }
+
+    /// Whether `--name` was given.
+    pub fn flag(&self, name: &str) -> bool {
+        self.pairs.iter().any(|(n, _)| n == name)
+    }
+
+    /// `--name` parsed as a `T`, or `default`; an unparsable value is an error naming it.
+    pub fn get<T: std::str::FromStr>(&self, name: &str, default: T) -> Result<T> {
+        match self.value(name) {
+            None => Ok(default),
+            Some(text) => text
+                .parse()
+                .map_err(|_| format!("--{name}: cannot read {text:?}").into()),
+        }
+    }
+
+    /// `--name` as a comma-separated list of numbers (e.g. `--camera 0,6,0`), or `default`.
+    pub fn list<const K: usize>(&self, name: &str, default: [f32; K]) -> Result<[f32; K]> {
+        let Some(text) = self.value(name) else {
+            return Ok(default);
+        };
+        let values: Vec<f32> = text
+            .split(',')
+            .map(|v| v.trim().parse::<f32>())
+            .collect::<std::result::Result<_, _>>()
+            .map_err(|_| format!("--{name}: cannot read {text:?} as {K} numbers"))?;
+        <[f32; K]>::try_from(values)
+            .map_err(|_| format!("--{name}: expected {K} comma-separated numbers, got {text:?}").into())
+    }
+}
 
 /// The error type of the examples' `main`: library errors, I/O and PNG errors alike.
 pub type Result<T> = std::result::Result<T, Box<dyn std::error::Error>>;

@@ -1,0 +1,154 @@
+//! Plots and labels with `plotters`: a font registered from the repository (Roboto, a subset
+//! committed in examples/fonts/ under the Apache License 2.0), so text draws the same on any
+//! machine without fontconfig or system fonts, and a bitmap drawn into our own RGB buffer and
+//! written with `png`.
+
+use std::path::Path;
+use std::sync::Once;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::{save_rgb8, Result};
+
+/// The font family name the examples draw their text in.
+pub const FONT: &str = "sans-serif";
+
+/// Roboto Regular, cut to Latin, Greek, super- and subscripts and a few symbols (27 KB).
+static ROBOTO: &[u8] = include_bytes!("../fonts/Roboto-Regular-subset.ttf");
+
+/// Registers the committed font under [`FONT`] (once per process).
+pub fn register_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        // The font is a valid TrueType file committed with the examples; a failure here is a
+        // broken checkout, which the first drawn label would report anyway.
+        if plotters::style::register_font(FONT, FontStyle::Normal, ROBOTO).is_err() {
+            eprintln!("warning: the font examples/fonts/Roboto-Regular-subset.ttf did not load");
+        }
+    });
+}
+
+/// Colours of successive series (a colour-blind-safe qualitative palette, Okabe & Ito 2008).
+pub const SERIES: [RGBColor; 8] = [
+    RGBColor(0, 114, 178),
+    RGBColor(230, 159, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(213, 94, 0),
+    RGBColor(204, 121, 167),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 0, 0),
+    RGBColor(240, 228, 66),
+];
+
+/// Draws a `width`×`height` picture with `draw` on a white background and writes it to
+/// `path` as an 8-bit RGB PNG.
+pub fn draw_png<F>(path: &Path, width: u32, height: u32, draw: F) -> Result<()>
+where
+    F: FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<()>,
+{
+    register_font();
+    let mut buffer = vec![255u8; width as usize * height as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut buffer, (width, height)).into_drawing_area();
+        root.fill(&WHITE)?;
+        draw(&root)?;
+        root.present()?;
+    }
+    save_rgb8(path, width as usize, height as usize, &buffer)
+}
+
+/// Draws on an existing RGB image (`pixels`, `width`×`height`, row-major) with `draw`.
+pub fn draw_on<F>(pixels: &mut [u8], width: u32, height: u32, draw: F) -> Result<()>
+where
+    F: FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<()>,
+{
+    register_font();
+    let root = BitMapBackend::with_buffer(pixels, (width, height)).into_drawing_area();
+    draw(&root)?;
+    root.present()?;
+    Ok(())
+}
+
+/// A "nice" length for a scale bar: 1, 2 or 5 × 10ⁿ metres, the largest not above `at_most`.
+pub fn nice_length(at_most: f64) -> f64 {
+    let power = 10f64.powf(at_most.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * power)
+        .find(|&l| l <= at_most)
+        .unwrap_or(power)
+}
+
+/// A length in metres as a label: "500 m", "2 km", "0.5 m".
+pub fn metres(length: f64) -> String {
+    if length >= 1000.0 {
+        format!("{} km", trim(length / 1000.0))
+    } else {
+        format!("{} m", trim(length))
+    }
+}
+
+fn trim(value: f64) -> String {
+    let text = format!("{value:.2}");
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// Draws a scale bar for a map of `metres_per_pixel` in the lower-left corner of `area`
+/// (about a quarter of its width), with its length and `caption` (e.g. the window's size)
+/// beside it, white with a dark outline so it reads on any background.
+pub fn scale_bar(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    metres_per_pixel: f64,
+    caption: &str,
+) -> Result<()> {
+    let (width, height) = area.dim_in_pixel();
+    let size = (f64::from(height.min(width)) / 22.0).clamp(11.0, 20.0);
+    let length = nice_length(0.28 * f64::from(width) * metres_per_pixel);
+    let bar = (length / metres_per_pixel).round() as i32;
+    let (x0, y0) = (10, height as i32 - 12);
+    let dark = RGBColor(10, 10, 10);
+    area.draw(&Rectangle::new(
+        [(x0 - 2, y0 - 7), (x0 + bar + 2, y0 + 2)],
+        dark.filled(),
+    ))?;
+    area.draw(&Rectangle::new(
+        [(x0, y0 - 5), (x0 + bar, y0)],
+        WHITE.filled(),
+    ))?;
+    let label = format!("{}   {caption}", metres(length));
+    let style = (FONT, size).into_font();
+    for (dx, dy) in [(-1, 0), (1, 0), (0, -1), (0, 1), (1, 1)] {
+        area.draw(&Text::new(
+            label.clone(),
+            (x0 + dx, y0 - 10 - size as i32 + dy),
+            style.color(&dark),
+        ))?;
+    }
+    area.draw(&Text::new(
+        label,
+        (x0, y0 - 10 - size as i32),
+        style.color(&WHITE),
+    ))?;
+    Ok(())
+}
+
+/// Writes `text` at (x, y) in white with a dark outline, `size` pixels high.
+pub fn outlined_text(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    text: &str,
+    (x, y): (i32, i32),
+    size: f64,
+) -> Result<()> {
+    let style = (FONT, size).into_font();
+    let dark = RGBColor(10, 10, 10);
+    for (dx, dy) in [(-1, 0), (1, 0), (0, -1), (0, 1), (1, 1)] {
+        area.draw(&Text::new(
+            text.to_string(),
+            (x + dx, y + dy),
+            style.color(&dark),
+        ))?;
+    }
+    area.draw(&Text::new(text.to_string(), (x, y), style.color(&WHITE)))?;
+    Ok(())
+}
