@@ -96,11 +96,40 @@ pub(super) fn packed_pair(
 /// Columns evolved by one [`evolve_block`] call.
 const EVOLVE_BLOCK: usize = 64;
 
+/// The column ranges of [`evolve_row_pair`]'s blocks over columns 1..N, in order: blocks of
+/// [`EVOLVE_BLOCK`] columns (fewer only when N − 1 is below it). When N − 1 ≥ EVOLVE_BLOCK
+/// every block is full: the last one starts early and recomputes a few columns, writing the
+/// same values, so that the vector loops have no scalar remainder. At most 64 blocks for
+/// N ≤ 4097, so a row's blocks fit the bits of a `u64` (see [`zero_blocks`]).
+pub(super) fn column_blocks(n: usize) -> impl Iterator<Item = std::ops::Range<usize>> {
+    let len = EVOLVE_BLOCK.min(n - 1);
+    (1..n).step_by(EVOLVE_BLOCK).map(move |next| {
+        let start = next.min(n - len);
+        start..start + len
+    })
+}
+
+/// Bit b set where block b of [`column_blocks`] has p = q = 0 in every column of table row
+/// `table`: that block's spectral values are zero at every t, so [`evolve_row_pair`] writes
+/// zeros there instead of evolving them. A cascade whose band stops below the Nyquist wave
+/// number (every cascade of an ocean but the smallest) has whole blocks of them in every row.
+pub(super) fn zero_blocks(table: EvolutionRow<'_>) -> u64 {
+    let n = table.p_re.len();
+    column_blocks(n).enumerate().fold(0, |bits, (b, range)| {
+        let zero = [table.p_re, table.p_im, table.q_re, table.q_im]
+            .iter()
+            .all(|values| values[range.clone()].iter().all(|&v| v == 0.0));
+        bits | (u64::from(zero) << b)
+    })
+}
+
 /// Fills spectral rows i (`upper`, k_x > 0) and N − i (`lower`, its Hermitian partner), each
-/// four packed transforms of N, from table row i: (i, j) pairs with (N − i, N − j).
+/// four packed transforms of N, from table row i: (i, j) pairs with (N − i, N − j). Blocks
+/// whose bit is set in `zero` (see [`zero_blocks`]) are written as zeros without evolving.
 #[inline(never)]
 pub(super) fn evolve_row_pair(
     table: EvolutionRow<'_>,
+    zero: u64,
     kx: f32,
     kz: &[f32],
     t: f64,
@@ -121,22 +150,28 @@ pub(super) fn evolve_row_pair(
     let (plus, minus) = packed_pair(fract_turns(e.freq * t), e.p, e.q, kx, kz[0], table.inv_k[0]);
     (u0[0], u1[0], u2[0], u3[0]) = (plus[0], plus[1], plus[2], plus[3]);
     (l0[0], l1[0], l2[0], l3[0]) = (minus[0], minus[1], minus[2], minus[3]);
-    // Blocks of EVOLVE_BLOCK columns over 1..N: the f64 phase reduction first (2 lanes per
-    // SSE vector), then the f32 work (4 lanes), each loop vectorising at its own width. When
-    // N − 1 ≥ EVOLVE_BLOCK every block is full (the last one starts early and recomputes a
-    // few columns, writing the same values), so the vector loops have no scalar remainder.
+    // Per block: the f64 phase reduction first (2 lanes per SSE vector), then the f32 work
+    // (4 lanes), each loop vectorising at its own width.
     let mut turns = [0.0f32; EVOLVE_BLOCK];
-    let columns = n - 1;
-    let len = EVOLVE_BLOCK.min(columns);
-    let mut next = 1;
-    while next < n {
-        let start = next.min(n - len);
-        let range = start..start + len;
+    for (b, range) in column_blocks(n).enumerate() {
+        let len = range.len();
+        let mirror = n - range.end + 1..n - range.start + 1;
+        if zero & (1 << b) != 0 {
+            // Zeros in, zeros out: a fill costs a fraction of the sines and cosines. (The
+            // evolution would give ±0 here; the sign of a zero never reaches an output, which
+            // the hash check of every buffer confirmed.)
+            for out in [&mut *u0, &mut *u1, &mut *u2, &mut *u3] {
+                out[range.clone()].fill(Complex32::default());
+            }
+            for out in [&mut *l0, &mut *l1, &mut *l2, &mut *l3] {
+                out[mirror.clone()].fill(Complex32::default());
+            }
+            continue;
+        }
         let turns = &mut turns[..len];
         for (turns, &freq) in turns.iter_mut().zip(&table.freq[range.clone()]) {
             *turns = fract_turns(freq * t);
         }
-        let mirror = n - start - len + 1..n - start + 1;
         evolve_block(
             turns,
             &table.p_re[range.clone()],
@@ -155,7 +190,6 @@ pub(super) fn evolve_row_pair(
             &mut l2[mirror.clone()],
             &mut l3[mirror],
         );
-        next = start + len;
     }
 }
 
