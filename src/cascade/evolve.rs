@@ -126,7 +126,9 @@ pub(super) fn zero_blocks(table: EvolutionRow<'_>) -> u64 {
 /// Fills spectral rows i (`upper`, k_x > 0) and N − i (`lower`, its Hermitian partner), each
 /// four packed transforms of N, from table row i: (i, j) pairs with (N − i, N − j). Blocks
 /// whose bit is set in `zero` (see [`zero_blocks`]) are written as zeros without evolving.
-#[inline(never)]
+/// Inlined into its caller's [`Simd::run`](crate::simd::Simd::run), so that its loops are
+/// compiled for the level the cascade runs at.
+#[inline(always)]
 pub(super) fn evolve_row_pair(
     table: EvolutionRow<'_>,
     zero: u64,
@@ -197,9 +199,9 @@ pub(super) fn evolve_row_pair(
 /// their partners N − j (`minus`, in reverse order), from the block's reduced phases and
 /// table entries (p_re, p_im, q_re, q_im). A function of its own, every output slice a
 /// separate `&mut` argument (so that LLVM knows they do not overlap and needs no run-time
-/// checks), so that the loop vectorises.
+/// checks: inlined, they keep that knowledge as alias scopes), so that the loop vectorises.
 #[allow(clippy::too_many_arguments)]
-#[inline(never)]
+#[inline(always)]
 fn evolve_block(
     turns: &[f32],
     p_re: &[f32],

@@ -7,6 +7,8 @@ mod field;
 mod inspect;
 mod outputs;
 mod tables;
+#[cfg(test)]
+mod tests;
 
 use std::f64::consts::TAU;
 use std::ops::Bound::Included;
@@ -17,6 +19,7 @@ use rayon::prelude::*;
 use crate::error::{self, Error};
 use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK, TILE};
 use crate::grid::{self, wave_index};
+use crate::simd::Simd;
 use crate::spectrum::Spectrum;
 
 pub(crate) use config::check_band;
@@ -66,6 +69,8 @@ pub struct Cascade {
     /// k_z = Δk·m(j) of spectral column j.
     kz: Vec<f32>,
     rows: RowFft,
+    /// The SIMD level of the element loops (the widest the CPU has; the tests force each).
+    simd: Simd,
     tasks: Tasks,
     /// Band pruning, per table row i in 0..N/2: which evolution blocks hold no wave.
     pruning: Vec<RowPruning>,
@@ -287,6 +292,7 @@ impl Cascade {
                 Complex32::default(),
             )?,
             rows,
+            simd: Simd::detect(),
             tasks,
             pruning,
             live_pairs,
@@ -347,6 +353,7 @@ impl Cascade {
         let s = rows.scratch_len();
         let pairs = self.live_pairs;
         let per_task = self.tasks.pairs_per_task;
+        let simd = self.simd;
 
         // Rows 1..=pairs, and their partners N − pairs..N − 1.
         let (row0, rest) = self.spectral.split_at_mut(row_len);
@@ -396,7 +403,10 @@ impl Cascade {
                             let kx = i as f32 * dk;
                             let table = evolution.get_row(i, n);
                             let zero = pruning[i].zero_blocks;
-                            evolve_row_pair(table, zero, kx, kz, t, upper, lower);
+                            simd.run(
+                                #[inline(always)]
+                                || evolve_row_pair(table, zero, kx, kz, t, upper, lower),
+                            );
                             rows.process(upper, scratch);
                             rows.process(lower, scratch);
                         }
@@ -430,6 +440,7 @@ impl Cascade {
         let rows = &self.rows;
         let s = rows.scratch_len();
         let zero = self.zero_columns();
+        let simd = self.simd;
         let rows_per_task = self.tasks.blocks_per_task * ROWS_PER_TASK;
         let out = rows_per_task * n;
         (
@@ -452,23 +463,34 @@ impl Cascade {
                         let block = &mut block[..count * row_len];
                         gather(spectral, n, j0, count, zero.clone(), block);
                         rows.process(block, scratch);
-                        for r in 0..count {
-                            let row = &block[r * row_len..(r + 1) * row_len];
-                            let out = (r0 + r) * n..(r0 + r + 1) * n;
-                            write_outputs(
-                                row,
-                                n,
-                                lambda,
-                                &mut height[out.clone()],
-                                &mut displacement[out.clone()],
-                                &mut slope[out.clone()],
-                                &mut normal[out.clone()],
-                                &mut jacobian[out],
-                            );
-                        }
+                        simd.run(
+                            #[inline(always)]
+                            || {
+                                for r in 0..count {
+                                    let row = &block[r * row_len..(r + 1) * row_len];
+                                    let out = (r0 + r) * n..(r0 + r + 1) * n;
+                                    write_outputs(
+                                        row,
+                                        n,
+                                        lambda,
+                                        &mut height[out.clone()],
+                                        &mut displacement[out.clone()],
+                                        &mut slope[out.clone()],
+                                        &mut normal[out.clone()],
+                                        &mut jacobian[out],
+                                    );
+                                }
+                            },
+                        );
                     }
                 },
             );
+    }
+
+    /// Runs the element loops at `simd` from now on (the tests force every level).
+    #[cfg(test)]
+    pub(crate) fn set_simd(&mut self, simd: Simd) {
+        self.simd = simd;
     }
 
     /// The configuration this cascade was built with (choppiness as last set).
