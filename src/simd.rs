@@ -21,7 +21,7 @@
 //! `tests` in src/cascade/mod.rs compare every output bit of every level the machine has.
 
 /// A SIMD level of the update's element loops, proven available on this CPU.
-#[derive(Debug, Clone, Copy)]
+#[derive(Clone, Copy)]
 pub(crate) enum Simd {
     /// The target's baseline (SSE2 on x86-64; whatever the target enables elsewhere).
     Baseline,
@@ -72,5 +72,17 @@ impl Simd {
             #[cfg(target_arch = "x86_64")]
             Simd::Avx512(v4) => v4.vectorize(kernel),
         }
+    }
+}
+
+impl std::fmt::Debug for Simd {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Simd::Baseline => "Baseline",
+            #[cfg(target_arch = "x86_64")]
+            Simd::Avx2(_) => "Avx2",
+            #[cfg(target_arch = "x86_64")]
+            Simd::Avx512(_) => "Avx512",
+        })
     }
 }
