@@ -6,7 +6,7 @@ use std::f64::consts::TAU;
 use num_complex::Complex32;
 
 use super::tables::Evolution;
-use super::{check_time, Cascade, Field, TRANSFORMS};
+use super::{check_time, row_stride, Cascade, Field, TRANSFORMS};
 use crate::error::{self, Error};
 use crate::fft2d::transpose_into;
 
@@ -90,7 +90,7 @@ impl Cascade {
         let mut out = vec![Complex32::default(); n * n];
         transpose_into(
             &self.spectral[transform * n..],
-            TRANSFORMS * n,
+            row_stride(n),
             &mut out,
             n,
             n,

@@ -106,6 +106,14 @@ impl std::fmt::Debug for Cascade {
 /// Number of packed complex transforms per update.
 const TRANSFORMS: usize = 4;
 
+/// Values between the starts of two rows of the pass-1 buffer and of a pass-2 block: the
+/// row's four transforms and one cache line of padding. Without it rows lie a power of two
+/// of bytes apart (32·N), so the lines a transpose tile reads or writes at once, one per
+/// row, all fall into the same cache set and evict each other.
+pub(crate) fn row_stride(n: usize) -> usize {
+    (TRANSFORMS * n).saturating_add(TILE)
+}
+
 /// Checks a simulation time `name`: finite, |t| ≤ [`Cascade::MAX_TIME`].
 pub(crate) fn check_time(name: &'static str, t: f64) -> Result<f64, Error> {
     error::in_range_f64(
@@ -128,10 +136,10 @@ pub(crate) fn memory_bytes(n: usize) -> usize {
     };
     let tasks = Tasks::new(n);
     let per_point = [
-        complex,              // h0
-        TRANSFORMS * complex, // pass-1 buffer
-        4 + 2 * 8 + 12 + 4,   // height, displacement, slope, normal, jacobian
+        complex,            // h0
+        4 + 2 * 8 + 12 + 4, // height, displacement, slope, normal, jacobian
     ];
+    let spectral = n.saturating_mul(row_stride(n)).saturating_mul(complex);
     let evolution_entry = 4 * 4 + 8 + 4; // p, q, freq, 1/|k|, for half the points
     let pruning = std::mem::size_of::<RowPruning>();
     let tables = (points / 2)
@@ -143,7 +151,10 @@ pub(crate) fn memory_bytes(n: usize) -> usize {
         .saturating_mul(complex);
     let blocks = tasks.block_values(n).saturating_mul(complex);
     per_point.iter().fold(
-        tables.saturating_add(scratch).saturating_add(blocks),
+        tables
+            .saturating_add(scratch)
+            .saturating_add(blocks)
+            .saturating_add(spectral),
         |sum, &bytes| sum.saturating_add(points.saturating_mul(bytes)),
     )
 }
@@ -193,8 +204,7 @@ impl Tasks {
     fn block_values(&self, n: usize) -> usize {
         self.pass2
             .saturating_mul(ROWS_PER_TASK)
-            .saturating_mul(TRANSFORMS)
-            .saturating_mul(n)
+            .saturating_mul(row_stride(n))
     }
 }
 
@@ -285,7 +295,7 @@ impl Cascade {
             h0,
             evolution,
             kz,
-            spectral: error::try_vec(TRANSFORMS * points, Complex32::default())?,
+            spectral: error::try_vec(n * row_stride(n), Complex32::default())?,
             blocks: error::try_vec(tasks.block_values(n), Complex32::default())?,
             scratch: error::try_vec(
                 tasks.scratch_slots() * rows.scratch_len(),
@@ -346,6 +356,7 @@ impl Cascade {
         let n = self.n;
         let half = n / 2;
         let row_len = TRANSFORMS * n;
+        let stride = row_stride(n);
         let dk = self.dk;
         let evolution = &self.evolution;
         let pruning = &self.pruning;
@@ -356,9 +367,10 @@ impl Cascade {
         let simd = self.simd;
 
         // Rows 1..=pairs, and their partners N − pairs..N − 1.
-        let (row0, rest) = self.spectral.split_at_mut(row_len);
-        let (top, rest) = rest.split_at_mut(pairs * row_len);
-        let bottom = &mut rest[(n - 1 - 2 * pairs) * row_len..];
+        let (row0, rest) = self.spectral.split_at_mut(stride);
+        let row0 = &mut row0[..row_len];
+        let (top, rest) = rest.split_at_mut(pairs * stride);
+        let bottom = &mut rest[(n - 1 - 2 * pairs) * stride..];
         let (scratch0, scratch_pairs) = self.scratch.split_at_mut(s);
 
         let kz = &self.kz;
@@ -387,19 +399,19 @@ impl Cascade {
             || {
                 // Each task: `per_task` consecutive row pairs, the upper rows in order and
                 // their partners (from the end of the buffer) in reverse.
-                top.par_chunks_mut(per_task * row_len)
-                    .zip(bottom.par_rchunks_mut(per_task * row_len))
+                top.par_chunks_mut(per_task * stride)
+                    .zip(bottom.par_rchunks_mut(per_task * stride))
                     .zip(scratch_pairs.par_chunks_mut(s))
                     .enumerate()
                     .for_each(|(task, ((uppers, lowers), scratch))| {
-                        let count = uppers.len() / row_len;
+                        let count = uppers.len() / stride;
                         for m in 0..count {
                             let i = task * per_task + m + 1;
                             if pruning[i].empty {
                                 continue;
                             }
-                            let upper = &mut uppers[m * row_len..(m + 1) * row_len];
-                            let lower = &mut lowers[(count - 1 - m) * row_len..][..row_len];
+                            let upper = &mut uppers[m * stride..][..row_len];
+                            let lower = &mut lowers[(count - 1 - m) * stride..][..row_len];
                             let kx = i as f32 * dk;
                             let table = evolution.get_row(i, n);
                             let zero = pruning[i].zero_blocks;
@@ -435,6 +447,7 @@ impl Cascade {
     fn spatial_pass(&mut self) {
         let n = self.n;
         let row_len = TRANSFORMS * n;
+        let stride = row_stride(n);
         let lambda = self.config.choppiness;
         let spectral = &self.spectral;
         let rows = &self.rows;
@@ -444,7 +457,7 @@ impl Cascade {
         let rows_per_task = self.tasks.blocks_per_task * ROWS_PER_TASK;
         let out = rows_per_task * n;
         (
-            self.blocks.par_chunks_mut(ROWS_PER_TASK * row_len),
+            self.blocks.par_chunks_mut(ROWS_PER_TASK * stride),
             self.scratch.par_chunks_mut(s),
             self.height.par_chunks_mut(out),
             self.displacement.par_chunks_mut(out),
@@ -460,14 +473,15 @@ impl Cascade {
                     for r0 in (0..task_rows).step_by(ROWS_PER_TASK) {
                         let count = ROWS_PER_TASK.min(task_rows - r0);
                         let j0 = task * rows_per_task + r0;
-                        let block = &mut block[..count * row_len];
                         gather(spectral, n, j0, count, zero.clone(), block);
-                        rows.process(block, scratch);
+                        for row in block.chunks_exact_mut(stride).take(count) {
+                            rows.process(&mut row[..row_len], scratch);
+                        }
                         simd.run(
                             #[inline(always)]
                             || {
                                 for r in 0..count {
-                                    let row = &block[r * row_len..(r + 1) * row_len];
+                                    let row = &block[r * stride..][..row_len];
                                     let out = (r0 + r) * n..(r0 + r + 1) * n;
                                     write_outputs(
                                         row,
@@ -607,18 +621,18 @@ fn gather(
     zero: std::ops::Range<usize>,
     block: &mut [Complex32],
 ) {
-    let row_len = TRANSFORMS * n;
+    let stride = row_stride(n);
     for f in 0..TRANSFORMS {
         let src = &spectral[f * n + j0..];
         let dst = &mut block[f * n..];
-        transpose_into(src, row_len, dst, row_len, count, zero.start);
+        transpose_into(src, stride, dst, stride, count, zero.start);
         if zero.end < n {
-            let (src, dst) = (&src[zero.end * row_len..], &mut dst[zero.end..]);
-            transpose_into(src, row_len, dst, row_len, count, n - zero.end);
+            let (src, dst) = (&src[zero.end * stride..], &mut dst[zero.end..]);
+            transpose_into(src, stride, dst, stride, count, n - zero.end);
         }
         if !zero.is_empty() {
             for r in 0..count {
-                dst[r * row_len + zero.start..r * row_len + zero.end].fill(Complex32::default());
+                dst[r * stride + zero.start..r * stride + zero.end].fill(Complex32::default());
             }
         }
     }
