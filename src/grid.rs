@@ -7,7 +7,7 @@ use crate::error::Error;
 /// Smallest grid size N.
 pub(crate) const MIN_SIZE: usize = 4;
 
-/// Largest grid size N: a 4096² cascade holds about 2 GiB.
+/// Largest grid size N: a 4096² cascade holds about 1.5 GiB.
 pub(crate) const MAX_SIZE: usize = 4096;
 
 /// Checks a grid size `name`: even, [`MIN_SIZE`] ≤ N ≤ [`MAX_SIZE`].

@@ -49,8 +49,8 @@ use tables::{check_amplitude, Amplitudes, EvolutionTable};
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```
 ///
-/// `Clone` copies every table and buffer (about 127·N² bytes): the copy updates to the same
-/// bits as the original.
+/// `Clone` copies every table and buffer ([`CascadeConfig::memory_bytes`], about 123·N²
+/// bytes): the copy updates to the same bits as the original.
 #[derive(Clone)]
 pub struct Cascade {
     config: CascadeConfig,
@@ -160,11 +160,11 @@ pub(crate) fn memory_bytes(n: usize) -> usize {
 }
 
 /// Most parallel tasks of each pass. Every task owns an FFT scratch slot (and in pass 2 a
-/// block buffer of [`ROWS_PER_TASK`] rows), so this bounds those buffers: up to N = 1024 each
-/// task still handles one row pair or one block, as before; at 4096² pass 2 holds 64 blocks
-/// (134 MB) instead of the whole grid (537 MB), and 64 tasks still balance the load over as
-/// many threads.
-const MAX_TASKS: usize = 64;
+/// block buffer of [`ROWS_PER_TASK`] rows, which it works through its z rows with), so this
+/// bounds those buffers: up to N = 512 each pass-2 task still handles one block, as before;
+/// at 1024² pass 2 holds 32 blocks (17 MB) instead of the whole grid (34 MB), at 4096² 67 MB
+/// instead of 537 MB. 32 tasks still balance the load over as many threads.
+const MAX_TASKS: usize = 32;
 
 /// How one update's work is split into parallel tasks.
 #[derive(Debug, Clone, Copy)]
