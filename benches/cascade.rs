@@ -22,7 +22,7 @@ mod common;
 use std::hint::black_box;
 use std::time::Duration;
 
-use criterion::{BatchSize, BenchmarkId, Criterion, Throughput};
+use criterion::{BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput};
 use ocean_fft::{
     Cascade, CascadeConfig, Complex32, Fft2d, NormalMapGreen, Spectrum, TexelLayout, Vertex,
 };
@@ -108,6 +108,9 @@ fn cascade_update(c: &mut Criterion) {
     let mut group = c.benchmark_group("cascade_update");
     group
         .sample_size(20)
+        // Each sample the same number of iterations: the larger N take tens of ms an
+        // iteration, which linear sampling would stretch to minutes.
+        .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
     for n in SIZES {
@@ -124,6 +127,9 @@ fn cascade_scaling(c: &mut Criterion) {
     let mut group = c.benchmark_group("cascade_scaling");
     group
         .sample_size(10)
+        // Each sample the same number of iterations: the larger N take tens of ms an
+        // iteration, which linear sampling would stretch to minutes.
+        .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(5));
     for n in LARGE_SIZES {
@@ -141,6 +147,9 @@ fn cascade_upload(c: &mut Criterion) {
     let mut group = c.benchmark_group("cascade_upload");
     group
         .sample_size(20)
+        // Each sample the same number of iterations: the larger N take tens of ms an
+        // iteration, which linear sampling would stretch to minutes.
+        .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2))
         .throughput(Throughput::Elements(points as u64));
@@ -198,6 +207,9 @@ fn cascade_new(c: &mut Criterion) {
     let mut group = c.benchmark_group("cascade_new");
     group
         .sample_size(10)
+        // Each sample the same number of iterations: the larger N take tens of ms an
+        // iteration, which linear sampling would stretch to minutes.
+        .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(3));
     group.bench_with_input(BenchmarkId::new("new", 256), &256, |b, &n| {

@@ -19,7 +19,7 @@ mod common;
 use std::hint::black_box;
 use std::time::Duration;
 
-use criterion::{BatchSize, BenchmarkId, Criterion, Throughput};
+use criterion::{BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput};
 use ocean_fft::{Complex32, Fft2d, OceanConfig, OceanState, Spectrum};
 
 const SIZES: [usize; 5] = [64, 128, 256, 512, 1024];
@@ -40,6 +40,9 @@ fn step(c: &mut Criterion) {
     let mut group = c.benchmark_group("ocean_step");
     group
         .sample_size(20)
+        // Each sample the same number of iterations: the larger N take tens of ms an
+        // iteration, which linear sampling would stretch to minutes.
+        .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
     for size in SIZES {
@@ -92,6 +95,9 @@ fn parallel_cascades(c: &mut Criterion) {
     let mut group = c.benchmark_group("ocean_parallel_cascades");
     group
         .sample_size(20)
+        // Each sample the same number of iterations: the larger N take tens of ms an
+        // iteration, which linear sampling would stretch to minutes.
+        .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
     let size = 256;
@@ -110,6 +116,9 @@ fn queries(c: &mut Criterion) {
     let mut group = c.benchmark_group("ocean_queries");
     group
         .sample_size(20)
+        // Each sample the same number of iterations: the larger N take tens of ms an
+        // iteration, which linear sampling would stretch to minutes.
+        .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
     let mut state = ocean(256, false);
