@@ -105,20 +105,41 @@ fn run_bench(bench: &str, group: &str) {
     );
 }
 
-/// Criterion's median of one benchmark, in ns.
-fn median_ns(criterion: &Path, group: &str, function: &str, n: usize) -> Option<f64> {
+/// One benchmark's per-iteration times of its samples, in ns, from criterion's
+/// `new/sample.json`: the median, and the minimum (the sample least disturbed by other work
+/// on a shared machine).
+#[derive(Debug, Clone, Copy)]
+struct Estimate {
+    median: f64,
+    min: f64,
+}
+
+fn estimate(criterion: &Path, group: &str, function: &str, n: usize) -> Option<Estimate> {
     let path = criterion
         .join(group)
         .join(function)
         .join(n.to_string())
-        .join("new/estimates.json");
+        .join("new/sample.json");
     let text = std::fs::read_to_string(&path).ok()?;
     let json: serde_json::Value = serde_json::from_str(&text).ok()?;
-    json["median"]["point_estimate"].as_f64()
+    let iters = json["iters"].as_array()?;
+    let times = json["times"].as_array()?;
+    let per_iteration: Vec<f64> = iters
+        .iter()
+        .zip(times)
+        .filter_map(|(i, t)| Some(t.as_f64()? / i.as_f64()?))
+        .collect();
+    if per_iteration.is_empty() {
+        return None;
+    }
+    Some(Estimate {
+        median: median(&per_iteration),
+        min: per_iteration.iter().copied().fold(f64::INFINITY, f64::min),
+    })
 }
 
-/// Medians of each (group, function, N) over the rounds.
-type Samples = BTreeMap<(String, String, usize), Vec<f64>>;
+/// Estimates of each (group, function, N), one per round.
+type Samples = BTreeMap<(String, String, usize), Vec<Estimate>>;
 
 fn collect(
     samples: &mut Samples,
@@ -129,11 +150,11 @@ fn collect(
 ) {
     for function in functions {
         for &n in sizes {
-            if let Some(ns) = median_ns(criterion, group, function, n) {
+            if let Some(e) = estimate(criterion, group, function, n) {
                 samples
                     .entry((group.to_string(), function.clone(), n))
                     .or_default()
-                    .push(ns);
+                    .push(e);
             }
         }
     }
@@ -158,32 +179,41 @@ fn time(ns: f64) -> String {
     }
 }
 
-/// "median (min–max)" of the per-round ratios a / b.
-fn ratio(a: &[f64], b: &[f64]) -> String {
-    let ratios: Vec<f64> = a.iter().zip(b).map(|(a, b)| a / b).collect();
-    let lo = ratios.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = ratios.iter().copied().fold(0.0, f64::max);
-    if ratios.len() > 1 {
-        format!("**{:.2}** ({lo:.2}–{hi:.2})", median(&ratios))
+/// The ratio a / b of the samples' minima, "median (min–max)" over the rounds, and the
+/// ratio of the medians (median over the rounds).
+fn ratio(a: &[Estimate], b: &[Estimate]) -> (String, String) {
+    let of_min: Vec<f64> = a.iter().zip(b).map(|(a, b)| a.min / b.min).collect();
+    let of_median: Vec<f64> = a.iter().zip(b).map(|(a, b)| a.median / b.median).collect();
+    let lo = of_min.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = of_min.iter().copied().fold(0.0, f64::max);
+    let min = if of_min.len() > 1 {
+        format!("**{:.2}** ({lo:.2}–{hi:.2})", median(&of_min))
     } else {
-        format!("**{:.2}**", median(&ratios))
-    }
+        format!("**{:.2}**", median(&of_min))
+    };
+    (min, format!("{:.2}", median(&of_median)))
+}
+
+fn fastest(values: &[Estimate]) -> f64 {
+    values.iter().map(|e| e.min).fold(f64::INFINITY, f64::min)
 }
 
 fn comparison(samples: &Samples, group: &str, variant: &str, floor: &str, title: &str) -> String {
-    let mut out =
-        format!("| N | threads | `{variant}` | `{floor}` | {title} |\n|---|---|---|---|---|\n");
+    let mut out = format!(
+        "| N | threads | `{variant}` | `{floor}` | {title} | ratio of the medians |\n\
+         |---|---|---|---|---|---|\n"
+    );
     for n in SIZES {
         for threads in THREADS {
             let key = |f: &str| (group.to_string(), format!("{f}_{threads}t"), n);
             let (Some(a), Some(b)) = (samples.get(&key(variant)), samples.get(&key(floor))) else {
                 continue;
             };
+            let (of_min, of_median) = ratio(a, b);
             out += &format!(
-                "| {n} | {threads} | {} | {} | {} |\n",
-                time(median(a)),
-                time(median(b)),
-                ratio(a, b)
+                "| {n} | {threads} | {} | {} | {of_min} | {of_median} |\n",
+                time(fastest(a)),
+                time(fastest(b)),
             );
         }
     }
@@ -212,10 +242,10 @@ fn scaling(samples: &Samples) -> String {
         let (update, ffts, per_point, r) =
             match (samples.get(&key("update")), samples.get(&key("four_ffts"))) {
                 (Some(a), Some(b)) => (
-                    time(median(a)),
-                    time(median(b)),
-                    format!("{:.1}", median(a) / points),
-                    ratio(a, b),
+                    time(fastest(a)),
+                    time(fastest(b)),
+                    format!("{:.1}", fastest(a) / points),
+                    ratio(a, b).0,
                 ),
                 _ => ("—".into(), "—".into(), "—".into(), "—".into()),
             };
@@ -294,9 +324,11 @@ fn main() {
         "Generated by `cargo run --release -p ocean-fft-benches --bin bench-table` on {date}, \
          commit `{commit}`, {rustc}.\n\
          Machine: {machine}. Load average (1, 5, 15 min) {load_before} before and {load_after} after.\n\
-         Criterion medians; a ratio is taken within one round (the variant and its floor measured \
-         one right after the other), and shown as the median over {rounds} round(s) with the \
-         range in brackets.\n\n\
+         Times are the fastest of criterion's samples (per iteration; on a shared machine the \
+         least disturbed), over {rounds} round(s). A ratio is taken within one round (the variant \
+         and its floor measured one right after the other) from the samples' minima, and shown as \
+         the median over the rounds with their range in brackets; the last column gives the \
+         ratio of the samples' medians, which other work on the machine inflates.\n\n\
          #### `Cascade::update` ÷ its four bare packed FFTs (`cascade_update`, a 500 m cascade \
          over the whole band; target ≤ 1.3)\n\n{update}\n\
          #### Default `OceanState::step` ÷ the twelve bare FFTs of its three cascades \

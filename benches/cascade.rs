@@ -103,18 +103,30 @@ fn update_beside_ffts(group: &mut Group<'_>, pool: &rayon::ThreadPool, n: usize,
     );
 }
 
+/// Samples per benchmark at N: many short ones, so that on a shared machine the fastest
+/// samples are free of other work (about 10 ms of update each).
+fn samples(n: usize) -> usize {
+    match n {
+        0..=128 => 200,
+        256 => 150,
+        512 => 60,
+        _ => 25,
+    }
+}
+
 fn cascade_update(c: &mut Criterion) {
     let pools: Vec<_> = THREADS.iter().map(|&t| (t, common::pool(t))).collect();
     let mut group = c.benchmark_group("cascade_update");
     group
-        .sample_size(20)
-        // Each sample the same number of iterations: the larger N take tens of ms an
-        // iteration, which linear sampling would stretch to minutes.
+        // Each sample the same number of iterations (the larger N take tens of ms an
+        // iteration, which linear sampling would stretch to minutes).
         .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
     for n in SIZES {
-        group.throughput(Throughput::Elements((n * n) as u64));
+        group
+            .sample_size(samples(n))
+            .throughput(Throughput::Elements((n * n) as u64));
         for (threads, pool) in &pools {
             update_beside_ffts(&mut group, pool, n, &format!("_{threads}t"));
         }

@@ -35,18 +35,30 @@ fn ocean(size: usize, parallel_cascades: bool) -> OceanState {
     OceanState::new(spectrum, config).expect("valid ocean")
 }
 
+/// Samples per benchmark at N: many short ones, so that on a shared machine the fastest
+/// samples are free of other work.
+fn samples(n: usize) -> usize {
+    match n {
+        0..=128 => 200,
+        256 => 100,
+        512 => 30,
+        _ => 12,
+    }
+}
+
 fn step(c: &mut Criterion) {
     let pools: Vec<_> = THREADS.iter().map(|&t| (t, common::pool(t))).collect();
     let mut group = c.benchmark_group("ocean_step");
     group
-        .sample_size(20)
-        // Each sample the same number of iterations: the larger N take tens of ms an
-        // iteration, which linear sampling would stretch to minutes.
+        // Each sample the same number of iterations (the larger N take tens of ms an
+        // iteration, which linear sampling would stretch to minutes).
         .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
     for size in SIZES {
-        group.throughput(Throughput::Elements((size * size) as u64));
+        group
+            .sample_size(samples(size))
+            .throughput(Throughput::Elements((size * size) as u64));
         for (threads, pool) in &pools {
             // Made on first use, so that a filtered run builds only what it measures.
             let mut state: Option<OceanState> = None;
