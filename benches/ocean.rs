@@ -1,16 +1,32 @@
-//! `OceanState::step` with the cascades updated one after another or in parallel, beside the
+//! `OceanState::step` of the default ocean (three cascades of 1000, 230 and 51 m) beside the
 //! bare floor of its FFTs (the three cascades' twelve packed complex 2D inverse FFTs done by
-//! one `Fft2d`), and with bilinear queries (no spline prefilter on update); and the world
-//! queries with cubic B-spline and bilinear interpolation, side by side. Run with
-//! `cargo bench -p ocean-fft-benches --bench ocean`.
+//! one `Fft2d`), in one process, and the world queries.
+//!
+//! Groups (throughput in grid points of one cascade, N² per iteration):
+//! - `ocean_step`: `step_1t`, `twelve_ffts_1t`, `step_2t`, `twelve_ffts_2t` at
+//!   N = 64 … 1024, each inside a rayon pool of that many threads; the project's target is
+//!   step ≤ 1.2 × twelve_ffts.
+//! - `ocean_parallel_cascades`: at N = 256 in a pool of 2 threads, `sequential` and
+//!   `parallel` (`OceanConfig::parallel_cascades` off and on).
+//! - `ocean_queries`: `sample`, `height_at`, `heights_at` and `sample_many` of 10 000 points
+//!   and `sample_grid` of 100×100 on the default ocean at 256², with cubic B-spline and
+//!   bilinear interpolation.
+//!
+//! `cargo bench -p ocean-fft-benches --bench ocean [-- GROUP]`; the first line printed names
+//! the CPU.
+
+mod common;
 
 use std::hint::black_box;
 use std::time::Duration;
 
-use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion};
+use criterion::{BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput};
 use ocean_fft::{
     Complex32, Fft2d, Interpolation, OceanConfig, OceanState, Spectrum, SurfaceSample,
 };
+
+const SIZES: [usize; 5] = [64, 128, 256, 512, 1024];
+const THREADS: [usize; 2] = [1, 2];
 
 fn ocean(size: usize, parallel_cascades: bool) -> OceanState {
     ocean_with(size, parallel_cascades, Interpolation::CubicBSpline)
@@ -27,41 +43,90 @@ fn ocean_with(size: usize, parallel_cascades: bool, interpolation: Interpolation
     OceanState::new(spectrum, config).expect("valid ocean")
 }
 
+/// Samples per benchmark at N: many short ones, so that on a shared machine the fastest
+/// samples are free of other work.
+fn samples(n: usize) -> usize {
+    match n {
+        0..=128 => 200,
+        256 => 100,
+        512 => 30,
+        _ => 12,
+    }
+}
+
 fn step(c: &mut Criterion) {
+    let pools: Vec<_> = THREADS.iter().map(|&t| (t, common::pool(t))).collect();
     let mut group = c.benchmark_group("ocean_step");
     group
-        .sample_size(20)
+        // Each sample the same number of iterations (the larger N take tens of ms an
+        // iteration, which linear sampling would stretch to minutes).
+        .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
-    for size in [64, 128, 256] {
-        for parallel in [false, true] {
-            let mut state = ocean(size, parallel);
-            let name = if parallel { "parallel" } else { "sequential" };
-            group.bench_with_input(BenchmarkId::new(name, size), &size, |b, _| {
-                b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step"))
-            });
+    for size in SIZES {
+        group
+            .sample_size(samples(size))
+            .throughput(Throughput::Elements((size * size) as u64));
+        for (threads, pool) in &pools {
+            // Made on first use, so that a filtered run builds only what it measures.
+            let mut state: Option<OceanState> = None;
+            group.bench_with_input(
+                BenchmarkId::new(format!("step_{threads}t"), size),
+                &size,
+                |b, _| {
+                    let state = state.get_or_insert_with(|| ocean(size, true));
+                    pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step")))
+                },
+            );
+            drop(state);
+            // Three cascades of four packed transforms each. `process` uses its input as
+            // working space, so each iteration gets a fresh copy (made outside the timed
+            // region); the values do not change the FFT's cost.
+            let count = 3 * 4;
+            let mut fft: Option<(Fft2d, Vec<Complex32>)> = None;
+            group.bench_with_input(
+                BenchmarkId::new(format!("twelve_ffts_{threads}t"), size),
+                &size,
+                |b, _| {
+                    let (fft, input) = fft.get_or_insert_with(|| {
+                        let input = (0..count * size * size)
+                            .map(|i| {
+                                Complex32::new((i as f32 * 0.37).sin(), (i as f32 * 0.11).cos())
+                            })
+                            .collect();
+                        (Fft2d::new(size, count).expect("valid size"), input)
+                    });
+                    pool.install(|| {
+                        b.iter_batched_ref(
+                            || input.clone(),
+                            |data| black_box(fft.process(data).expect("right length")[0]),
+                            BatchSize::PerIteration,
+                        )
+                    })
+                },
+            );
         }
-        // The same parallel step without the cubic B-spline prefilter of the queries.
-        let mut state = ocean_with(size, true, Interpolation::Bilinear);
-        group.bench_with_input(
-            BenchmarkId::new("parallel_bilinear_queries", size),
-            &size,
-            |b, _| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step")),
-        );
-        // Three cascades of four packed transforms each. `process` uses its input as working
-        // space, so each iteration gets a fresh copy (made outside the timed region); the
-        // values do not change the FFT's cost.
-        let count = 3 * 4;
-        let mut fft = Fft2d::new(size, count).expect("valid size");
-        let input: Vec<Complex32> = (0..count * size * size)
-            .map(|i| Complex32::new((i as f32 * 0.37).sin(), (i as f32 * 0.11).cos()))
-            .collect();
-        group.bench_with_input(BenchmarkId::new("twelve_ffts", size), &size, |b, _| {
-            b.iter_batched_ref(
-                || input.clone(),
-                |data| black_box(fft.process(data).expect("right length")[0]),
-                BatchSize::PerIteration,
-            )
+    }
+    group.finish();
+}
+
+fn parallel_cascades(c: &mut Criterion) {
+    let pool = common::pool(2);
+    let mut group = c.benchmark_group("ocean_parallel_cascades");
+    group
+        .sample_size(20)
+        // Each sample the same number of iterations: the larger N take tens of ms an
+        // iteration, which linear sampling would stretch to minutes.
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    let size = 256;
+    group.throughput(Throughput::Elements((size * size) as u64));
+    for parallel in [false, true] {
+        let mut state = ocean(size, parallel);
+        let name = if parallel { "parallel" } else { "sequential" };
+        group.bench_with_input(BenchmarkId::new(name, size), &size, |b, _| {
+            pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step")))
         });
     }
     group.finish();
@@ -71,6 +136,7 @@ fn queries(c: &mut Criterion) {
     let mut group = c.benchmark_group("ocean_queries");
     group
         .sample_size(20)
+        .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
     let points: Vec<[f64; 2]> = (0..10_000)
@@ -119,5 +185,11 @@ fn queries(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, step, queries);
-criterion_main!(benches);
+fn main() {
+    common::print_machine();
+    let mut criterion = Criterion::default().configure_from_args();
+    step(&mut criterion);
+    parallel_cascades(&mut criterion);
+    queries(&mut criterion);
+    criterion.final_summary();
+}

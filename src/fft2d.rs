@@ -60,7 +60,7 @@ impl std::fmt::Debug for RowFft {
 
 /// Side of the square tiles [`transpose_into`] moves at once: 8 complex values are one 64-byte
 /// cache line.
-const TILE: usize = 8;
+pub(crate) const TILE: usize = 8;
 
 /// `dst[r * dst_stride + c] = src[c * src_stride + r]` for `r < rows`, `c < cols`.
 ///

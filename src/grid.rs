@@ -7,12 +7,12 @@ use crate::error::Error;
 /// Smallest grid size N.
 pub(crate) const MIN_SIZE: usize = 4;
 
-/// Largest grid size N: a 4096² cascade holds about 2 GiB.
+/// Largest grid size N: a 4096² cascade holds about 1.5 GiB.
 pub(crate) const MAX_SIZE: usize = 4096;
 
 /// Checks a grid size `name`: even, [`MIN_SIZE`] ≤ N ≤ [`MAX_SIZE`].
 pub(crate) fn check_size(name: &'static str, size: usize) -> Result<usize, Error> {
-    if !(MIN_SIZE..=MAX_SIZE).contains(&size) || size % 2 != 0 {
+    if !(MIN_SIZE..=MAX_SIZE).contains(&size) || !size.is_multiple_of(2) {
         return Err(Error::InvalidSize { name, size });
     }
     Ok(size)

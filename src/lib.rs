@@ -166,6 +166,7 @@ mod presets;
 mod rng;
 #[cfg(feature = "serde")]
 mod serde_impls;
+mod simd;
 mod spectrum;
 
 pub use cascade::{Cascade, CascadeConfig, Field, LoopError};

@@ -166,4 +166,27 @@ fn update_allocates_nothing_after_warm_up() {
             assert!(growth <= hi as isize, "N={n}: memory grew by {growth} B");
         }
     }
+
+    // `CascadeConfig::memory_bytes` against what a cascade really keeps: the live bytes the
+    // allocator counts across `Cascade::new` (everything it allocated and did not free).
+    // The formula leaves out the FFT plans' twiddle tables and a few small vectors, so the
+    // live bytes may exceed it by a little, never fall below it.
+    for n in [64, 256, 1024] {
+        let config = CascadeConfig {
+            size: n,
+            length: 500.0,
+            ..CascadeConfig::default()
+        };
+        let expected = config.memory_bytes();
+        let before = LIVE.load(Ordering::SeqCst);
+        let cascade = pools[0].install(|| Cascade::new(&spectrum, config).unwrap());
+        let live = (LIVE.load(Ordering::SeqCst) - before) as usize;
+        drop(cascade);
+        println!("N={n}: memory_bytes {expected}, live after Cascade::new {live}");
+        // Twiddles of a length-N plan are a few N complex values: 64 N bytes is ample.
+        assert!(
+            live >= expected && live <= expected + 64 * n + 4096,
+            "N={n}: memory_bytes says {expected} B, the cascade holds {live} B"
+        );
+    }
 }

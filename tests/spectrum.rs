@@ -15,7 +15,7 @@ fn polar(theta: f32, k: f32) -> [f32; 2] {
 
 /// Composite Simpson rule of `f` over [a, b] with `intervals` (even) sub-intervals.
 fn simpson(a: f64, b: f64, intervals: usize, f: impl Fn(f64) -> f64) -> f64 {
-    assert!(intervals % 2 == 0);
+    assert!(intervals.is_multiple_of(2));
     let h = (b - a) / intervals as f64;
     let mut sum = f(a) + f(b);
     for i in 1..intervals {

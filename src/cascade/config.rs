@@ -84,7 +84,7 @@ impl Default for CascadeConfig {
 impl CascadeConfig {
     /// Smallest grid size N.
     pub const MIN_SIZE: usize = grid::MIN_SIZE;
-    /// Largest grid size N (a cascade of 4096² holds about 2 GiB).
+    /// Largest grid size N (a cascade of 4096² holds about 1.5 GiB).
     pub const MAX_SIZE: usize = grid::MAX_SIZE;
     /// Smallest patch side L, in metres.
     pub const MIN_LENGTH: f32 = 1e-2;
@@ -126,9 +126,10 @@ impl CascadeConfig {
     }
 
     /// Bytes a cascade of this size holds (buffers, tables and FFT scratch; the FFT plans'
-    /// own small twiddle tables are not counted), about
-    /// 127·N² (N = `size`). Any size gives an answer, even one
-    /// [`validate`](Self::validate) refuses.
+    /// own small twiddle tables are not counted): about 123·N² up to N = 512 (N = `size`),
+    /// less above as the second pass keeps only 32 blocks of 16 rows (106·N² at 1024²,
+    /// 94·N² at 4096²). Any size gives an answer, even one [`validate`](Self::validate)
+    /// refuses.
     pub fn memory_bytes(&self) -> usize {
         super::memory_bytes(self.size)
     }

@@ -96,11 +96,42 @@ pub(super) fn packed_pair(
 /// Columns evolved by one [`evolve_block`] call.
 const EVOLVE_BLOCK: usize = 64;
 
+/// The column ranges of [`evolve_row_pair`]'s blocks over columns 1..N, in order: blocks of
+/// [`EVOLVE_BLOCK`] columns (fewer only when N − 1 is below it). When N − 1 ≥ EVOLVE_BLOCK
+/// every block is full: the last one starts early and recomputes a few columns, writing the
+/// same values, so that the vector loops have no scalar remainder. At most 64 blocks for
+/// N ≤ 4097, so a row's blocks fit the bits of a `u64` (see [`zero_blocks`]).
+pub(super) fn column_blocks(n: usize) -> impl Iterator<Item = std::ops::Range<usize>> {
+    let len = EVOLVE_BLOCK.min(n - 1);
+    (1..n).step_by(EVOLVE_BLOCK).map(move |next| {
+        let start = next.min(n - len);
+        start..start + len
+    })
+}
+
+/// Bit b set where block b of [`column_blocks`] has p = q = 0 in every column of table row
+/// `table`: that block's spectral values are zero at every t, so [`evolve_row_pair`] writes
+/// zeros there instead of evolving them. A cascade whose band stops below the Nyquist wave
+/// number (every cascade of an ocean but the smallest) has whole blocks of them in every row.
+pub(super) fn zero_blocks(table: EvolutionRow<'_>) -> u64 {
+    let n = table.p_re.len();
+    column_blocks(n).enumerate().fold(0, |bits, (b, range)| {
+        let zero = [table.p_re, table.p_im, table.q_re, table.q_im]
+            .iter()
+            .all(|values| values[range.clone()].iter().all(|&v| v == 0.0));
+        bits | (u64::from(zero) << b)
+    })
+}
+
 /// Fills spectral rows i (`upper`, k_x > 0) and N − i (`lower`, its Hermitian partner), each
-/// four packed transforms of N, from table row i: (i, j) pairs with (N − i, N − j).
-#[inline(never)]
+/// four packed transforms of N, from table row i: (i, j) pairs with (N − i, N − j). Blocks
+/// whose bit is set in `zero` (see [`zero_blocks`]) are written as zeros without evolving.
+/// Inlined into its caller's [`Simd::run`](crate::simd::Simd::run), so that its loops are
+/// compiled for the level the cascade runs at.
+#[inline(always)]
 pub(super) fn evolve_row_pair(
     table: EvolutionRow<'_>,
+    zero: u64,
     kx: f32,
     kz: &[f32],
     t: f64,
@@ -121,22 +152,31 @@ pub(super) fn evolve_row_pair(
     let (plus, minus) = packed_pair(fract_turns(e.freq * t), e.p, e.q, kx, kz[0], table.inv_k[0]);
     (u0[0], u1[0], u2[0], u3[0]) = (plus[0], plus[1], plus[2], plus[3]);
     (l0[0], l1[0], l2[0], l3[0]) = (minus[0], minus[1], minus[2], minus[3]);
-    // Blocks of EVOLVE_BLOCK columns over 1..N: the f64 phase reduction first (2 lanes per
-    // SSE vector), then the f32 work (4 lanes), each loop vectorising at its own width. When
-    // N − 1 ≥ EVOLVE_BLOCK every block is full (the last one starts early and recomputes a
-    // few columns, writing the same values), so the vector loops have no scalar remainder.
+    // Per block: the f64 phase reduction first (2 lanes per SSE vector), then the f32 work
+    // (4 lanes), each loop vectorising at its own width.
     let mut turns = [0.0f32; EVOLVE_BLOCK];
-    let columns = n - 1;
-    let len = EVOLVE_BLOCK.min(columns);
-    let mut next = 1;
-    while next < n {
-        let start = next.min(n - len);
-        let range = start..start + len;
+    let mut plus = [[Complex32::default(); EVOLVE_BLOCK]; 4];
+    let mut minus = [[Complex32::default(); EVOLVE_BLOCK]; 4];
+    let (mut u, mut l) = ([u0, u1, u2, u3], [l0, l1, l2, l3]);
+    for (b, range) in column_blocks(n).enumerate() {
+        let len = range.len();
+        let mirror = n - range.end + 1..n - range.start + 1;
+        if zero & (1 << b) != 0 {
+            // Zeros in, zeros out: a fill costs a fraction of the sines and cosines. (The
+            // evolution would give ±0 here; the sign of a zero never reaches an output, which
+            // the hash check of every buffer confirmed.)
+            for out in &mut u {
+                out[range.clone()].fill(Complex32::default());
+            }
+            for out in &mut l {
+                out[mirror.clone()].fill(Complex32::default());
+            }
+            continue;
+        }
         let turns = &mut turns[..len];
         for (turns, &freq) in turns.iter_mut().zip(&table.freq[range.clone()]) {
             *turns = fract_turns(freq * t);
         }
-        let mirror = n - start - len + 1..n - start + 1;
         evolve_block(
             turns,
             &table.p_re[range.clone()],
@@ -146,26 +186,32 @@ pub(super) fn evolve_row_pair(
             &table.inv_k[range.clone()],
             kx,
             &kz[range.clone()],
-            &mut u0[range.clone()],
-            &mut u1[range.clone()],
-            &mut u2[range.clone()],
-            &mut u3[range],
-            &mut l0[mirror.clone()],
-            &mut l1[mirror.clone()],
-            &mut l2[mirror.clone()],
-            &mut l3[mirror],
+            &mut plus,
+            &mut minus,
         );
-        next = start + len;
+        // Out to the rows: the block's columns in order, their partners N − j reversed.
+        for (out, values) in u.iter_mut().zip(&plus) {
+            out[range.clone()].copy_from_slice(&values[..len]);
+        }
+        for (out, values) in l.iter_mut().zip(&minus) {
+            for (out, value) in out[mirror.clone()]
+                .iter_mut()
+                .zip(values[..len].iter().rev())
+            {
+                *out = *value;
+            }
+        }
     }
 }
 
-/// The four packed values of a block of columns j (`plus`, at the block's columns) and of
-/// their partners N − j (`minus`, in reverse order), from the block's reduced phases and
-/// table entries (p_re, p_im, q_re, q_im). A function of its own, every output slice a
-/// separate `&mut` argument (so that LLVM knows they do not overlap and needs no run-time
-/// checks), so that the loop vectorises.
+/// The four packed values of a block of columns j (`plus`) and of their partners N − j
+/// (`minus`, in the same order), from the block's reduced phases and table entries (p_re,
+/// p_im, q_re, q_im), into arrays on the caller's stack. A loop on its own over stack arrays
+/// (which LLVM knows alias nothing) so that it vectorises at any SIMD level: written
+/// straight into the eight row slices it stayed scalar once inlined into the AVX-512
+/// kernel (LLVM lost track of their not overlapping), and the update took 1.3× as long.
 #[allow(clippy::too_many_arguments)]
-#[inline(never)]
+#[inline(always)]
 fn evolve_block(
     turns: &[f32],
     p_re: &[f32],
@@ -175,19 +221,15 @@ fn evolve_block(
     inv_k: &[f32],
     kx: f32,
     kz: &[f32],
-    u0: &mut [Complex32],
-    u1: &mut [Complex32],
-    u2: &mut [Complex32],
-    u3: &mut [Complex32],
-    l0: &mut [Complex32],
-    l1: &mut [Complex32],
-    l2: &mut [Complex32],
-    l3: &mut [Complex32],
+    plus: &mut [[Complex32; EVOLVE_BLOCK]; 4],
+    minus: &mut [[Complex32; EVOLVE_BLOCK]; 4],
 ) {
-    let len = turns.len();
+    let len = turns.len().min(EVOLVE_BLOCK);
     let (p_re, p_im) = (&p_re[..len], &p_im[..len]);
     let (q_re, q_im) = (&q_re[..len], &q_im[..len]);
     let (inv_k, kz) = (&inv_k[..len], &kz[..len]);
+    let [u0, u1, u2, u3] = plus;
+    let [l0, l1, l2, l3] = minus;
     let (u0, u1, u2, u3) = (
         &mut u0[..len],
         &mut u1[..len],
@@ -205,8 +247,7 @@ fn evolve_block(
         let q = Complex32::new(q_re[b], q_im[b]);
         let (plus, minus) = packed_pair(turns[b], p, q, kx, kz[b], inv_k[b]);
         (u0[b], u1[b], u2[b], u3[b]) = (plus[0], plus[1], plus[2], plus[3]);
-        let m = len - 1 - b;
-        (l0[m], l1[m], l2[m], l3[m]) = (minus[0], minus[1], minus[2], minus[3]);
+        (l0[b], l1[b], l2[b], l3[b]) = (minus[0], minus[1], minus[2], minus[3]);
     }
 }
 

@@ -6,8 +6,9 @@ use std::f64::consts::TAU;
 use num_complex::Complex32;
 
 use super::tables::Evolution;
-use super::{check_time, Cascade, Field, TRANSFORMS};
+use super::{check_time, row_stride, Cascade, Field, TRANSFORMS};
 use crate::error::{self, Error};
+use crate::fft2d::transpose_into;
 
 impl Cascade {
     /// The evolved spectrum h̃(k, t) = h0(k)e^{−iωt} + conj(h0(−k))e^{iωt} in m, in the grid's
@@ -69,16 +70,34 @@ impl Cascade {
     }
 
     /// One of the eight real fields at the last update, in metres or dimensionless as
-    /// [`Field`] says, in buffer order (index j·N + i). Allocates; read straight from the
-    /// packed transforms.
+    /// [`Field`] says, in buffer order (index j·N + i). Allocates; its packed transform is
+    /// finished afresh from the update's first pass (N row FFTs), to the same bits the
+    /// update's outputs were computed from.
     pub fn field(&self, field: Field) -> Vec<f32> {
-        let n = self.n;
         let (transform, imaginary) = field.packing();
-        let mut out = Vec::with_capacity(n * n);
-        for j in 0..n {
-            let row = &self.spatial[(j * TRANSFORMS + transform) * n..][..n];
-            out.extend(row.iter().map(|c| if imaginary { c.im } else { c.re }));
-        }
+        let packed = self.finish_transform(transform);
+        packed
+            .iter()
+            .map(|c| if imaginary { c.im } else { c.re })
+            .collect()
+    }
+
+    /// Packed transform `transform` at the last update in buffer order: the second pass of
+    /// the update (transpose, then FFTs along x) redone for it alone. The update itself keeps
+    /// only a few blocks of rows of its second pass at a time, not the whole grid.
+    fn finish_transform(&self, transform: usize) -> Vec<Complex32> {
+        let n = self.n;
+        let mut out = vec![Complex32::default(); n * n];
+        transpose_into(
+            &self.spectral[transform * n..],
+            row_stride(n),
+            &mut out,
+            n,
+            n,
+            n,
+        );
+        let mut scratch = vec![Complex32::default(); self.rows.scratch_len()];
+        self.rows.process(&mut out, &mut scratch);
         out
     }
 
@@ -90,12 +109,7 @@ impl Cascade {
     /// # Errors
     /// [`Error::IndexOutOfRange`] unless `transform` < 4.
     pub fn packed_transform(&self, transform: usize) -> Result<Vec<Complex32>, Error> {
-        let n = self.n;
         error::index("transform", transform, TRANSFORMS)?;
-        let mut out = Vec::with_capacity(n * n);
-        for j in 0..n {
-            out.extend_from_slice(&self.spatial[(j * TRANSFORMS + transform) * n..][..n]);
-        }
-        Ok(out)
+        Ok(self.finish_transform(transform))
     }
 }

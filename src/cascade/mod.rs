@@ -7,6 +7,8 @@ mod field;
 mod inspect;
 mod outputs;
 mod tables;
+#[cfg(test)]
+mod tests;
 
 use std::f64::consts::TAU;
 use std::ops::Bound::Included;
@@ -15,15 +17,16 @@ use num_complex::Complex32;
 use rayon::prelude::*;
 
 use crate::error::{self, Error};
-use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
+use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK, TILE};
 use crate::grid::{self, wave_index};
+use crate::simd::Simd;
 use crate::spectrum::{SlopeVariance, Spectrum};
 
 pub(crate) use config::check_band;
 pub use config::CascadeConfig;
 pub use field::Field;
 
-use evolve::{evolve_row_pair, fract_turns, packed_pair};
+use evolve::{column_blocks, evolve_row_pair, fract_turns, packed_pair, zero_blocks};
 use outputs::write_outputs;
 pub use tables::LoopError;
 use tables::{check_amplitude, Amplitudes, EvolutionTable};
@@ -46,8 +49,8 @@ use tables::{check_amplitude, Amplitudes, EvolutionTable};
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```
 ///
-/// `Clone` copies every table and buffer (about 127·N² bytes): the copy updates to the same
-/// bits as the original.
+/// `Clone` copies every table and buffer ([`CascadeConfig::memory_bytes`], about 123·N²
+/// bytes): the copy updates to the same bits as the original.
 #[derive(Clone)]
 pub struct Cascade {
     config: CascadeConfig,
@@ -72,10 +75,22 @@ pub struct Cascade {
     /// k_z = Δk·m(j) of spectral column j.
     kz: Vec<f32>,
     rows: RowFft,
+    /// The SIMD level of the element loops (the widest the CPU has; the tests force each).
+    simd: Simd,
+    tasks: Tasks,
+    /// Band pruning, per table row i in 0..N/2: which evolution blocks hold no wave.
+    pruning: Vec<RowPruning>,
+    /// Row pairs 1..=`live_pairs` are evolved and transformed; the pairs beyond hold no wave
+    /// (p = q = 0 in their whole table row), so their spectral rows stay zero from
+    /// construction on and pass 2 writes zeros for them without reading them.
+    live_pairs: usize,
     /// Pass-1 buffer, layout [i][transform][j] (k_x row, k_z column → after the FFT, z).
     spectral: Vec<Complex32>,
-    /// Pass-2 buffer, layout [j][transform][i] (z row, x column) once transformed.
-    spatial: Vec<Complex32>,
+    /// Pass-2 block buffers, one per pass-2 task, each [`ROWS_PER_TASK`] rows of layout
+    /// [j][transform][i] (z row, x column) once transformed.
+    blocks: Vec<Complex32>,
+    /// FFT scratch, one slot per task of the pass running (the passes run one after the
+    /// other and share it).
     scratch: Vec<Complex32>,
     height: Vec<f32>,
     displacement: Vec<[f32; 2]>,
@@ -97,6 +112,14 @@ impl std::fmt::Debug for Cascade {
 /// Number of packed complex transforms per update.
 const TRANSFORMS: usize = 4;
 
+/// Values between the starts of two rows of the pass-1 buffer and of a pass-2 block: the
+/// row's four transforms and one cache line of padding. Without it rows lie a power of two
+/// of bytes apart (32·N), so the lines a transpose tile reads or writes at once, one per
+/// row, all fall into the same cache set and evict each other.
+pub(crate) fn row_stride(n: usize) -> usize {
+    (TRANSFORMS * n).saturating_add(TILE)
+}
+
 /// Checks a simulation time `name`: finite, |t| ≤ [`Cascade::MAX_TIME`].
 pub(crate) fn check_time(name: &'static str, t: f64) -> Result<f64, Error> {
     error::in_range_f64(
@@ -117,19 +140,29 @@ pub(crate) fn memory_bytes(n: usize) -> usize {
     } else {
         n
     };
+    let tasks = Tasks::new(n);
     let per_point = [
-        complex,                  // h0
-        2 * TRANSFORMS * complex, // pass-1 and pass-2 buffers
-        4 + 2 * 8 + 12 + 4,       // height, displacement, slope, normal, jacobian
+        complex,            // h0
+        4 + 2 * 8 + 12 + 4, // height, displacement, slope, normal, jacobian
     ];
+    let spectral = n.saturating_mul(row_stride(n)).saturating_mul(complex);
     let evolution_entry = 4 * 4 + 8 + 4; // p, q, freq, 1/|k|, for half the points
-    let tables = (points / 2).saturating_mul(evolution_entry) + n.saturating_mul(4);
-    let scratch = tasks(n).saturating_mul(scratch_len).saturating_mul(complex);
-    per_point
-        .iter()
-        .fold(tables.saturating_add(scratch), |sum, &bytes| {
-            sum.saturating_add(points.saturating_mul(bytes))
-        })
+    let pruning = std::mem::size_of::<RowPruning>();
+    let tables = (points / 2)
+        .saturating_mul(evolution_entry)
+        .saturating_add(n.saturating_mul(4 + pruning));
+    let scratch = tasks
+        .scratch_slots()
+        .saturating_mul(scratch_len)
+        .saturating_mul(complex);
+    let blocks = tasks.block_values(n).saturating_mul(complex);
+    per_point.iter().fold(
+        tables
+            .saturating_add(scratch)
+            .saturating_add(blocks)
+            .saturating_add(spectral),
+        |sum, &bytes| sum.saturating_add(points.saturating_mul(bytes)),
+    )
 }
 
 /// 2 Σ_k |k| |h0(k)|² in m over the grid's wave vectors (h0 in FFT order, index j·N + i at
@@ -151,10 +184,88 @@ fn mean_level_per_choppiness(h0: &[Complex32], n: usize, dk: f64) -> f64 {
     2.0 * sum
 }
 
-/// Parallel tasks of one update, each with its own scratch: the row pairs of pass 1 and the
-/// row blocks of pass 2 at once.
-fn tasks(n: usize) -> usize {
-    n.div_ceil(ROWS_PER_TASK) + n / 2
+/// Most parallel tasks of each pass. Every task owns an FFT scratch slot (and in pass 2 a
+/// block buffer of [`ROWS_PER_TASK`] rows, which it works through its z rows with), so this
+/// bounds those buffers: up to N = 512 each pass-2 task still handles one block, as before;
+/// at 1024² pass 2 holds 32 blocks (17 MB) instead of the whole grid (34 MB), at 4096² 67 MB
+/// instead of 537 MB. 32 tasks still balance the load over as many threads.
+const MAX_TASKS: usize = 32;
+
+/// How one update's work is split into parallel tasks.
+#[derive(Debug, Clone, Copy)]
+struct Tasks {
+    /// Row pairs (k_x and −k_x) each pass-1 task evolves and transforms.
+    pairs_per_task: usize,
+    /// Pass-1 tasks for the whole band (a pruned band runs fewer).
+    pass1: usize,
+    /// Blocks of [`ROWS_PER_TASK`] z rows each pass-2 task gathers, transforms and writes
+    /// out, one after the other through its block buffer.
+    blocks_per_task: usize,
+    /// Pass-2 tasks.
+    pass2: usize,
+}
+
+impl Tasks {
+    fn new(n: usize) -> Self {
+        let pairs = (n / 2).saturating_sub(1).max(1);
+        let pairs_per_task = pairs.div_ceil(MAX_TASKS);
+        let blocks = n.div_ceil(ROWS_PER_TASK).max(1);
+        let blocks_per_task = blocks.div_ceil(MAX_TASKS);
+        Tasks {
+            pairs_per_task,
+            pass1: pairs.div_ceil(pairs_per_task),
+            blocks_per_task,
+            pass2: blocks.div_ceil(blocks_per_task),
+        }
+    }
+
+    /// FFT scratch slots: pass 1 (row 0 beside the row-pair tasks) and pass 2 run one after
+    /// the other, so they share.
+    fn scratch_slots(&self) -> usize {
+        (self.pass1 + 1).max(self.pass2)
+    }
+
+    /// Values of all pass-2 block buffers of an N grid.
+    fn block_values(&self, n: usize) -> usize {
+        self.pass2
+            .saturating_mul(ROWS_PER_TASK)
+            .saturating_mul(row_stride(n))
+    }
+}
+
+/// Band pruning of one evolution-table row (one row pair of the spectrum).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct RowPruning {
+    /// Bit b set: block b of the row's columns holds no wave (see [`evolve::zero_blocks`]).
+    zero_blocks: u64,
+    /// The whole row holds no wave (every block and column 0).
+    empty: bool,
+}
+
+impl RowPruning {
+    /// The pruning of every table row of an N grid.
+    fn of(evolution: &EvolutionTable, n: usize) -> Vec<RowPruning> {
+        let blocks = column_blocks(n).count();
+        let all = if blocks == 64 {
+            u64::MAX
+        } else {
+            (1u64 << blocks) - 1
+        };
+        (0..n / 2)
+            .map(|i| {
+                let row = evolution.get_row(i, n);
+                let zero_blocks = zero_blocks(row);
+                let column0 = row.p_re[0] == 0.0
+                    && row.p_im[0] == 0.0
+                    && row.q_re[0] == 0.0
+                    && row.q_im[0] == 0.0;
+                RowPruning {
+                    zero_blocks,
+                    empty: column0 && zero_blocks == all,
+                }
+            })
+            .collect()
+    }
 }
 
 impl Cascade {
@@ -199,6 +310,9 @@ impl Cascade {
         let subgrid_slope =
             spectrum.slope_variance_f64(band_top, f64::from(SlopeVariance::DEFAULT_CUTOFF));
         let rows = RowFft::new(n);
+        let tasks = Tasks::new(n);
+        let pruning = RowPruning::of(&evolution, n);
+        let live_pairs = (1..n / 2).rev().find(|&i| !pruning[i].empty).unwrap_or(0);
         let points = n * n;
         let mut cascade = Cascade {
             config,
@@ -214,10 +328,17 @@ impl Cascade {
             h0,
             evolution,
             kz,
-            spectral: error::try_vec(TRANSFORMS * points, Complex32::default())?,
-            spatial: error::try_vec(TRANSFORMS * points, Complex32::default())?,
-            scratch: error::try_vec(tasks(n) * rows.scratch_len(), Complex32::default())?,
+            spectral: error::try_vec(n * row_stride(n), Complex32::default())?,
+            blocks: error::try_vec(tasks.block_values(n), Complex32::default())?,
+            scratch: error::try_vec(
+                tasks.scratch_slots() * rows.scratch_len(),
+                Complex32::default(),
+            )?,
             rows,
+            simd: Simd::detect(),
+            tasks,
+            pruning,
+            live_pairs,
             height: error::try_vec(points, 0.0)?,
             displacement: error::try_vec(points, [0.0; 2])?,
             slope: error::try_vec(points, [0.0; 2])?,
@@ -260,19 +381,29 @@ impl Cascade {
 
     /// Pass 1: builds the four packed spectra row by row (rows are k_x, so a row and its
     /// Hermitian partner −k are rows i and N − i) and transforms each row along k_z while it
-    /// is in cache.
+    /// is in cache. Only row 0 and the row pairs 1..=`live_pairs` are touched: the rows
+    /// beyond hold no wave and stay zero (as does the Nyquist row N/2), and empty pairs in
+    /// between are skipped. For the default ocean's two larger cascades, whose band stops at
+    /// half their Nyquist wave number, that skips half the row pairs.
     fn spectral_pass(&mut self, t: f64) {
         let n = self.n;
         let half = n / 2;
         let row_len = TRANSFORMS * n;
+        let stride = row_stride(n);
         let dk = self.dk;
         let evolution = &self.evolution;
+        let pruning = &self.pruning;
         let rows = &self.rows;
         let s = rows.scratch_len();
+        let pairs = self.live_pairs;
+        let per_task = self.tasks.pairs_per_task;
+        let simd = self.simd;
 
-        let (row0, rest) = self.spectral.split_at_mut(row_len);
-        let (top, rest) = rest.split_at_mut((half - 1) * row_len);
-        let (nyquist, bottom) = rest.split_at_mut(row_len);
+        // Rows 1..=pairs, and their partners N − pairs..N − 1.
+        let (row0, rest) = self.spectral.split_at_mut(stride);
+        let row0 = &mut row0[..row_len];
+        let (top, rest) = rest.split_at_mut(pairs * stride);
+        let bottom = &mut rest[(n - 1 - 2 * pairs) * stride..];
         let (scratch0, scratch_pairs) = self.scratch.split_at_mut(s);
 
         let kz = &self.kz;
@@ -297,81 +428,119 @@ impl Cascade {
                     }
                 }
                 rows.process(row0, scratch0);
-                // Row N/2 is the Nyquist column: zero, and so is its transform.
-                nyquist.fill(Complex32::default());
             },
             || {
-                top.par_chunks_mut(row_len)
-                    .zip(bottom.par_rchunks_mut(row_len))
+                // Each task: `per_task` consecutive row pairs, the upper rows in order and
+                // their partners (from the end of the buffer) in reverse.
+                top.par_chunks_mut(per_task * stride)
+                    .zip(bottom.par_rchunks_mut(per_task * stride))
                     .zip(scratch_pairs.par_chunks_mut(s))
                     .enumerate()
-                    .for_each(|(index, ((upper, lower), scratch))| {
-                        let i = index + 1;
-                        let kx = i as f32 * dk;
-                        evolve_row_pair(evolution.get_row(i, n), kx, kz, t, upper, lower);
-                        rows.process(upper, scratch);
-                        rows.process(lower, scratch);
+                    .for_each(|(task, ((uppers, lowers), scratch))| {
+                        let count = uppers.len() / stride;
+                        for m in 0..count {
+                            let i = task * per_task + m + 1;
+                            if pruning[i].empty {
+                                continue;
+                            }
+                            let upper = &mut uppers[m * stride..][..row_len];
+                            let lower = &mut lowers[(count - 1 - m) * stride..][..row_len];
+                            let kx = i as f32 * dk;
+                            let table = evolution.get_row(i, n);
+                            let zero = pruning[i].zero_blocks;
+                            simd.run(
+                                #[inline(always)]
+                                || evolve_row_pair(table, zero, kx, kz, t, upper, lower),
+                            );
+                            rows.process(upper, scratch);
+                            rows.process(lower, scratch);
+                        }
                     });
             },
         );
     }
 
+    /// The columns i of a pass-2 block that hold no wave: the spectral rows beyond the live
+    /// row pairs (and the Nyquist row), shrunk to whole [`TILE`]s so that the transpose
+    /// around them keeps its full tiles. Empty when the band reaches the Nyquist wave number.
+    fn zero_columns(&self) -> std::ops::Range<usize> {
+        let n = self.n;
+        let start = (self.live_pairs + 1).next_multiple_of(TILE);
+        let end = (n - self.live_pairs) / TILE * TILE;
+        if start < end {
+            start..end
+        } else {
+            n..n
+        }
+    }
+
     /// Pass 2: gathers blocks of z rows from the pass-1 buffer (a blocked transpose),
     /// transforms them along x and turns the four packed results into the output buffers.
+    /// Each task works through its share of blocks with one block buffer.
     fn spatial_pass(&mut self) {
         let n = self.n;
         let row_len = TRANSFORMS * n;
+        let stride = row_stride(n);
         let lambda = self.config.choppiness;
         let offset = (f64::from(lambda) * self.mean_level) as f32;
         self.mean_level_offset = offset;
         let spectral = &self.spectral;
         let rows = &self.rows;
         let s = rows.scratch_len();
-        let block = ROWS_PER_TASK * n;
+        let zero = self.zero_columns();
+        let simd = self.simd;
+        let rows_per_task = self.tasks.blocks_per_task * ROWS_PER_TASK;
+        let out = rows_per_task * n;
         (
-            self.spatial.par_chunks_mut(ROWS_PER_TASK * row_len),
+            self.blocks.par_chunks_mut(ROWS_PER_TASK * stride),
             self.scratch.par_chunks_mut(s),
-            self.height.par_chunks_mut(block),
-            self.displacement.par_chunks_mut(block),
-            self.slope.par_chunks_mut(block),
-            self.normal.par_chunks_mut(block),
-            self.jacobian.par_chunks_mut(block),
+            self.height.par_chunks_mut(out),
+            self.displacement.par_chunks_mut(out),
+            self.slope.par_chunks_mut(out),
+            self.normal.par_chunks_mut(out),
+            self.jacobian.par_chunks_mut(out),
         )
             .into_par_iter()
             .enumerate()
             .for_each(
-                |(b, (spatial, scratch, height, displacement, slope, normal, jacobian))| {
-                    let j0 = b * ROWS_PER_TASK;
-                    let count = spatial.len() / row_len;
-                    // Gather: spatial[r][f][i] = spectral[i][f][j0 + r].
-                    for f in 0..TRANSFORMS {
-                        transpose_into(
-                            &spectral[f * n + j0..],
-                            row_len,
-                            &mut spatial[f * n..],
-                            row_len,
-                            count,
-                            n,
-                        );
-                    }
-                    rows.process(spatial, scratch);
-                    for r in 0..count {
-                        let row = &spatial[r * row_len..(r + 1) * row_len];
-                        let out = r * n..(r + 1) * n;
-                        write_outputs(
-                            row,
-                            n,
-                            lambda,
-                            offset,
-                            &mut height[out.clone()],
-                            &mut displacement[out.clone()],
-                            &mut slope[out.clone()],
-                            &mut normal[out.clone()],
-                            &mut jacobian[out],
+                |(task, (block, scratch, height, displacement, slope, normal, jacobian))| {
+                    let task_rows = height.len() / n;
+                    for r0 in (0..task_rows).step_by(ROWS_PER_TASK) {
+                        let count = ROWS_PER_TASK.min(task_rows - r0);
+                        let j0 = task * rows_per_task + r0;
+                        gather(spectral, n, j0, count, zero.clone(), block);
+                        for row in block.chunks_exact_mut(stride).take(count) {
+                            rows.process(&mut row[..row_len], scratch);
+                        }
+                        simd.run(
+                            #[inline(always)]
+                            || {
+                                for r in 0..count {
+                                    let row = &block[r * stride..][..row_len];
+                                    let out = (r0 + r) * n..(r0 + r + 1) * n;
+                                    write_outputs(
+                                        row,
+                                        n,
+                                        lambda,
+                                        offset,
+                                        &mut height[out.clone()],
+                                        &mut displacement[out.clone()],
+                                        &mut slope[out.clone()],
+                                        &mut normal[out.clone()],
+                                        &mut jacobian[out],
+                                    );
+                                }
+                            },
                         );
                     }
                 },
             );
+    }
+
+    /// Runs the element loops at `simd` from now on (the tests force every level).
+    #[cfg(test)]
+    pub(crate) fn set_simd(&mut self, simd: Simd) {
+        self.simd = simd;
     }
 
     /// The configuration this cascade was built with (choppiness as last set).
@@ -499,5 +668,35 @@ impl Cascade {
     /// k = Δk·(m(i), m(j))).
     pub fn h0(&self) -> &[Complex32] {
         &self.h0
+    }
+}
+
+/// `block[r][f][i] = spectral[i][f][j0 + r]` for the `count` z rows r of a block: a tiled
+/// transpose per transform (the pass-2 gather), with zeros written for the columns i in
+/// `zero` instead of reading spectral rows that hold no wave. With the default ocean's band
+/// split, the two larger cascades skip reading half their rows (the gather is a fifth to a
+/// third of an update).
+fn gather(
+    spectral: &[Complex32],
+    n: usize,
+    j0: usize,
+    count: usize,
+    zero: std::ops::Range<usize>,
+    block: &mut [Complex32],
+) {
+    let stride = row_stride(n);
+    for f in 0..TRANSFORMS {
+        let src = &spectral[f * n + j0..];
+        let dst = &mut block[f * n..];
+        transpose_into(src, stride, dst, stride, count, zero.start);
+        if zero.end < n {
+            let (src, dst) = (&src[zero.end * stride..], &mut dst[zero.end..]);
+            transpose_into(src, stride, dst, stride, count, n - zero.end);
+        }
+        if !zero.is_empty() {
+            for r in 0..count {
+                dst[r * stride + zero.start..r * stride + zero.end].fill(Complex32::default());
+            }
+        }
     }
 }

@@ -9,8 +9,10 @@ const MIN_SLOPE_NY: f32 = 1e-4;
 
 /// Output buffers of one grid row from its four packed, transformed rows; `offset` (m) is
 /// added to every height (the mean-level correction, see `Cascade::mean_level_offset`).
+/// Inlined into its caller's [`Simd::run`](crate::simd::Simd::run), so that its loops are
+/// compiled for the level the cascade runs at.
 #[allow(clippy::too_many_arguments)]
-#[inline(never)]
+#[inline(always)]
 pub(super) fn write_outputs(
     row: &[Complex32],
     n: usize,
@@ -58,9 +60,10 @@ pub(super) fn write_outputs(
 
 /// The arithmetic of [`write_outputs`] on one block, with the normals into plain f32 arrays.
 /// A function of its own, with every slice a separate argument (so that LLVM knows they do
-/// not overlap and needs no run-time checks), so that the loop vectorises.
+/// not overlap and needs no run-time checks: inlined, they keep that knowledge as alias
+/// scopes), so that the loop vectorises.
 #[allow(clippy::too_many_arguments)]
-#[inline(never)]
+#[inline(always)]
 fn output_block(
     t0: &[Complex32],
     t1: &[Complex32],
