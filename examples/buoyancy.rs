@@ -8,8 +8,9 @@
 //! (positive: bow, +x, up) and its roll the slope port-to-starboard (positive: port side,
 //! −z, up). No dynamics: this is the heightfield-follower games use for small floating props.
 //!
-//! Writes `out/buoyancy.csv` (`t,y,pitch_deg,roll_deg`) and `out/buoyancy.png` (heave on top,
-//! pitch and roll below), and prints the standard deviation of the heave beside H_s/4 of the
+//! Writes `out/buoyancy.csv` (`t,y,pitch_deg,roll_deg`) and `out/buoyancy.png` (heave in
+//! metres on top with ±H_s/2 of the sea, pitch and roll in degrees below, against time in
+//! seconds), and prints the standard deviation of the heave beside H_s/4 of the
 //! sea (a box this small follows the long waves, so they should be close; over only 60 s of
 //! one point the estimate scatters by tens of per cent).
 //!
@@ -21,7 +22,10 @@ use std::io::Write;
 
 use ocean_fft::{OceanConfig, OceanState, Spectrum};
 
-use common::{out_dir, Canvas, Result};
+use plotters::prelude::*;
+
+use common::plot::{draw_png, FONT, SERIES};
+use common::{out_dir, Result};
 
 const LENGTH: f64 = 4.0;
 const WIDTH: f64 = 2.0;
@@ -94,9 +98,9 @@ fn main() -> Result<()> {
     );
 
     let path = dir.join("buoyancy.png");
-    plot(&frames)?.save(&path)?;
+    plot(&path, &frames, hs)?;
     println!(
-        "wrote {} (top: heave y [m]; bottom: pitch (blue) and roll (orange) [deg]; 0 to {DURATION} s)",
+        "wrote {} (top: heave y [m]; bottom: pitch and roll [degrees]; 0 to {DURATION} s)",
         path.display()
     );
 
@@ -117,59 +121,107 @@ fn main() -> Result<()> {
     Ok(())
 }
 
-/// Heave (top panel) and pitch/roll (bottom panel) against time.
-fn plot(frames: &[Frame]) -> Result<Canvas> {
-    let (w, h) = (900usize, 460usize);
-    let mut canvas = Canvas::new(w, h, [255, 255, 255]);
-    let left = 60.0;
-    let right = w as f32 - 20.0;
-    let panels = [(30.0f32, 210.0f32), (260.0f32, 440.0f32)];
-    let grey = [150, 150, 150];
-    let max_y = frames.iter().fold(0.1f32, |m, f| m.max(f.y.abs())) * 1.1;
-    let max_angle = frames.iter().fold(0.5f32, |m, f| {
-        m.max(f.pitch_deg.abs()).max(f.roll_deg.abs())
-    }) * 1.1;
-    let t_end = frames.last().map_or(1.0, |f| f.t) as f32;
-    let x_of = |t: f64| left + (t as f32 / t_end) * (right - left);
-    for (index, &(top, bottom)) in panels.iter().enumerate() {
-        let mid = 0.5 * (top + bottom);
-        canvas.line((left, top), (left, bottom), 1, grey);
-        canvas.line((left, mid), (right, mid), 1, grey);
-        for second in (0..=t_end as usize).step_by(10) {
-            let x = x_of(second as f64);
-            canvas.line((x, mid - 3.0), (x, mid + 3.0), 1, grey);
-            if index == 1 {
-                canvas.text(
-                    x as i64 - 4,
-                    bottom as i64 + 6,
-                    &format!("{second}"),
-                    2,
-                    grey,
-                );
-            }
+/// Heave (top panel, metres) and pitch and roll (bottom panel, degrees) against time in
+/// seconds, with ticks, units and a legend.
+fn plot(path: &std::path::Path, frames: &[Frame], hs: f32) -> Result<()> {
+    draw_png(path, 900, 560, |root| {
+        let text = 15.0;
+        let root = root.titled(
+            "A 4 m × 2 m box on the default sea (JONSWAP, U10 = 10 m/s, 100 km fetch)",
+            (FONT, text * 1.15).into_font(),
+        )?;
+        let (top, bottom) = root.split_vertically(root.dim_in_pixel().1 / 2);
+        let t_end = frames.last().map_or(1.0, |f| f.t);
+        let heave = frames.iter().fold(0.1f32, |m, f| m.max(f.y.abs())) as f64 * 1.15;
+        let angle = frames.iter().fold(0.5f32, |m, f| {
+            m.max(f.pitch_deg.abs()).max(f.roll_deg.abs())
+        }) as f64
+            * 1.15;
+
+        let mut chart = ChartBuilder::on(&top)
+            .margin(10)
+            .x_label_area_size(text * 2.0)
+            .y_label_area_size(text * 4.0)
+            .build_cartesian_2d(0.0..t_end, -heave..heave)?;
+        chart
+            .configure_mesh()
+            .y_desc("heave y [m]")
+            .label_style((FONT, text).into_font())
+            .axis_desc_style((FONT, text).into_font())
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .y_label_formatter(&|v| format!("{v:.1}"))
+            .light_line_style(RGBColor(235, 235, 235))
+            .draw()?;
+        let blue = SERIES[0];
+        chart
+            .draw_series(LineSeries::new(
+                frames.iter().map(|f| (f.t, f64::from(f.y))),
+                blue.stroke_width(2),
+            ))?
+            .label("heave (mean of the four corners)")
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], blue.stroke_width(2))
+            });
+        let grey = RGBColor(130, 130, 130);
+        for level in [-0.5 * f64::from(hs), 0.5 * f64::from(hs)] {
+            chart.draw_series(LineSeries::new(
+                [(0.0, level), (t_end, level)],
+                ShapeStyle::from(&grey).stroke_width(1),
+            ))?;
         }
-        let (label, range) = if index == 0 {
-            (format!("HEAVE M, +-{max_y:.2}"), max_y)
-        } else {
-            (format!("PITCH, ROLL DEG, +-{max_angle:.1}"), max_angle)
-        };
-        canvas.text(left as i64 + 6, top as i64 - 16, &label, 2, [60, 60, 60]);
-        let y_of = |v: f32| mid - v / range * 0.5 * (bottom - top);
-        if index == 0 {
-            let points: Vec<(f32, f32)> = frames.iter().map(|f| (x_of(f.t), y_of(f.y))).collect();
-            canvas.polyline(&points, 2, [31, 119, 180]);
-        } else {
-            let pitch: Vec<(f32, f32)> = frames
-                .iter()
-                .map(|f| (x_of(f.t), y_of(f.pitch_deg)))
-                .collect();
-            let roll: Vec<(f32, f32)> = frames
-                .iter()
-                .map(|f| (x_of(f.t), y_of(f.roll_deg)))
-                .collect();
-            canvas.polyline(&pitch, 2, [31, 119, 180]);
-            canvas.polyline(&roll, 2, [255, 127, 14]);
+        chart
+            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
+            .label(format!("±Hs/2 of the sea (Hs = {hs:.2} m)"))
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font((FONT, text * 0.95).into_font())
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(180, 180, 180))
+            .draw()?;
+
+        let mut chart = ChartBuilder::on(&bottom)
+            .margin(10)
+            .x_label_area_size(text * 3.0)
+            .y_label_area_size(text * 4.0)
+            .build_cartesian_2d(0.0..t_end, -angle..angle)?;
+        chart
+            .configure_mesh()
+            .x_desc("time t [s]")
+            .y_desc("angle [degrees]")
+            .label_style((FONT, text).into_font())
+            .axis_desc_style((FONT, text).into_font())
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .y_label_formatter(&|v| format!("{v:.0}°"))
+            .light_line_style(RGBColor(235, 235, 235))
+            .draw()?;
+        for (index, label, value) in [
+            (
+                0usize,
+                "pitch (bow, +x, up)",
+                &(|f: &Frame| f.pitch_deg) as &dyn Fn(&Frame) -> f32,
+            ),
+            (1, "roll (port, −z, up)", &|f: &Frame| f.roll_deg),
+        ] {
+            let colour = SERIES[index];
+            chart
+                .draw_series(LineSeries::new(
+                    frames.iter().map(|f| (f.t, f64::from(value(f)))),
+                    colour.stroke_width(2),
+                ))?
+                .label(label)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
         }
-    }
-    Ok(canvas)
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font((FONT, text * 0.95).into_font())
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(180, 180, 180))
+            .draw()?;
+        Ok(())
+    })
 }

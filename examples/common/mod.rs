@@ -26,7 +26,11 @@ impl Args {
                 return Err(format!("unexpected argument {arg:?} (options start with --)").into());
             };
             if !allowed.contains(&name) {
-                return Err(format!("unknown option --{name} (options: --{})", allowed.join(", --")).into());
+                return Err(format!(
+                    "unknown option --{name} (options: --{})",
+                    allowed.join(", --")
+                )
+                .into());
             }
             let value = match args.peek() {
                 Some(next) if !next.starts_with("--") => args.next(),
@@ -71,8 +75,9 @@ impl Args {
             .map(|v| v.trim().parse::<f32>())
             .collect::<std::result::Result<_, _>>()
             .map_err(|_| format!("--{name}: cannot read {text:?} as {K} numbers"))?;
-        <[f32; K]>::try_from(values)
-            .map_err(|_| format!("--{name}: expected {K} comma-separated numbers, got {text:?}").into())
+        <[f32; K]>::try_from(values).map_err(|_| {
+            format!("--{name}: expected {K} comma-separated numbers, got {text:?}").into()
+        })
     }
 }
 
