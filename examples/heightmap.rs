@@ -1,79 +1,138 @@
 //! The default ocean in a few seconds: builds `Spectrum::jonswap(10.0, 100_000.0)` (U10 = 10 m/s,
 //! 100 km fetch) with `OceanConfig::default()` (three cascades of 256² over 1000, 230 and 51 m),
-//! steps it at 60 Hz to t = 10 s and writes, for the largest cascade (1000 m, 256×256):
+//! steps it at 60 Hz to t = 10 s and maps a 400 m × 400 m world-space window of the whole
+//! ocean (every cascade summed, `OceanState::sample_grid`), 512 × 512 pixels of 0.78 m, each
+//! the mean of 3 × 3 samples (so waves shorter than a pixel average out instead of aliasing
+//! into speckle):
 //!
 //! - `out/heightmap.png`: 16-bit grayscale height η, mapped linearly from [−a, a] to
-//!   [0, 65535] with a = max |η| of the tile (printed);
+//!   [0, 65535] with a = max |η| of the window (printed);
 //! - `out/normal.png`: 8-bit RGB normal map of the displaced surface, each component mapped
 //!   from [−1, 1] to [0, 255] with **R = n_x, G = n_z, B = n_y** (the usual tangent-space
 //!   layout with the surface's up axis y in blue, so flat water is (128, 128, 255));
-//! - `out/foam.png`: 8-bit foam coverage of the largest cascade after 5 s of 60 Hz steps.
+//! - `out/foam.png`: 8-bit foam coverage in [0, 1] after 5 s of 60 Hz steps.
+//!
+//! In each picture the top 512 rows are the window (pixel (i, j) covers x ∈ [i, i + 1)·s,
+//! z ∈ [j, j + 1)·s, s = 0.78 m; image rows are z) and a 32-pixel band below holds a scale bar
+//! and the window's size.
 //!
 //! It also prints the significant wave height H_s = 4·std(η) measured on a grid of world
 //! points (all cascades summed, via `sample_many`) beside the spectrum's 4√m0 and the
 //! expected 4√(Σ S(k)Δk²) of the grids.
 //!
+//! Options: `--window METRES` (side of the window, default 400), `--pixels N` (default 512).
+//!
 //! Run with `cargo run --release -p ocean-fft-examples --example heightmap` from the repository
-//! root. Pixel (i, j) of every image is grid sample (i, j) at x = i·L/N, z = j·L/N (image rows
-//! are z).
+//! root.
 
 mod common;
 
 use ocean_fft::{OceanConfig, OceanState, Spectrum, SurfaceSample};
+use plotters::prelude::*;
 
-use common::{out_dir, save_gray16, save_gray8, save_rgb8, to_u16, to_u8, Result};
+use common::plot::{draw_on, metres, scale_bar};
+use common::{out_dir, save_gray16, save_gray8, save_rgb8, to_u16, to_u8, Args, Result};
+
+/// Samples per pixel along each axis (averaged).
+const SUPER: usize = 3;
+/// Height in pixels of the band under each map with its scale bar.
+const FOOTER: usize = 32;
 
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
+    let args = Args::parse(&["window", "pixels"])?;
+    let window: f64 = args.get("window", 400.0)?;
+    let pixels: usize = args.get("pixels", 512)?;
+    if !(window > 0.0 && window.is_finite()) || !(16..=4096).contains(&pixels) {
+        return Err(
+            "--window must be a positive length in metres, --pixels from 16 to 4096".into(),
+        );
+    }
     let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
     let hs_spectrum = spectrum.significant_wave_height();
     let mut ocean = OceanState::new(spectrum, OceanConfig::default())?;
 
     // Jump to t = 5 s, then 300 steps of 1/60 s to t = 10 s: the foam builds up over these
-    // steps (it decays with τ = 2.5 s, so 5 s is close to its steady state).
+    // steps.
     ocean.set_time(5.0)?;
     let dt = 1.0 / 60.0;
     for _ in 0..300 {
         ocean.step(dt)?;
     }
+    let simulated = start.elapsed().as_secs_f32();
+
+    // The window: SUPER × SUPER samples per pixel at the centres of its sub-pixels.
+    let n = pixels;
+    let fine = n * SUPER;
+    let spacing = window / fine as f64;
+    let mut samples = vec![SurfaceSample::default(); fine * fine];
+    ocean.sample_grid(
+        [0.5 * spacing, 0.5 * spacing],
+        spacing,
+        [fine, fine],
+        &mut samples,
+    )?;
+    let mut height = vec![0.0f32; n * n];
+    let mut normal = vec![[0.0f32; 3]; n * n];
+    let mut foam = vec![0.0f32; n * n];
+    let weight = 1.0 / (SUPER * SUPER) as f32;
+    for (p, sample) in samples.iter().enumerate() {
+        let (i, j) = ((p % fine) / SUPER, (p / fine) / SUPER);
+        let pixel = j * n + i;
+        height[pixel] += sample.height * weight;
+        for c in 0..3 {
+            normal[pixel][c] += sample.normal[c];
+        }
+        foam[pixel] += sample.foam * weight;
+    }
+    let sampled = start.elapsed().as_secs_f32() - simulated;
 
     let dir = out_dir("")?;
-    let cascade = &ocean.cascades()[0];
-    let n = cascade.size();
+    let metres_per_pixel = window / n as f64;
+    let caption = format!(
+        "window {} × {}, all {} cascades summed",
+        metres(window),
+        metres(window),
+        ocean.cascades().len()
+    );
+    let footer = footer(n, metres_per_pixel, &caption)?;
 
-    // Height of the largest cascade, 16-bit.
-    let height = cascade.height();
+    // Height, 16-bit; the footer's gray levels widened to 16 bits.
     let a = height.iter().fold(0.0f32, |m, &h| m.max(h.abs())).max(1e-6);
-    let pixels: Vec<u16> = height.iter().map(|&h| to_u16(h, a)).collect();
+    let mut image: Vec<u16> = height.iter().map(|&h| to_u16(h, a)).collect();
+    image.extend(footer.chunks(3).map(|c| u16::from(c[1]) * 257));
     let path = dir.join("heightmap.png");
-    save_gray16(&path, n, n, &pixels)?;
+    save_gray16(&path, n, n + FOOTER, &image)?;
     println!(
-        "wrote {} ({n}×{n}, L = {} m, height mapped from [−{a:.3}, {a:.3}] m to [0, 65535])",
-        path.display(),
-        cascade.length()
+        "wrote {} ({n}×{n} pixels of {metres_per_pixel:.3} m over a {window} m window at \
+         (0, 0), height mapped from [−{a:.3}, {a:.3}] m to [0, 65535]; scale bar below)",
+        path.display()
     );
 
-    // Normal map: R = n_x, G = n_z, B = n_y (up).
-    let pixels: Vec<u8> = cascade
-        .normal()
+    // Normal map: R = n_x, G = n_z, B = n_y (up), of the mean normal of each pixel.
+    let mut image: Vec<u8> = normal
         .iter()
-        .flat_map(|v| [v[0], v[2], v[1]].map(|c| to_u8(0.5 + 0.5 * c)))
+        .flat_map(|v| {
+            let length = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-12);
+            [v[0], v[2], v[1]].map(|c| to_u8(0.5 + 0.5 * c / length))
+        })
         .collect();
+    image.extend_from_slice(&footer);
     let path = dir.join("normal.png");
-    save_rgb8(&path, n, n, &pixels)?;
+    save_rgb8(&path, n, n + FOOTER, &image)?;
     println!(
         "wrote {} (R = n_x, G = n_z, B = n_y, each from [−1, 1] to [0, 255])",
         path.display()
     );
 
-    // Foam of the largest cascade.
-    let foam = ocean.foam(0)?;
-    let pixels: Vec<u8> = foam.iter().map(|&f| to_u8(f)).collect();
+    // Foam.
+    let mut image: Vec<u8> = foam.iter().map(|&f| to_u8(f)).collect();
+    image.extend(footer.chunks(3).map(|c| c[1]));
     let path = dir.join("foam.png");
-    save_gray8(&path, n, n, &pixels)?;
+    save_gray8(&path, n, n + FOOTER, &image)?;
     let covered = foam.iter().filter(|&&f| f > 0.1).count() as f32 / foam.len() as f32;
     println!(
-        "wrote {} (foam in [0, 1] → [0, 255]; {:.1} % of the tile above 0.1)",
+        "wrote {} (foam in [0, 1] → [0, 255]; {:.1} % of the window above 0.1)",
         path.display(),
         100.0 * covered
     );
@@ -81,7 +140,7 @@ fn main() -> Result<()> {
     // Measured H_s: the summed surface on a 512×512 grid of world points spanning exactly
     // one period of the largest cascade (the smaller ones are periodic inside it).
     let m = 512;
-    let period = f64::from(cascade.length());
+    let period = f64::from(ocean.cascades()[0].length());
     let points: Vec<[f64; 2]> = (0..m * m)
         .map(|p| {
             let (i, j) = (p % m, p / m);
@@ -108,6 +167,21 @@ fn main() -> Result<()> {
         "(one random realisation: the few longest waves dominate, so the measured value \
          scatters by several per cent around the expected one)"
     );
-    println!("done in {:.2} s", start.elapsed().as_secs_f32());
+    println!(
+        "simulation {simulated:.2} s, window ({} samples) {sampled:.2} s, done in {:.2} s",
+        fine * fine,
+        start.elapsed().as_secs_f32()
+    );
     Ok(())
+}
+
+/// The band under each map: a scale bar and `caption` on dark grey, `width` × [`FOOTER`] RGB.
+fn footer(width: usize, metres_per_pixel: f64, caption: &str) -> Result<Vec<u8>> {
+    let mut band = vec![40u8; width * FOOTER * 3];
+    let (w, h) = (u32::try_from(width)?, FOOTER as u32);
+    draw_on(&mut band, w, h, |area| {
+        area.fill(&RGBColor(40, 40, 40))?;
+        scale_bar(area, metres_per_pixel, w, caption)
+    })?;
+    Ok(band)
 }

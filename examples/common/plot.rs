@@ -94,43 +94,43 @@ fn trim(value: f64) -> String {
     text.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
-/// Draws a scale bar for a map of `metres_per_pixel` in the lower-left corner of `area`
-/// (about a quarter of its width), with its length and `caption` (e.g. the window's size)
-/// beside it, white with a dark outline so it reads on any background.
+/// Draws a scale bar for a map of `metres_per_pixel` at the left of `area`, vertically
+/// centred, about a quarter of the map's width (`map_width` pixels) long, with its length and
+/// `caption` (e.g. the window's size) to its right: white with a dark outline, so it reads on
+/// any background. For a footer under a map, or over the map itself.
 pub fn scale_bar(
     area: &DrawingArea<BitMapBackend<'_>, Shift>,
     metres_per_pixel: f64,
+    map_width: u32,
     caption: &str,
 ) -> Result<()> {
-    let (width, height) = area.dim_in_pixel();
-    let size = (f64::from(height.min(width)) / 22.0).clamp(11.0, 20.0);
-    let length = nice_length(0.28 * f64::from(width) * metres_per_pixel);
+    let (_, height) = area.dim_in_pixel();
+    let size = (f64::from(height) * 0.5).clamp(11.0, 18.0);
+    let length = nice_length(0.25 * f64::from(map_width) * metres_per_pixel);
     let bar = (length / metres_per_pixel).round() as i32;
-    let (x0, y0) = (10, height as i32 - 12);
+    let (x0, y0) = (10, height as i32 / 2);
     let dark = RGBColor(10, 10, 10);
     area.draw(&Rectangle::new(
-        [(x0 - 2, y0 - 7), (x0 + bar + 2, y0 + 2)],
+        [(x0 - 1, y0 - 4), (x0 + bar + 1, y0 + 4)],
         dark.filled(),
     ))?;
     area.draw(&Rectangle::new(
-        [(x0, y0 - 5), (x0 + bar, y0)],
+        [(x0, y0 - 3), (x0 + bar, y0 + 3)],
         WHITE.filled(),
     ))?;
-    let label = format!("{}   {caption}", metres(length));
-    let style = (FONT, size).into_font();
-    for (dx, dy) in [(-1, 0), (1, 0), (0, -1), (0, 1), (1, 1)] {
-        area.draw(&Text::new(
-            label.clone(),
-            (x0 + dx, y0 - 10 - size as i32 + dy),
-            style.color(&dark),
+    for x in [x0, x0 + bar / 2, x0 + bar] {
+        area.draw(&Rectangle::new(
+            [(x - 1, y0 - 7), (x, y0 + 7)],
+            WHITE.filled(),
         ))?;
     }
-    area.draw(&Text::new(
-        label,
-        (x0, y0 - 10 - size as i32),
-        style.color(&WHITE),
-    ))?;
-    Ok(())
+    let label = format!("{}      {caption}", metres(length));
+    outlined_text(
+        area,
+        &label,
+        (x0 + bar + 10, y0 - (0.55 * size) as i32),
+        size,
+    )
 }
 
 /// Writes `text` at (x, y) in white with a dark outline, `size` pixels high.
