@@ -43,7 +43,7 @@ fn main() -> Result<()> {
     let args = Args::parse(&["window", "pixels"])?;
     let window: f64 = args.get("window", 400.0)?;
     let pixels: usize = args.get("pixels", 512)?;
-    if !(window > 0.0 && window.is_finite()) || !(16..=4096).contains(&pixels) {
+    if !(window > 0.0 && window.is_finite() && (16..=4096).contains(&pixels)) {
         return Err(
             "--window must be a positive length in metres, --pixels from 16 to 4096".into(),
         );
@@ -80,8 +80,8 @@ fn main() -> Result<()> {
         let (i, j) = ((p % fine) / SUPER, (p / fine) / SUPER);
         let pixel = j * n + i;
         height[pixel] += sample.height * weight;
-        for c in 0..3 {
-            normal[pixel][c] += sample.normal[c];
+        for (sum, c) in normal[pixel].iter_mut().zip(sample.normal) {
+            *sum += c;
         }
         foam[pixel] += sample.foam * weight;
     }
