@@ -1,62 +1,91 @@
-//! A contact sheet of every preset in `SeaState::ALL`: the same 200 m × 200 m window of each
-//! sea seen from straight above, side by side in `out/sea_states.png`, each tile labelled with
-//! the preset's name, H_s and T_p. Also prints a table of the presets (U10, fetch, depth, H_s,
-//! T_p, cascade lengths).
+//! A contact sheet of every preset in `SeaState::ALL`, `out/sea_states.png`: each sea seen from
+//! straight above over a window sized to its own waves, labelled with the preset's name, H_s,
+//! T_p and the window's size, with a scale bar. Also prints a table of the presets (U10, fetch,
+//! depth, H_s, T_p, peak wavelength, cascade lengths) and, for each tile, how much it repeats.
 //!
-//! Each preset is built at size 128 (instead of its default 256) to stay fast, stepped for
-//! 4 s at 30 Hz so that foam builds up, then sampled (`sample_many`, all cascades summed) at
-//! 720×720 undisplaced points of the window (3×3 per pixel of a 240-pixel tile, averaged to
-//! tame the aliasing of the small waves). Shading: a low sun from the upper left on the
-//! surface normal (hill shading, which shows the slopes of small and large seas alike), a
-//! tint that brightens crests by η/H_s of that preset, and foam blended to white.
+//! **Windows.** Each tile shows a square window of side 8 peak wavelengths λ_p (from the
+//! spectrum's peak frequency and its dispersion), at most 0.9 of the largest cascade's length
+//! L₀: the largest cascade, which holds most of the height variance, never repeats inside a
+//! tile, and a tile always holds several waves (the swell's window is 1.8 km, the calm sea's
+//! 42 m).
+//!
+//! **Repeats.** Inside a tile, the only shifts that can repeat are the lengths L of the smaller
+//! cascades (each cascade's field is periodic with its own L). For every cascade length shorter
+//! than the window the example measures the correlation coefficient of the tile's heights with
+//! the same heights shifted by L along x and along z (over the part of the tile where both lie
+//! inside it) and prints the largest, for L ≥ λ_p (a shorter shift lies inside one wave, where
+//! any smooth surface correlates with itself); the same for the slope vectors at every L. The
+//! crate's test `tests/preset_repeat.rs` checks that the height correlation stays below 0.2
+//! for every preset, on average over six seeds.
+//!
+//! **Filtering.** A pixel of a tile covers 0.2 m (calm) to 11 m (storm), far more than the
+//! smallest waves of the preset (down to 2 cm). Instead of letting them alias into speckle, each
+//! tile's ocean is built with `OceanConfig::k_max` at the pixels' Nyquist wave number π/Δx
+//! (dropping cascades whose band falls above it) and `band_split` 1 (each cascade up to its
+//! own Nyquist wave number, so the largest, which never repeats in the tile, holds most of
+//! what the tile shows), and each pixel is the mean of 2 × 2 samples.
+//!
+//! Shading: a low sun from the upper left on the surface normal (hill shading, which shows
+//! the slopes of small and large seas alike), a tint that brightens crests by η/H_s of that
+//! preset, and foam blended to white. Each preset is built at size 256 (its default), started
+//! at t = 20 s and stepped for 4 s at 30 Hz so that foam builds up.
+//!
+//! Options: `--tile PIXELS` (side of each tile, default 240).
 //!
 //! Run with `cargo run --release -p ocean-fft-examples --example sea_states`.
 
 mod common;
 
 use glam::Vec3;
-use ocean_fft::{OceanState, SeaState, SurfaceSample};
+use ocean_fft::{Error, OceanState, SeaState, SurfaceSample};
+use plotters::prelude::*;
 
-use common::{out_dir, Canvas, Result};
+use common::plot::{draw_on, metres, outlined_text, scale_bar, FONT};
+use common::{out_dir, save_rgb8, Args, Result};
 
-/// Side of the world window shown in every tile, in metres.
-const WINDOW: f64 = 200.0;
-/// Tile side in pixels.
-const TILE: usize = 240;
-/// Samples per pixel along each axis (averaged, to tame aliasing of the small waves).
-const SUPER: usize = 3;
+/// Samples per pixel along each axis (averaged).
+const SUPER: usize = 2;
 const COLUMNS: usize = 3;
 const PAD: usize = 12;
-const LABEL: usize = 34;
+const LABEL: usize = 44;
+/// Window side in peak wavelengths.
+const WAVELENGTHS: f64 = 8.0;
+/// Largest window side as a fraction of the largest cascade's length.
+const MAX_FRACTION: f64 = 0.9;
 
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
+    let args = Args::parse(&["tile"])?;
+    let tile_px: usize = args.get("tile", 240)?;
+    if !(32..=2048).contains(&tile_px) {
+        return Err("--tile must be from 32 to 2048 pixels".into());
+    }
     let rows = SeaState::ALL.len().div_ceil(COLUMNS);
-    let width = COLUMNS * (TILE + PAD) + PAD;
-    let height = rows * (TILE + LABEL + PAD) + PAD;
-    let mut sheet = Canvas::new(width, height, [20, 24, 30]);
-
-    let fine = TILE * SUPER;
-    let points: Vec<[f64; 2]> = (0..fine * fine)
-        .map(|p| {
-            let (i, j) = (p % fine, p / fine);
-            [
-                (i as f64 + 0.5) * WINDOW / fine as f64,
-                (j as f64 + 0.5) * WINDOW / fine as f64,
-            ]
-        })
+    let width = COLUMNS * (tile_px + PAD) + PAD;
+    let height = rows * (tile_px + LABEL + PAD) + PAD;
+    let background = [20u8, 24, 30];
+    let mut sheet: Vec<u8> = background
+        .iter()
+        .copied()
+        .cycle()
+        .take(width * height * 3)
         .collect();
-    let mut samples = vec![SurfaceSample::default(); points.len()];
+    let fine = tile_px * SUPER;
+    let mut samples = vec![SurfaceSample::default(); fine * fine];
     let sun = Vec3::new(-0.7, 0.35, -0.5).normalize();
 
     println!(
-        "{:<16} {:>8} {:>10} {:>9} {:>8} {:>7}  cascade lengths [m]",
-        "preset", "U10 m/s", "fetch km", "depth m", "Hs m", "Tp s"
+        "{:<16} {:>7} {:>8} {:>7} {:>7} {:>6} {:>7} {:>8}  cascade lengths [m]",
+        "preset", "U10 m/s", "fetch km", "depth m", "Hs m", "Tp s", "λp m", "window m"
     );
+    let mut labels = Vec::new();
+    let mut repeats = Vec::new();
     for (index, state) in SeaState::ALL.iter().enumerate() {
-        let (spectrum, mut config) = state.build();
+        let (spectrum, config) = state.build();
         let hs = spectrum.significant_wave_height();
         let tp = spectrum.peak_period();
+        let window = window_side(*state);
+        let wavelength = peak_wavelength(*state);
         let fetch = spectrum
             .fetch()
             .map_or("-".to_string(), |f| format!("{:.0}", f / 1000.0));
@@ -64,52 +93,247 @@ fn main() -> Result<()> {
             .depth()
             .map_or("deep".to_string(), |d| format!("{d:.1}"));
         println!(
-            "{:<16} {:>8.2} {:>10} {:>9} {:>8.3} {:>7.2}  {:?}",
+            "{:<16} {:>7.2} {:>8} {:>7} {:>7.3} {:>6.2} {:>7.1} {:>8.0}  {:?}",
             state.name(),
             state.wind_speed(),
             fetch,
             depth,
             hs,
             tp,
+            wavelength,
+            window,
             config.lengths
         );
-        config.size = 128;
-        let mut ocean = OceanState::new(spectrum, config)?;
+
+        // Band-limit the sea to what a pixel resolves: k_max = π/Δx, and drop the cascades
+        // whose whole band lies above it.
+        let pixel = window / tile_px as f64;
+        let mut tile_config = config.clone();
+        tile_config.k_max = (std::f64::consts::PI / pixel) as f32;
+        // Each cascade's band up to its own Nyquist wave number (the presets split at half
+        // of it): the tile's pixels are about as fine as the largest cascade's grid, so it
+        // carries nearly every wave the tile resolves, and the smaller cascade, which does
+        // repeat inside the tile, holds little of the slope the shading shows (its repeat
+        // correlation of slopes falls from 0.27–0.50 to 0.02–0.24).
+        tile_config.band_split = 1.0;
+        let mut ocean = loop {
+            match OceanState::new(spectrum.clone(), tile_config.clone()) {
+                Err(Error::EmptyBand { .. }) if tile_config.lengths.len() > 1 => {
+                    tile_config.lengths.pop();
+                }
+                other => break other?,
+            }
+        };
         ocean.set_time(20.0)?;
         for _ in 0..120 {
             ocean.step(1.0 / 30.0)?;
         }
-        ocean.sample_many(&points, &mut samples)?;
+        let spacing = window / fine as f64;
+        ocean.sample_grid(
+            [0.5 * spacing, 0.5 * spacing],
+            spacing,
+            [fine, fine],
+            &mut samples,
+        )?;
+        let repeat = repeat_correlation(&ocean, window, wavelength, 160)?;
+        repeats.push((state.name(), window, repeat, tile_config.lengths.len()));
 
-        let tile: Vec<u8> = (0..TILE * TILE)
-            .flat_map(|p| {
-                let (i, j) = (p % TILE, p / TILE);
+        let x0 = PAD + (index % COLUMNS) * (tile_px + PAD);
+        let y0 = PAD + (index / COLUMNS) * (tile_px + LABEL + PAD) + LABEL;
+        for j in 0..tile_px {
+            for i in 0..tile_px {
                 let mut sum = Vec3::ZERO;
                 for dj in 0..SUPER {
                     for di in 0..SUPER {
-                        sum += shade(&samples[(j * SUPER + dj) * fine + i * SUPER + di], sun, hs);
+                        let sample = &samples[(j * SUPER + dj) * fine + i * SUPER + di];
+                        sum += shade(sample, sun, hs);
                     }
                 }
-                to_srgb(sum / (SUPER * SUPER) as f32)
-            })
-            .collect();
-        let x0 = PAD + (index % COLUMNS) * (TILE + PAD);
-        let y0 = PAD + (index / COLUMNS) * (TILE + LABEL + PAD);
-        sheet.text(x0 as i64, y0 as i64, state.name(), 2, [235, 235, 235]);
-        let numbers = format!("HS {hs:.2} M  TP {tp:.1} S");
-        sheet.text(x0 as i64, y0 as i64 + 14, &numbers, 2, [170, 190, 210]);
-        sheet.blit(x0 as i64, (y0 + LABEL) as i64, TILE, TILE, &tile);
+                let colour = to_srgb(sum / (SUPER * SUPER) as f32);
+                let at = ((y0 + j) * width + x0 + i) * 3;
+                sheet[at..at + 3].copy_from_slice(&colour);
+            }
+        }
+        labels.push((
+            x0,
+            y0,
+            state.name().replace('_', " "),
+            format!("Hs {hs:.2} m · Tp {tp:.1} s · {} window", metres(window)),
+            pixel,
+        ));
     }
 
+    draw_on(&mut sheet, width as u32, height as u32, |root| {
+        for (x0, y0, name, numbers, pixel) in &labels {
+            let (x0, y0) = (*x0 as i32, *y0 as i32);
+            root.draw(&Text::new(
+                name.clone(),
+                (x0, y0 - LABEL as i32 + 2),
+                (FONT, 19.0).into_font().color(&RGBColor(235, 235, 235)),
+            ))?;
+            root.draw(&Text::new(
+                numbers.clone(),
+                (x0, y0 - LABEL as i32 + 24),
+                (FONT, 14.0).into_font().color(&RGBColor(170, 190, 210)),
+            ))?;
+            let bar = root.clone().shrink(
+                (x0 as u32, (y0 as usize + tile_px - 30) as u32),
+                (tile_px as u32, 30),
+            );
+            scale_bar(&bar, *pixel, tile_px as u32, "")?;
+        }
+        let _ = outlined_text;
+        Ok(())
+    })?;
+
     let path = out_dir("")?.join("sea_states.png");
-    sheet.save(&path)?;
+    save_rgb8(&path, width, height, &sheet)?;
     println!(
-        "wrote {} (each tile: the same {WINDOW} m × {WINDOW} m window from above, x to the \
-         right, z down; size 128, t = 24 s)",
+        "wrote {} ({width}×{height}; each tile {tile_px}² pixels from above, x to the right, \
+         z down, t = 24 s)",
         path.display()
     );
+    println!(
+        "repeats inside each tile: the largest correlation coefficient of the heights (and of \
+         the slope vectors) with themselves shifted by a cascade length L < window along x or \
+         z; below 0.2 means no visible repeat (heights of shifts L < λp, inside one wave, \
+         correlate whether or not anything repeats, and are not counted)"
+    );
+    for (name, window, repeat, cascades) in repeats {
+        let text: Vec<String> = repeat
+            .iter()
+            .map(|r| {
+                let height = if r.length as f64 >= r.wavelength {
+                    format!("height {:+.3}", r.height)
+                } else {
+                    "height (L < λp)".to_string()
+                };
+                format!("L = {} m: {height}, slope {:+.3}", r.length, r.slope)
+            })
+            .collect();
+        println!(
+            "  {name:<16} window {window:>5.0} m, {cascades} cascade(s) drawn: {}",
+            if text.is_empty() {
+                "no cascade shorter than the window".to_string()
+            } else {
+                text.join("; ")
+            }
+        );
+    }
     println!("done in {:.2} s", start.elapsed().as_secs_f32());
     Ok(())
+}
+
+/// Peak wavelength λ_p = 2π/k_p in metres, k_p from the peak frequency under the preset's
+/// dispersion.
+fn peak_wavelength(state: SeaState) -> f64 {
+    let (spectrum, _) = state.build();
+    let k = spectrum.dispersion().k_from_omega(spectrum.peak_omega());
+    std::f64::consts::TAU / f64::from(k)
+}
+
+/// The side of a preset's tile window in metres: [`WAVELENGTHS`] peak wavelengths, at most
+/// [`MAX_FRACTION`] of the largest cascade's length, rounded down to 2 significant digits.
+fn window_side(state: SeaState) -> f64 {
+    let (_, config) = state.build();
+    let side =
+        (WAVELENGTHS * peak_wavelength(state)).min(MAX_FRACTION * f64::from(config.lengths[0]));
+    let unit = 10f64.powf(side.log10().floor() - 1.0);
+    (side / unit).floor() * unit
+}
+
+/// The correlation of a tile with itself shifted by one cascade length.
+struct Repeat {
+    length: f32,
+    /// The sea's peak wavelength in metres.
+    wavelength: f64,
+    /// Largest correlation coefficient of the heights over the shifts along x and along z.
+    height: f64,
+    /// Largest correlation coefficient of the slope vectors (Σ s·s′ / √(Σ|s|² Σ|s′|²), means
+    /// removed) over the same shifts.
+    slope: f64,
+}
+
+/// For every cascade shorter than `window`: the correlation of the surface over the
+/// `window`-wide tile at the origin with itself shifted by the cascade's length, along x and
+/// along z, on an `m`×`m` grid of points, over the points whose shifted twin also lies inside
+/// the tile.
+fn repeat_correlation(
+    ocean: &OceanState,
+    window: f64,
+    wavelength: f64,
+    m: usize,
+) -> Result<Vec<Repeat>> {
+    let spacing = window / m as f64;
+    let mut base = vec![SurfaceSample::default(); m * m];
+    let mut shifted = vec![SurfaceSample::default(); m * m];
+    ocean.sample_grid([0.0, 0.0], spacing, [m, m], &mut base)?;
+    let mut out = Vec::new();
+    for cascade in ocean.cascades() {
+        let length = f64::from(cascade.length());
+        if length >= window {
+            continue;
+        }
+        let inside = ((window - length) / spacing).floor() as usize;
+        let mut repeat = Repeat {
+            length: cascade.length(),
+            wavelength,
+            height: f64::NEG_INFINITY,
+            slope: f64::NEG_INFINITY,
+        };
+        for axis in 0..2 {
+            let origin = if axis == 0 {
+                [length, 0.0]
+            } else {
+                [0.0, length]
+            };
+            ocean.sample_grid(origin, spacing, [m, m], &mut shifted)?;
+            let pairs = (0..m * m).filter(|&p| {
+                let (i, j) = (p % m, p / m);
+                (if axis == 0 { i } else { j }) < inside
+            });
+            let pairs: Vec<usize> = pairs.collect();
+            let heights = |s: &[SurfaceSample]| -> Vec<[f64; 1]> {
+                pairs.iter().map(|&p| [f64::from(s[p].height)]).collect()
+            };
+            let slopes = |s: &[SurfaceSample]| -> Vec<[f64; 2]> {
+                pairs.iter().map(|&p| s[p].slope.map(f64::from)).collect()
+            };
+            repeat.height = repeat
+                .height
+                .max(correlation(&heights(&base), &heights(&shifted)));
+            repeat.slope = repeat
+                .slope
+                .max(correlation(&slopes(&base), &slopes(&shifted)));
+        }
+        out.push(repeat);
+    }
+    Ok(out)
+}
+
+/// Correlation coefficient of two equally long lists of vectors: Σ a·b / √(Σ|a|² Σ|b|²) after
+/// removing each list's mean.
+fn correlation<const D: usize>(a: &[[f64; D]], b: &[[f64; D]]) -> f64 {
+    let mean = |v: &[[f64; D]]| {
+        let mut m = [0.0; D];
+        for x in v {
+            for d in 0..D {
+                m[d] += x[d] / v.len() as f64;
+            }
+        }
+        m
+    };
+    let (ma, mb) = (mean(a), mean(b));
+    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        for d in 0..D {
+            let (p, q) = (x[d] - ma[d], y[d] - mb[d]);
+            ab += p * q;
+            aa += p * p;
+            bb += q * q;
+        }
+    }
+    ab / (aa * bb).sqrt().max(1e-300)
 }
 
 /// Linear colour of one top-view sample: hill shading from the normal, crests tinted by
