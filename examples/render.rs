@@ -1,38 +1,138 @@
-//! A shaded perspective picture of the displaced ocean surface, `out/render.png` (960×540).
+//! A shaded perspective picture of the displaced ocean surface, `out/render.png` (960×540 by
+//! default), of the default sea or any preset, from a camera you place.
 //!
-//! The default ocean (`Spectrum::jonswap(10.0, 100_000.0)`, `OceanConfig::default()`) is
-//! stepped for 4 s at 30 Hz so that foam builds up. A camera 6 m above the mean surface looks
-//! toward the horizon, slightly off the wind direction, into a low sun. Every pixel casts a
-//! ray, marched against the displaced surface (the water height at a world point after
+//! ```text
+//! cargo run --release -p ocean-fft-examples --example render -- --preset storm
+//! cargo run --release -p ocean-fft-examples --example render -- --preset calm --camera 0,3,0 --heading 20 --pitch -8
+//! ```
+//!
+//! Options (all optional):
+//!
+//! - `--preset NAME`: `default` (`Spectrum::jonswap(10.0, 100_000.0)` with
+//!   `OceanConfig::default()`) or a `SeaState` name: `calm`, `moderate_breeze`,
+//!   `fresh_breeze`, `storm`, `swell`, `shallow_bay`;
+//! - `--camera X,Y,Z`: the eye in metres (default: 6 m above the mean surface, or 0.8 H_s when
+//!   that is higher, at the origin);
+//! - `--heading DEG`: the view direction in degrees from +x (the wind direction) toward +z;
+//!   `--pitch DEG`: up (positive) or down from the horizontal; `--fov DEG`: the horizontal
+//!   field of view (default 70);
+//! - `--width`, `--height` in pixels; `--samples N`: N × N rays per pixel (default 2);
+//! - `--time SECONDS` of the sea (default 30); `--exposure` (default 0.8); `--out FILE`.
+//!
+//! The sea is stepped for 4 s at 30 Hz up to the time so that foam builds up. Every ray is
+//! marched against the displaced surface (the water height at a world point after
 //! horizontal displacement, by two fixed-point steps of `OceanState::sample`; the converged
-//! form is `OceanState::height_at`) and refined by bisection; the hit point is
-//! shaded from `OceanState::surface_at` (normal and foam):
+//! form is `OceanState::height_at`) and refined by bisection; the hit point is shaded from
+//! `OceanState::surface_at` (normal and foam):
 //!
-//! - sky gradient reflected with Schlick's Fresnel (water n = 1.33, F0 ≈ 0.02);
-//! - a sun glitter path: a Beckmann lobe whose slope variance is the ocean's sub-grid
-//!   mean-square slope (`OceanState::subgrid_slope_variance`, the waves too small for the
-//!   finest grid), plus the grid's own slopes that a distant pixel averages over;
-//! - a deep-water colour plus a subsurface tint that is brighter on high crests;
-//! - foam blended to white;
-//! - distance fog to the horizon colour.
+//! - **Light that suits the sea.** Fair weather (every preset but the storm): a sun with a
+//!   blue sky, whose reflection, glitter path and subsurface glow give the picture its
+//!   contrast. Storm: an overcast sky (the CIE standard overcast sky's luminance, three times
+//!   brighter at the zenith than at the horizon, Moon & Spencer 1942), no sun, dark slate
+//!   water, white foam, low haze; the camera looks across the crests coming at it.
+//! - **Sub-grid roughness in the glint.** The sun's glitter is an anisotropic Gaussian
+//!   slope distribution (Cox & Munk 1954) whose along- and across-wind variances are what the
+//!   pixel does not resolve: the ocean's sub-grid slope variance
+//!   (`OceanState::subgrid_slope_variance`, waves too small for the finest grid), plus the
+//!   slope variance of the simulated waves too short for the pixel's footprint on the water
+//!   (`Spectrum::slope_variance` from π/footprint to the finest grid's band edge).
+//! - **Distance-aware filtering.** N × N rays per pixel, and each hit's resolved slope scaled
+//!   down by the share of the slope variance its footprint cannot resolve, which moves into
+//!   the glint's distribution above (the surface's total slope variance is kept): far water
+//!   turns into a smooth, wide glitter path instead of speckle.
+//! - **Tone mapping.** Linear radiance is exposed and mapped with the ACES filmic curve
+//!   (Narkowicz's 2015 fit) to sRGB: highlights roll off instead of clipping to flat white.
+//! - Schlick's Fresnel (water n = 1.33, F0 ≈ 0.02), a deep-water colour with a subsurface
+//!   tint brighter on high crests, foam lit by the sky and the sun, haze to the horizon.
 //!
-//! Rows are rendered in parallel with rayon. Run with
-//! `cargo run --release -p ocean-fft-examples --example render`.
+//! Rows are rendered in parallel with rayon.
 
 mod common;
 
 use glam::Vec3;
-use ocean_fft::{OceanConfig, OceanState, Spectrum};
+use ocean_fft::{OceanConfig, OceanState, SeaState, Spectrum, SurfaceSample};
 use rayon::prelude::*;
 
-use common::{out_dir, save_rgb8, Result};
+use common::{out_dir, save_rgb8, Args, Result};
 
-const WIDTH: usize = 960;
-const HEIGHT: usize = 540;
-/// Horizontal field of view in degrees.
-const FOV_DEG: f32 = 70.0;
-/// Rays that have not hit the water this far out (m) end in the fog.
-const FAR: f32 = 6000.0;
+/// Rays that have not hit the water this far out (m) end in the haze.
+const FAR: f32 = 8000.0;
+
+/// The light of a scene.
+#[derive(Clone, Copy)]
+struct Light {
+    /// Unit vector toward the sun (fair weather) or `None` (overcast).
+    sun: Option<Vec3>,
+    /// Sun irradiance on a surface facing it (linear RGB).
+    sun_colour: Vec3,
+    /// Sky radiance at the zenith and at the horizon (linear RGB).
+    zenith: Vec3,
+    horizon: Vec3,
+    /// Water colours: deep body and subsurface (crest) tint.
+    deep: Vec3,
+    subsurface: Vec3,
+    /// Distance in metres over which the haze takes 63 % of the light.
+    haze: f32,
+}
+
+impl Light {
+    /// Sun at `elevation` (rad) and `azimuth` (rad from +x toward +z) with a clear blue sky.
+    fn fair(azimuth: f32, elevation: f32) -> Light {
+        Light {
+            sun: Some(Vec3::new(
+                elevation.cos() * azimuth.cos(),
+                elevation.sin(),
+                elevation.cos() * azimuth.sin(),
+            )),
+            sun_colour: Vec3::new(1.0, 0.88, 0.72) * 2.2,
+            zenith: Vec3::new(0.10, 0.24, 0.56),
+            horizon: Vec3::new(0.62, 0.72, 0.84),
+            deep: Vec3::new(0.004, 0.030, 0.055),
+            subsurface: Vec3::new(0.03, 0.21, 0.19),
+            haze: 3500.0,
+        }
+    }
+
+    /// A heavy overcast: grey sky, no sun, dark water, close haze.
+    fn overcast() -> Light {
+        Light {
+            sun: None,
+            sun_colour: Vec3::ZERO,
+            zenith: Vec3::new(0.42, 0.44, 0.47),
+            horizon: Vec3::new(0.15, 0.16, 0.175),
+            deep: Vec3::new(0.004, 0.008, 0.011),
+            subsurface: Vec3::new(0.010, 0.030, 0.028),
+            haze: 1200.0,
+        }
+    }
+
+    /// Sky radiance in direction `dir`; `with_sun` adds the sun's disc.
+    fn sky(&self, dir: Vec3, with_sun: bool) -> Vec3 {
+        let elevation = dir.y.max(0.0);
+        match self.sun {
+            None => {
+                // CIE standard overcast sky: L(θ) ∝ (1 + 2 sin θ)/3 of the elevation θ.
+                let l = (1.0 + 2.0 * elevation) / 3.0;
+                self.horizon.lerp(self.zenith, (l - 1.0 / 3.0) * 1.5) * (0.6 + 0.4 * l)
+            }
+            Some(sun) => {
+                let mut colour = self.horizon.lerp(self.zenith, elevation.powf(0.45));
+                let cosine = dir.dot(sun).max(0.0);
+                colour +=
+                    Vec3::new(1.0, 0.80, 0.55) * (0.25 * cosine.powi(12) + 0.4 * cosine.powi(400));
+                if with_sun && cosine > 0.99988 {
+                    colour += Vec3::splat(40.0);
+                }
+                colour
+            }
+        }
+    }
+
+    /// The colour far rays fade to: the sky at the horizon in that direction.
+    fn haze_colour(&self, dir: Vec3) -> Vec3 {
+        self.sky(Vec3::new(dir.x, 0.0, dir.z).normalize_or(Vec3::X), false)
+    }
+}
 
 /// Everything the shading needs besides the ocean.
 struct Scene {
@@ -40,88 +140,210 @@ struct Scene {
     forward: Vec3,
     right: Vec3,
     up: Vec3,
-    sun: Vec3,
+    /// tan of half the horizontal field of view.
+    tan: f32,
+    width: usize,
+    height: usize,
+    light: Light,
     /// Bound on |surface height| in m: no water above +bound or below −bound.
     bound: f32,
     /// Standard deviation of the height in m (for the crest tint).
     sigma: f32,
-    /// Mean-square slope of the waves shorter than the finest grid (sub-grid roughness).
-    subgrid_mss: f32,
-    /// Mean-square slope the grids hold (averaged away by a distant pixel).
-    resolved_mss: f32,
+    /// Unit vector along the wind (horizontal).
+    wind: Vec3,
+    /// Sub-grid slope variance [along, across] (waves shorter than the finest grid).
+    subgrid: [f32; 2],
+    /// Slope variance [along, across] of the simulated waves between wave number
+    /// `k_table[i]` and the finest grid's band edge, on a logarithmic table of wave numbers.
+    k_table: Vec<f32>,
+    unresolved: Vec<[f32; 2]>,
+    /// Total slope variance of the simulated waves.
+    resolved_total: f32,
+    /// Width of one ray's share of a pixel, in radians.
+    ray_angle: f32,
+}
+
+impl Scene {
+    /// Slope variance [along, across] of the simulated waves shorter than π/`footprint`
+    /// (interpolated in the table).
+    fn unresolved_at(&self, footprint: f32) -> [f32; 2] {
+        let k = std::f32::consts::PI / footprint.max(1e-4);
+        let table = &self.k_table;
+        if k <= table[0] {
+            return self.unresolved[0];
+        }
+        if k >= table[table.len() - 1] {
+            return [0.0; 2];
+        }
+        let position = (k / table[0]).ln() / (table[1] / table[0]).ln();
+        let i = (position.floor() as usize).min(table.len() - 2);
+        let f = position - i as f32;
+        let (a, b) = (self.unresolved[i], self.unresolved[i + 1]);
+        [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])]
+    }
 }
 
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
-    let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
-    let mut ocean = OceanState::new(spectrum, OceanConfig::default())?;
-    ocean.set_time(30.0)?;
+    let args = Args::parse(&[
+        "preset", "camera", "heading", "pitch", "fov", "width", "height", "samples", "time",
+        "exposure", "out",
+    ])?;
+    let preset = args.value("preset").unwrap_or("default").to_string();
+    let (spectrum, config, state) = if preset == "default" {
+        (
+            Spectrum::jonswap(10.0, 100_000.0)?,
+            OceanConfig::default(),
+            None,
+        )
+    } else {
+        let state = SeaState::ALL
+            .into_iter()
+            .find(|s| s.name() == preset)
+            .ok_or_else(|| {
+                let names: Vec<&str> = SeaState::ALL.iter().map(|s| s.name()).collect();
+                format!(
+                    "--preset: unknown {preset:?} (default, {})",
+                    names.join(", ")
+                )
+            })?;
+        let (spectrum, config) = state.build();
+        (spectrum, config, Some(state))
+    };
+    let storm = state == Some(SeaState::Storm);
+    let hs = spectrum.significant_wave_height();
+    let wind_direction = spectrum.wind_direction();
+
+    // Camera: defaults per sea. Fair weather looks downwind, a little off the sun; the storm
+    // looks across and into the waves coming at the camera.
+    let (default_heading, default_pitch) = if storm { (165.0, -3.0) } else { (20.0, -3.5) };
+    let eye_height = 6.0f32.max(0.8 * hs);
+    let camera: [f32; 3] = args.list("camera", [0.0, eye_height, 0.0])?;
+    let heading = args.get::<f32>("heading", default_heading)?.to_radians() + wind_direction;
+    let pitch = args.get::<f32>("pitch", default_pitch)?.to_radians();
+    let fov = args.get::<f32>("fov", 70.0)?;
+    let width: usize = args.get("width", 960)?;
+    let height: usize = args.get("height", 540)?;
+    let samples: usize = args.get("samples", 2)?;
+    let time: f64 = args.get("time", 30.0)?;
+    let exposure: f32 = args.get("exposure", 0.8)?;
+    if !(1..=8192).contains(&width) || !(1..=8192).contains(&height) {
+        return Err("--width and --height must be from 1 to 8192 pixels".into());
+    }
+    if !(1..=8).contains(&samples) {
+        return Err("--samples must be from 1 to 8 (rays per pixel along each axis)".into());
+    }
+    if !(1.0..=170.0).contains(&fov) {
+        return Err("--fov must be from 1 to 170 degrees".into());
+    }
+    if !camera.iter().all(|c| c.is_finite()) || !(exposure > 0.0 && exposure.is_finite()) {
+        return Err("--camera must be finite and --exposure positive".into());
+    }
+
+    let mut ocean = OceanState::new(spectrum, config)?;
+    ocean.set_time((time - 4.0).max(0.0))?;
     for _ in 0..120 {
         ocean.step(1.0 / 30.0)?;
     }
     let simulated = start.elapsed().as_secs_f32();
 
     // The sum of each cascade's largest |η| bounds the summed height (plus a margin for the
-    // bilinear sampling, which never exceeds the grid values).
+    // spline, which may overshoot the grid values slightly).
     let bound: f32 = ocean
         .cascades()
         .iter()
         .map(|c| c.height().iter().fold(0.0f32, |m, &h| m.max(h.abs())))
         .sum::<f32>()
+        * 1.05
         + 0.01;
     let sigma = ocean.expected_variance().sqrt() as f32;
 
-    let yaw = 0.35f32; // rad from +x (the wind direction) toward +z
-    let pitch = -0.06f32;
     let forward = Vec3::new(
-        pitch.cos() * yaw.cos(),
+        pitch.cos() * heading.cos(),
         pitch.sin(),
-        pitch.cos() * yaw.sin(),
+        pitch.cos() * heading.sin(),
     );
     let right = forward.cross(Vec3::Y).normalize();
     let up = right.cross(forward);
-    let sun_azimuth = yaw + 0.45;
-    let sun_elevation = 0.22f32;
-    let sun = Vec3::new(
-        sun_elevation.cos() * sun_azimuth.cos(),
-        sun_elevation.sin(),
-        sun_elevation.cos() * sun_azimuth.sin(),
-    );
+    let light = if storm {
+        Light::overcast()
+    } else {
+        // A low sun 25° to the side of the view, so its glitter path lies in the picture.
+        Light::fair(heading + 0.45, 0.24)
+    };
+
+    // Slope variance of the simulated waves above wave number k, on a table of k.
+    let top = ocean.config().bands()?.last().map_or(1.0, |band| band.1);
+    let k_table: Vec<f32> = (0..=64)
+        .map(|i| 1e-3 * (top / 1e-3).powf(i as f32 / 64.0))
+        .collect();
+    let unresolved: Vec<[f32; 2]> = k_table
+        .iter()
+        .map(|&k| {
+            let v = ocean.spectrum().slope_variance(k, top);
+            [v.along, v.across]
+        })
+        .collect();
+    let subgrid = ocean.subgrid_slope_variance();
+    let wind = Vec3::new(wind_direction.cos(), 0.0, wind_direction.sin());
+    let tan = (fov.to_radians() * 0.5).tan();
     let scene = Scene {
-        eye: Vec3::new(0.0, 6.0, 0.0),
+        eye: Vec3::from_array(camera),
         forward,
         right,
         up,
-        sun,
+        tan,
+        width,
+        height,
+        light,
         bound,
         sigma,
-        subgrid_mss: ocean.subgrid_slope_variance().total(),
-        resolved_mss: {
-            let bands = ocean.config().bands()?;
-            let top = bands.last().map_or(0.0, |band| band.1);
-            ocean.spectrum().slope_variance(0.0, top).total()
-        },
+        wind,
+        subgrid: [subgrid.along, subgrid.across],
+        resolved_total: unresolved[0][0] + unresolved[0][1],
+        k_table,
+        unresolved,
+        ray_angle: 2.0 * tan / (width * samples) as f32,
     };
 
-    let mut pixels = vec![0u8; WIDTH * HEIGHT * 3];
+    let mut pixels = vec![0u8; width * height * 3];
     pixels
-        .par_chunks_mut(WIDTH * 3)
+        .par_chunks_mut(width * 3)
         .enumerate()
         .for_each(|(row, line)| {
-            for column in 0..WIDTH {
-                let colour = render_pixel(&ocean, &scene, column, row);
-                let out = &mut line[column * 3..column * 3 + 3];
-                out.copy_from_slice(&to_srgb(colour));
+            for column in 0..width {
+                let mut sum = Vec3::ZERO;
+                for sy in 0..samples {
+                    for sx in 0..samples {
+                        let u = (column as f32 + (sx as f32 + 0.5) / samples as f32) / width as f32;
+                        let v = (row as f32 + (sy as f32 + 0.5) / samples as f32) / height as f32;
+                        sum += render_ray(&ocean, &scene, u, v);
+                    }
+                }
+                let colour = sum / (samples * samples) as f32;
+                line[column * 3..column * 3 + 3].copy_from_slice(&tone_map(colour * exposure));
             }
         });
 
-    let path = out_dir("")?.join("render.png");
-    save_rgb8(&path, WIDTH, HEIGHT, &pixels)?;
+    let path = match args.value("out") {
+        Some(file) => std::path::PathBuf::from(file),
+        None => out_dir("")?.join("render.png"),
+    };
+    save_rgb8(&path, width, height, &pixels)?;
     println!(
-        "wrote {} ({WIDTH}×{HEIGHT}, eye at y = {} m, t = {:.1} s, |η| ≤ {bound:.2} m)",
+        "wrote {} ({width}×{height}, {}×{} rays per pixel; preset {preset}, Hs {hs:.2} m; eye \
+         at ({:.1}, {:.1}, {:.1}) m, heading {:.1}° from the wind, pitch {:.1}°, fov {fov}°; \
+         t = {:.1} s; {} light; |η| ≤ {bound:.2} m)",
         path.display(),
-        scene.eye.y,
-        ocean.time()
+        samples,
+        samples,
+        camera[0],
+        camera[1],
+        camera[2],
+        (heading - wind_direction).to_degrees(),
+        pitch.to_degrees(),
+        ocean.time(),
+        if storm { "overcast" } else { "sun" }
     );
     println!(
         "simulation {simulated:.2} s, rendering {:.2} s",
@@ -130,18 +352,17 @@ fn main() -> Result<()> {
     Ok(())
 }
 
-/// Linear RGB of the pixel at (`column`, `row`).
-fn render_pixel(ocean: &OceanState, scene: &Scene, column: usize, row: usize) -> Vec3 {
-    let tan = (FOV_DEG.to_radians() * 0.5).tan();
-    let sx = ((column as f32 + 0.5) / WIDTH as f32 * 2.0 - 1.0) * tan;
-    let sy = (1.0 - (row as f32 + 0.5) / HEIGHT as f32 * 2.0) * tan * HEIGHT as f32 / WIDTH as f32;
+/// Linear RGB seen along the ray through (u, v) ∈ [0, 1]² of the image.
+fn render_ray(ocean: &OceanState, scene: &Scene, u: f32, v: f32) -> Vec3 {
+    let sx = (u * 2.0 - 1.0) * scene.tan;
+    let sy = (1.0 - v * 2.0) * scene.tan * scene.height as f32 / scene.width as f32;
     let dir = (scene.forward + sx * scene.right + sy * scene.up).normalize();
     if dir.y > -1e-4 {
-        return sky(dir, scene.sun, true);
+        return scene.light.sky(dir, true);
     }
     match march(ocean, scene, dir) {
         Some(distance) => shade_water(ocean, scene, dir, distance),
-        None => fog_colour(scene.sun, dir),
+        None => scene.light.haze_colour(dir),
     }
 }
 
@@ -181,13 +402,13 @@ fn march(ocean: &OceanState, scene: &Scene, dir: Vec3) -> Option<f32> {
         // A step that cannot skip a crest much: the vertical gap over the ray's descent plus
         // the steepest slopes, but at least a distance-proportional minimum.
         let f = previous.1.max(0.0);
-        let step = (0.8 * f / (down + 0.5)).max(0.006 * t + 0.03);
+        let step = (0.8 * f / (down + 0.5)).max(0.005 * t + 0.03);
         t = (t + step).min(end);
         let g = gap(ocean, scene.eye, dir, t);
         if g < 0.0 {
             // Bisection between the last point above and this one below.
             let (mut lo, mut hi) = (previous.0, t);
-            for _ in 0..6 {
+            for _ in 0..8 {
                 let mid = 0.5 * (lo + hi);
                 if gap(ocean, scene.eye, dir, mid) > 0.0 {
                     lo = mid;
@@ -207,44 +428,26 @@ fn march(ocean: &OceanState, scene: &Scene, dir: Vec3) -> Option<f32> {
     }
 }
 
-/// Sky radiance in direction `dir` (linear RGB); `with_sun` adds the sun's disc.
-fn sky(dir: Vec3, sun: Vec3, with_sun: bool) -> Vec3 {
-    let horizon = Vec3::new(0.66, 0.75, 0.84);
-    let zenith = Vec3::new(0.09, 0.22, 0.52);
-    let elevation = dir.y.max(0.0);
-    let mut colour = horizon.lerp(zenith, elevation.powf(0.45));
-    let cosine = dir.dot(sun).max(0.0);
-    // Warm glow around the sun.
-    colour += Vec3::new(1.0, 0.78, 0.5) * (0.30 * cosine.powi(16) + 0.35 * cosine.powi(300));
-    if with_sun && cosine > 0.99985 {
-        colour += Vec3::splat(20.0);
-    }
-    colour
-}
-
-/// The colour far rays fade to.
-fn fog_colour(sun: Vec3, dir: Vec3) -> Vec3 {
-    sky(
-        Vec3::new(dir.x, 0.0, dir.z).normalize_or(Vec3::X),
-        sun,
-        false,
-    )
-}
-
 /// Shades the water hit at `distance` along `dir`.
 fn shade_water(ocean: &OceanState, scene: &Scene, dir: Vec3, distance: f32) -> Vec3 {
+    let light = &scene.light;
     let p = scene.eye + dir * distance;
     let Ok(surface) = ocean.surface_at(f64::from(p.x), f64::from(p.z)) else {
-        return fog_colour(scene.sun, dir);
+        return light.haze_colour(dir);
     };
-    // Far away a pixel covers many small waves: flatten the normal toward their mean (up)
-    // instead of letting the bilinear normals alias.
-    let far = (distance / 900.0).clamp(0.0, 1.0);
-    // The crate's `[x, y, z]` arrays convert to any vector type; glam here.
-    let mut normal = Vec3::from_array(surface.normal)
-        .lerp(Vec3::Y, 0.75 * far)
-        .normalize_or(Vec3::Y);
     let view = -dir;
+
+    // The ray's footprint on the water: its angular width times the distance, stretched by
+    // the grazing angle (geometric mean of the two axes of the footprint ellipse).
+    let grazing = (-dir.y).clamp(0.02, 1.0);
+    let footprint = scene.ray_angle * distance / grazing.sqrt();
+    let far = scene.unresolved_at(footprint);
+    // The share of the simulated slope variance the footprint cannot resolve: taken out of
+    // the hit's slope and put into the glint's slope distribution.
+    let share = ((far[0] + far[1]) / scene.resolved_total.max(1e-12)).clamp(0.0, 1.0);
+    let keep = (1.0 - share).sqrt();
+    let normal = normal_with(&surface, keep);
+    let mut normal = normal;
     if normal.dot(view) < 0.02 {
         // Facing away (behind a crest or folded): bend it toward the viewer.
         normal = (normal + view * (0.02 - normal.dot(view))).normalize_or(Vec3::Y);
@@ -255,49 +458,74 @@ fn shade_water(ocean: &OceanState, scene: &Scene, dir: Vec3, distance: f32) -> V
 
     let mut reflected = dir - 2.0 * dir.dot(normal) * normal;
     reflected.y = reflected.y.abs();
-    let reflection = sky(reflected.normalize_or(Vec3::Y), scene.sun, false);
+    let reflection = light.sky(reflected.normalize_or(Vec3::Y), false);
 
-    // Sun glitter: a Beckmann lobe over the facet slopes the pixel does not resolve — the
-    // sub-grid mean-square slope the ocean reports, plus the share of the grid's own slopes
-    // that the flattened normal (above) averages away far off.
-    let mss = scene.subgrid_mss + 0.75 * far * scene.resolved_mss;
-    let half = (scene.sun + view).normalize_or(Vec3::Y);
-    let nh = normal.dot(half).max(1e-3);
-    let tan2 = (1.0 - nh * nh) / (nh * nh);
-    let lobe = (-tan2 / mss).exp() / (std::f32::consts::PI * mss * nh.powi(4));
-    let specular = lobe / (4.0 * cosine.max(0.05));
-    let sun_light = Vec3::new(1.0, 0.85, 0.65) * 0.9 * specular * fresnel.max(0.1);
+    // Sun glitter: the facets too small to see tilt with the anisotropic Gaussian slope
+    // distribution of Cox & Munk (1954), variances along and across the wind = sub-grid +
+    // unresolved simulated slopes; L = E F p(ζ) / (4 cos θ_v cos⁴ β).
+    let mut glitter = Vec3::ZERO;
+    if let Some(sun) = light.sun {
+        let along = scene.subgrid[0] + far[0];
+        let across = scene.subgrid[1] + far[1];
+        let half = (sun + view).normalize_or(Vec3::Y);
+        // The half vector's slopes in the frame of the resolved normal.
+        let t1 = (scene.wind - normal * normal.dot(scene.wind)).normalize_or(Vec3::X);
+        let t2 = normal.cross(t1);
+        let hn = half.dot(normal).max(1e-3);
+        let (zx, zz) = (half.dot(t1) / hn, half.dot(t2) / hn);
+        let density = (-0.5 * (zx * zx / along + zz * zz / across)).exp()
+            / (2.0 * std::f32::consts::PI * (along * across).sqrt());
+        let specular = density / (4.0 * cosine.max(0.05) * hn.powi(4));
+        let sun_fresnel = {
+            let c = half.dot(view).clamp(0.0, 1.0);
+            f0 + (1.0 - f0) * (1.0 - c).powi(5)
+        };
+        glitter = light.sun_colour * specular * sun_fresnel * sun.y.max(0.0).sqrt();
+    }
 
-    // Body colour: deep blue-green, lit more where the wave is high and thin, and more when
+    // Body colour: deep water, lit more where the wave is high and thin, and more when
     // looking toward the sun through the crest.
-    let deep = Vec3::new(0.004, 0.028, 0.050);
-    let subsurface = Vec3::new(0.03, 0.20, 0.18);
     let crest = ((surface.height / scene.sigma) * 0.5).clamp(0.0, 1.5);
-    let toward_sun = dir.dot(scene.sun).max(0.0).powi(3);
-    let scatter = crest * (0.35 + 0.65 * toward_sun) * (1.0 - far);
-    let body = deep + subsurface * scatter + Vec3::new(0.01, 0.03, 0.04) * normal.y;
+    let toward = light
+        .sun
+        .map_or(0.3, |sun| 0.35 + 0.65 * dir.dot(sun).max(0.0).powi(3));
+    let ambient = light.sky(Vec3::Y, false);
+    let body = light.deep * (0.6 + 0.4 * ambient.y / 0.5)
+        + light.subsurface * crest * toward * (1.0 - share)
+        + light.deep * normal.y;
 
-    let mut colour = body * (1.0 - fresnel) + reflection * fresnel + sun_light;
+    let mut colour = body * (1.0 - fresnel) + reflection * fresnel + glitter;
     // Foam: white, lit by the sky and the sun.
     let coverage = ((surface.foam - 0.03) / 0.4).clamp(0.0, 1.0);
-    let foam = coverage * coverage * (3.0 - 2.0 * coverage) * (1.0 - far);
-    let foam_light = Vec3::new(0.80, 0.84, 0.88) * (0.55 + 0.45 * normal.dot(scene.sun).max(0.0));
+    let foam = coverage * coverage * (3.0 - 2.0 * coverage);
+    let sunlit = light.sun.map_or(0.0, |sun| normal.dot(sun).max(0.0));
+    let foam_light =
+        Vec3::new(0.85, 0.88, 0.90) * (0.75 * ambient + light.sun_colour * 0.35 * sunlit);
     colour = colour.lerp(foam_light, foam);
 
-    // Fog: exponential in distance toward the horizon colour.
-    let fog = 1.0 - (-distance / 2500.0).exp();
-    colour.lerp(fog_colour(scene.sun, dir), fog)
+    // Haze: exponential in distance toward the horizon colour.
+    let haze = 1.0 - (-distance / light.haze).exp();
+    colour.lerp(light.haze_colour(dir), haze)
 }
 
-/// Linear RGB to 8-bit sRGB-ish (simple exposure, Reinhard on bright values, gamma 2.2).
-fn to_srgb(colour: Vec3) -> [u8; 3] {
+/// The normal of `surface` with its slope scaled by `keep` (the part the pixel resolves).
+fn normal_with(surface: &SurfaceSample, keep: f32) -> Vec3 {
+    let [sx, sz] = surface.slope;
+    Vec3::new(-sx * keep, 1.0, -sz * keep).normalize_or(Vec3::Y)
+}
+
+/// Linear RGB to 8-bit sRGB through the ACES filmic tone curve (Narkowicz 2015 fit:
+/// x(2.51x + 0.03) / (x(2.43x + 0.59) + 0.14)) and the sRGB transfer function.
+fn tone_map(colour: Vec3) -> [u8; 3] {
     colour.to_array().map(|c| {
-        let c = c.max(0.0);
-        let mapped = if c > 0.8 {
-            0.8 + (c - 0.8) / (1.0 + (c - 0.8) * 4.0)
+        let x = c.max(0.0);
+        let mapped = (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
+        let m = mapped.clamp(0.0, 1.0);
+        let srgb = if m <= 0.003_130_8 {
+            12.92 * m
         } else {
-            c
+            1.055 * m.powf(1.0 / 2.4) - 0.055
         };
-        (mapped.clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0).round() as u8
+        (srgb * 255.0).round() as u8
     })
 }
