@@ -236,7 +236,7 @@ fn main() -> Result<()> {
     if !(1.0..=170.0).contains(&fov) {
         return Err("--fov must be from 1 to 170 degrees".into());
     }
-    if !camera.iter().all(|c| c.is_finite()) || !(exposure > 0.0 && exposure.is_finite()) {
+    if !(camera.iter().all(|c| c.is_finite()) && exposure > 0.0 && exposure.is_finite()) {
         return Err("--camera must be finite and --exposure positive".into());
     }
 
