@@ -15,7 +15,8 @@
 //!   that is higher, at the origin);
 //! - `--heading DEG`: the view direction in degrees from +x (the wind direction) toward +z;
 //!   `--pitch DEG`: up (positive) or down from the horizontal; `--fov DEG`: the horizontal
-//!   field of view (default 70);
+//!   field of view (default 70, the storm 55); an eye less than 1 m above the water under it
+//!   is raised to 1 m above it;
 //! - `--width`, `--height` in pixels; `--samples N`: N × N rays per pixel (default 2);
 //! - `--time SECONDS` of the sea (default 30); `--exposure` (default 0.8); `--out FILE`.
 //!
@@ -113,7 +114,16 @@ impl Light {
             None => {
                 // CIE standard overcast sky: L(θ) ∝ (1 + 2 sin θ)/3 of the elevation θ.
                 let l = (1.0 + 2.0 * elevation) / 3.0;
-                self.horizon.lerp(self.zenith, (l - 1.0 / 3.0) * 1.5) * (0.6 + 0.4 * l)
+                let base = self.horizon.lerp(self.zenith, (l - 1.0 / 3.0) * 1.5) * (0.6 + 0.4 * l);
+                // Darker and lighter masses of a cloud deck 1 km up (projected value noise),
+                // fading toward the horizon where the deck is seen edge-on.
+                let deck = 1000.0 / dir.y.max(0.02);
+                let (x, z) = (dir.x * deck / 900.0, dir.z * deck / 900.0);
+                let clouds = 0.55 * noise(x, z)
+                    + 0.3 * noise(2.1 * x + 5.2, 2.1 * z)
+                    + 0.15 * noise(4.3 * x, 4.3 * z + 1.7);
+                let contrast = 0.45 * elevation.sqrt().min(1.0);
+                base * (1.0 + contrast * (clouds - 0.5) * 2.0)
             }
             Some(sun) => {
                 let mut colour = self.horizon.lerp(self.zenith, elevation.powf(0.45));
@@ -221,7 +231,7 @@ fn main() -> Result<()> {
     let camera: [f32; 3] = args.list("camera", [0.0, eye_height, 0.0])?;
     let heading = args.get::<f32>("heading", default_heading)?.to_radians() + wind_direction;
     let pitch = args.get::<f32>("pitch", default_pitch)?.to_radians();
-    let fov = args.get::<f32>("fov", 70.0)?;
+    let fov = args.get::<f32>("fov", if storm { 55.0 } else { 70.0 })?;
     let width: usize = args.get("width", 960)?;
     let height: usize = args.get("height", 540)?;
     let samples: usize = args.get("samples", 2)?;
@@ -257,6 +267,17 @@ fn main() -> Result<()> {
         * 1.05
         + 0.01;
     let sigma = ocean.expected_variance().sqrt() as f32;
+    let mut camera = camera;
+    let water = ocean.height_at(f64::from(camera[0]), f64::from(camera[2]))?;
+    if camera[1] < water + 1.0 {
+        println!(
+            "the eye at y = {:.2} m is below or within 1 m of the water ({water:.2} m): raised \
+             to {:.2} m",
+            camera[1],
+            water + 1.0
+        );
+        camera[1] = water + 1.0;
+    }
 
     let forward = Vec3::new(
         pitch.cos() * heading.cos(),
@@ -528,4 +549,22 @@ fn tone_map(colour: Vec3) -> [u8; 3] {
         };
         (srgb * 255.0).round() as u8
     })
+}
+
+/// Smooth value noise in [0, 1] on a unit lattice (hashed corner values, smoothstep blend).
+fn noise(x: f32, z: f32) -> f32 {
+    let hash = |i: i32, j: i32| {
+        let mut h = (i as u32).wrapping_mul(0x27d4_eb2d) ^ (j as u32).wrapping_mul(0x1656_67b1);
+        h ^= h >> 15;
+        h = h.wrapping_mul(0x85eb_ca6b);
+        h ^= h >> 13;
+        (h & 0xffff) as f32 / 65535.0
+    };
+    let (fx, fz) = (x.floor(), z.floor());
+    let (i, j) = (fx as i32, fz as i32);
+    let (u, v) = (x - fx, z - fz);
+    let (u, v) = (u * u * (3.0 - 2.0 * u), v * v * (3.0 - 2.0 * v));
+    let a = hash(i, j) + u * (hash(i + 1, j) - hash(i, j));
+    let b = hash(i, j + 1) + u * (hash(i + 1, j + 1) - hash(i, j + 1));
+    a + v * (b - a)
 }
