@@ -18,7 +18,8 @@
 //!   field of view (default 70, the storm 55); an eye less than 1 m above the water under it
 //!   is raised to 1 m above it;
 //! - `--width`, `--height` in pixels; `--samples N`: N × N rays per pixel (default 2);
-//! - `--time SECONDS` of the sea (default 30); `--exposure` (default 0.8); `--out FILE`.
+//! - `--time SECONDS` of the sea (default 30); `--exposure` (default 0.8); `--out FILE`;
+//!   `--palette`: an indexed PNG of 256 colours (median cut), as the README's gallery uses.
 //!
 //! The sea is stepped for 4 s at 30 Hz up to the time so that foam builds up. Every ray is
 //! marched against the displaced surface (the water height at a world point after
@@ -54,7 +55,7 @@ use glam::Vec3;
 use ocean_fft::{OceanConfig, OceanState, SeaState, Spectrum, SurfaceSample};
 use rayon::prelude::*;
 
-use common::{out_dir, save_rgb8, Args, Result};
+use common::{out_dir, save_indexed, save_rgb8, Args, Result};
 
 /// Rays that have not hit the water this far out (m) end in the haze.
 const FAR: f32 = 8000.0;
@@ -197,7 +198,7 @@ fn main() -> Result<()> {
     let start = std::time::Instant::now();
     let args = Args::parse(&[
         "preset", "camera", "heading", "pitch", "fov", "width", "height", "samples", "time",
-        "exposure", "out",
+        "exposure", "out", "palette",
     ])?;
     let preset = args.value("preset").unwrap_or("default").to_string();
     let (spectrum, config, state) = if preset == "default" {
@@ -350,7 +351,11 @@ fn main() -> Result<()> {
         Some(file) => std::path::PathBuf::from(file),
         None => out_dir("")?.join("render.png"),
     };
-    save_rgb8(&path, width, height, &pixels)?;
+    if args.flag("palette") {
+        save_indexed(&path, width, height, &pixels)?;
+    } else {
+        save_rgb8(&path, width, height, &pixels)?;
+    }
     println!(
         "wrote {} ({width}×{height}, {}×{} rays per pixel; preset {preset}, Hs {hs:.2} m; eye \
          at ({:.1}, {:.1}, {:.1}) m, heading {:.1}° from the wind, pitch {:.1}°, fov {fov}°; \

@@ -30,7 +30,8 @@
 //! preset, and foam blended to white. Each preset is built at size 256 (its default), started
 //! at t = 20 s and stepped for 4 s at 30 Hz so that foam builds up.
 //!
-//! Options: `--tile PIXELS` (side of each tile, default 240).
+//! Options: `--tile PIXELS` (side of each tile, default 240); `--palette`: write an indexed
+//! PNG of 256 colours (median cut), about a third of the size, as the README's gallery does.
 //!
 //! Run with `cargo run --release -p ocean-fft-examples --example sea_states`.
 
@@ -40,14 +41,13 @@ use glam::Vec3;
 use ocean_fft::{Error, OceanState, SeaState, SurfaceSample};
 use plotters::prelude::*;
 
-use common::plot::{draw_on, metres, outlined_text, scale_bar, FONT};
-use common::{out_dir, save_rgb8, Args, Result};
+use common::plot::{draw_on, metres, scale_bar, FONT};
+use common::{out_dir, save_indexed, save_rgb8, Args, Result};
 
 /// Samples per pixel along each axis (averaged).
 const SUPER: usize = 2;
 const COLUMNS: usize = 3;
 const PAD: usize = 12;
-const LABEL: usize = 44;
 /// Window side in peak wavelengths.
 const WAVELENGTHS: f64 = 8.0;
 /// Largest window side as a fraction of the largest cascade's length.
@@ -55,14 +55,18 @@ const MAX_FRACTION: f64 = 0.9;
 
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
-    let args = Args::parse(&["tile"])?;
+    let args = Args::parse(&["tile", "palette"])?;
     let tile_px: usize = args.get("tile", 240)?;
     if !(32..=2048).contains(&tile_px) {
         return Err("--tile must be from 32 to 2048 pixels".into());
     }
+    let big = (tile_px as f64 / 12.0).clamp(14.0, 19.0);
+    let small = (tile_px as f64 / 15.0).clamp(12.0, 14.0);
+    // Three lines of labels above each tile: name, H_s and T_p, window.
+    let label = (big + 2.0 * small + 14.0).round() as usize;
     let rows = SeaState::ALL.len().div_ceil(COLUMNS);
     let width = COLUMNS * (tile_px + PAD) + PAD;
-    let height = rows * (tile_px + LABEL + PAD) + PAD;
+    let height = rows * (tile_px + label + PAD) + PAD;
     let background = [20u8, 24, 30];
     let mut sheet: Vec<u8> = background
         .iter()
@@ -139,7 +143,7 @@ fn main() -> Result<()> {
         repeats.push((state.name(), window, repeat, tile_config.lengths.len()));
 
         let x0 = PAD + (index % COLUMNS) * (tile_px + PAD);
-        let y0 = PAD + (index / COLUMNS) * (tile_px + LABEL + PAD) + LABEL;
+        let y0 = PAD + (index / COLUMNS) * (tile_px + label + PAD) + label;
         for j in 0..tile_px {
             for i in 0..tile_px {
                 let mut sum = Vec3::ZERO;
@@ -158,23 +162,30 @@ fn main() -> Result<()> {
             x0,
             y0,
             state.name().replace('_', " "),
-            format!("Hs {hs:.2} m · Tp {tp:.1} s · {} window", metres(window)),
+            format!("Hs {hs:.2} m · Tp {tp:.1} s"),
+            format!("{} window", metres(window)),
             pixel,
         ));
     }
 
     draw_on(&mut sheet, width as u32, height as u32, |root| {
-        for (x0, y0, name, numbers, pixel) in &labels {
+        for (x0, y0, name, numbers, caption, pixel) in &labels {
             let (x0, y0) = (*x0 as i32, *y0 as i32);
+            let top = y0 - label as i32 + 2;
             root.draw(&Text::new(
                 name.clone(),
-                (x0, y0 - LABEL as i32 + 2),
-                (FONT, 19.0).into_font().color(&RGBColor(235, 235, 235)),
+                (x0, top),
+                (FONT, big).into_font().color(&RGBColor(235, 235, 235)),
             ))?;
             root.draw(&Text::new(
                 numbers.clone(),
-                (x0, y0 - LABEL as i32 + 24),
-                (FONT, 14.0).into_font().color(&RGBColor(170, 190, 210)),
+                (x0, top + big as i32 + 3),
+                (FONT, small).into_font().color(&RGBColor(170, 190, 210)),
+            ))?;
+            root.draw(&Text::new(
+                caption.clone(),
+                (x0, top + big as i32 + small as i32 + 6),
+                (FONT, small).into_font().color(&RGBColor(170, 190, 210)),
             ))?;
             let bar = root.clone().shrink(
                 (x0 as u32, (y0 as usize + tile_px - 30) as u32),
@@ -182,12 +193,15 @@ fn main() -> Result<()> {
             );
             scale_bar(&bar, *pixel, tile_px as u32, "")?;
         }
-        let _ = outlined_text;
         Ok(())
     })?;
 
     let path = out_dir("")?.join("sea_states.png");
-    save_rgb8(&path, width, height, &sheet)?;
+    if args.flag("palette") {
+        save_indexed(&path, width, height, &sheet)?;
+    } else {
+        save_rgb8(&path, width, height, &sheet)?;
+    }
     println!(
         "wrote {} ({width}×{height}; each tile {tile_px}² pixels from above, x to the right, \
          z down, t = 24 s)",

@@ -124,7 +124,7 @@ pub fn scale_bar(
             WHITE.filled(),
         ))?;
     }
-    let label = format!("{}      {caption}", metres(length));
+    let label = format!("{}   {caption}", metres(length));
     outlined_text(
         area,
         &label,
