@@ -404,8 +404,8 @@ pub fn save_indexed(path: &Path, width: usize, height: usize, pixels: &[u8]) -> 
             let total: f64 = b.iter().map(|c| f64::from(c.1)).sum();
             let mut mean = [0.0f64; 3];
             for c in b {
-                for ch in 0..3 {
-                    mean[ch] += f64::from(c.0[ch]) * f64::from(c.1) / total;
+                for (m, v) in mean.iter_mut().zip(c.0) {
+                    *m += f64::from(v) * f64::from(c.1) / total;
                 }
             }
             mean.map(|m| m.round() as u8)
