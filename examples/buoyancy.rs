@@ -14,6 +14,9 @@
 //! sea (a box this small follows the long waves, so they should be close; over only 60 s of
 //! one point the estimate scatters by tens of per cent).
 //!
+//! Option: `--palette` writes the plot as an indexed PNG of 256 colours (for the README's
+//! gallery).
+//!
 //! Run with `cargo run --release -p ocean-fft-examples --example buoyancy`.
 
 mod common;
@@ -25,7 +28,7 @@ use ocean_fft::{OceanConfig, OceanState, Spectrum};
 use plotters::prelude::*;
 
 use common::plot::{draw_png, FONT, SERIES};
-use common::{out_dir, Result};
+use common::{out_dir, Args, Result};
 
 const LENGTH: f64 = 4.0;
 const WIDTH: f64 = 2.0;
@@ -42,6 +45,7 @@ struct Frame {
 
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
+    let args = Args::parse(&["palette"])?;
     let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
     let hs = spectrum.significant_wave_height();
     let config = OceanConfig {
@@ -98,7 +102,7 @@ fn main() -> Result<()> {
     );
 
     let path = dir.join("buoyancy.png");
-    plot(&path, &frames, hs)?;
+    plot(&path, &frames, hs, args.flag("palette"))?;
     println!(
         "wrote {} (top: heave y [m]; bottom: pitch and roll [degrees]; 0 to {DURATION} s)",
         path.display()
@@ -123,8 +127,8 @@ fn main() -> Result<()> {
 
 /// Heave (top panel, metres) and pitch and roll (bottom panel, degrees) against time in
 /// seconds, with ticks, units and a legend.
-fn plot(path: &std::path::Path, frames: &[Frame], hs: f32) -> Result<()> {
-    draw_png(path, 900, 560, |root| {
+fn plot(path: &std::path::Path, frames: &[Frame], hs: f32, palette: bool) -> Result<()> {
+    draw_png(path, 900, 560, palette, |root| {
         let text = 15.0;
         let root = root.titled(
             "A 4 m × 2 m box on the default sea (JONSWAP, U10 = 10 m/s, 100 km fetch)",

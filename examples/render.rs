@@ -11,8 +11,8 @@
 //! - `--preset NAME`: `default` (`Spectrum::jonswap(10.0, 100_000.0)` with
 //!   `OceanConfig::default()`) or a `SeaState` name: `calm`, `moderate_breeze`,
 //!   `fresh_breeze`, `storm`, `swell`, `shallow_bay`;
-//! - `--camera X,Y,Z`: the eye in metres (default: 6 m above the mean surface, or 0.8 H_s when
-//!   that is higher, at the origin);
+//! - `--camera X,Y,Z`: the eye in metres (default: at the origin, 2 m + 1.5 H_s above the
+//!   mean surface, at most 10 m);
 //! - `--heading DEG`: the view direction in degrees from +x (the wind direction) toward +z;
 //!   `--pitch DEG`: up (positive) or down from the horizontal; `--fov DEG`: the horizontal
 //!   field of view (default 70, the storm 55); an eye less than 1 m above the water under it
@@ -87,8 +87,8 @@ impl Light {
                 elevation.cos() * azimuth.sin(),
             )),
             sun_colour: Vec3::new(1.0, 0.88, 0.72) * 2.2,
-            zenith: Vec3::new(0.10, 0.24, 0.56),
-            horizon: Vec3::new(0.62, 0.72, 0.84),
+            zenith: Vec3::new(0.06, 0.17, 0.46),
+            horizon: Vec3::new(0.48, 0.58, 0.74),
             deep: Vec3::new(0.004, 0.030, 0.055),
             subsurface: Vec3::new(0.03, 0.21, 0.19),
             haze: 3500.0,
@@ -228,7 +228,7 @@ fn main() -> Result<()> {
     // Camera: defaults per sea. Fair weather looks downwind, a little off the sun; the storm
     // looks across and into the waves coming at the camera.
     let (default_heading, default_pitch) = if storm { (165.0, -3.0) } else { (20.0, -3.5) };
-    let eye_height = 6.0f32.max(0.8 * hs);
+    let eye_height = (2.0 + 1.5 * hs).min(10.0);
     let camera: [f32; 3] = args.list("camera", [0.0, eye_height, 0.0])?;
     let heading = args.get::<f32>("heading", default_heading)?.to_radians() + wind_direction;
     let pitch = args.get::<f32>("pitch", default_pitch)?.to_radians();

@@ -9,7 +9,8 @@
 //!   `Spectrum::jonswap(10.0, 100_000.0)` for each spreading function, against the angle θ from
 //!   the wind direction in degrees (each integrates to 1 over the circle).
 //!
-//! Options: `--width PIXELS` and `--height PIXELS` of both plots (default 900 × 560).
+//! Options: `--width PIXELS` and `--height PIXELS` of both plots (default 900 × 560);
+//! `--palette`: indexed PNGs of 256 colours (smaller, for the README's gallery).
 //!
 //! Run with `cargo run --release -p ocean-fft-examples --example spectrum`.
 
@@ -24,7 +25,8 @@ use common::plot::{draw_png, FONT, SERIES};
 use common::{out_dir, Args, Result};
 
 fn main() -> Result<()> {
-    let args = Args::parse(&["width", "height"])?;
+    let args = Args::parse(&["width", "height", "palette"])?;
+    let palette = args.flag("palette");
     let width: u32 = args.get("width", 900)?;
     let height: u32 = args.get("height", 560)?;
     let dir = out_dir("")?;
@@ -70,7 +72,7 @@ fn main() -> Result<()> {
         10f64.powf((top * 3.0).log10().ceil() - 8.0),
     );
     let path = dir.join("spectrum.png");
-    draw_png(&path, width, height, |root| {
+    draw_png(&path, width, height, palette, |root| {
         let mut chart = ChartBuilder::on(root)
             .caption(
                 "Frequency spectra of the presets",
@@ -166,7 +168,7 @@ fn main() -> Result<()> {
         .flat_map(|(_, p)| p.iter().map(|&(_, d)| d))
         .fold(0.0f64, f64::max);
     let path = dir.join("spreading.png");
-    draw_png(&path, width, height, |root| {
+    draw_png(&path, width, height, palette, |root| {
         let mut chart = ChartBuilder::on(root)
             .caption(
                 format!(

@@ -9,7 +9,7 @@ use std::sync::Once;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{save_rgb8, Result};
+use super::{save_indexed, save_rgb8, Result};
 
 /// The font family name the examples draw their text in.
 pub const FONT: &str = "sans-serif";
@@ -42,8 +42,8 @@ pub const SERIES: [RGBColor; 8] = [
 ];
 
 /// Draws a `width`×`height` picture with `draw` on a white background and writes it to
-/// `path` as an 8-bit RGB PNG.
-pub fn draw_png<F>(path: &Path, width: u32, height: u32, draw: F) -> Result<()>
+/// `path` as an 8-bit RGB PNG, or an indexed one of 256 colours if `palette`.
+pub fn draw_png<F>(path: &Path, width: u32, height: u32, palette: bool, draw: F) -> Result<()>
 where
     F: FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<()>,
 {
@@ -55,7 +55,11 @@ where
         draw(&root)?;
         root.present()?;
     }
-    save_rgb8(path, width as usize, height as usize, &buffer)
+    if palette {
+        save_indexed(path, width as usize, height as usize, &buffer)
+    } else {
+        save_rgb8(path, width as usize, height as usize, &buffer)
+    }
 }
 
 /// Draws on an existing RGB image (`pixels`, `width`×`height`, row-major) with `draw`.
