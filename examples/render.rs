@@ -506,6 +506,7 @@ fn shade_water(ocean: &OceanState, scene: &Scene, dir: Vec3, distance: f32) -> V
             let c = half.dot(view).clamp(0.0, 1.0);
             f0 + (1.0 - f0) * (1.0 - c).powi(5)
         };
+        // √(sin elevation): a crude dimming of a low sun by the longer path through the air.
         glitter = light.sun_colour * specular * sun_fresnel * sun.y.max(0.0).sqrt();
     }
 
@@ -516,7 +517,8 @@ fn shade_water(ocean: &OceanState, scene: &Scene, dir: Vec3, distance: f32) -> V
         .sun
         .map_or(0.3, |sun| 0.35 + 0.65 * dir.dot(sun).max(0.0).powi(3));
     let ambient = light.sky(Vec3::Y, false);
-    let body = light.deep * (0.6 + 0.4 * ambient.y / 0.5)
+    let luminance = ambient.dot(Vec3::new(0.2126, 0.7152, 0.0722));
+    let body = light.deep * (0.6 + 0.8 * luminance)
         + light.subsurface * crest * toward * (1.0 - share)
         + light.deep * normal.y;
 
