@@ -180,7 +180,8 @@ pub use gpu::{NormalMapGreen, TexelLayout, Vertex};
 pub use half;
 pub use num_complex::Complex32;
 pub use ocean::{
-    FoamConfig, Location, OceanConfig, OceanSnapshot, OceanState, QueryConfig, SurfaceSample,
+    FoamCalibration, FoamConfig, FoamCoverage, Location, OceanConfig, OceanSnapshot, OceanState,
+    QueryConfig, SurfaceSample,
 };
 pub use presets::SeaState;
 pub use spectrum::{DepthFactor, Spectrum, Spreading};

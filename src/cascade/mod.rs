@@ -22,6 +22,7 @@ use crate::spectrum::Spectrum;
 pub(crate) use config::check_band;
 pub use config::CascadeConfig;
 pub use field::Field;
+pub(crate) use inspect::GradientMoments;
 
 use evolve::{evolve_row_pair, fract_turns, packed_pair};
 use outputs::write_outputs;

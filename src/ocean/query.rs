@@ -30,7 +30,9 @@ pub struct SurfaceSample {
     pub slope: [f32; 2],
     /// Unit normal `[x, y, z]` of the displaced surface (y up), from the summed slope.
     pub normal: [f32; 3],
-    /// Foam coverage in [0, 1]: 1 − Π(1 − f_c) over the cascades' foam f_c.
+    /// Foam coverage in [0, 1]: the ocean's one foam field ([`OceanState::foam`], on
+    /// cascade 0's grid) interpolated bilinearly; 0 from a range of cascades without
+    /// cascade 0 ([`OceanState::sample_cascades`]), as cascade 0's textures carry the foam.
     pub foam: f32,
 }
 
@@ -171,22 +173,24 @@ impl OceanState {
 
     fn sample_range(&self, x: f64, z: f64, range: std::ops::Range<usize>) -> SurfaceSample {
         let (mut height, mut displacement, mut slope) = (0.0f32, Vec2::ZERO, Vec2::ZERO);
-        let mut clear = 1.0f32;
-        let cascades = &self.cascades[range.clone()];
-        let foams = &self.foam[range];
-        for (cascade, foam) in cascades.iter().zip(foams) {
+        let foam = if range.contains(&0) {
+            self.foam.foam_at(x, z)
+        } else {
+            0.0
+        };
+        let cascades = &self.cascades[range];
+        for cascade in cascades {
             let s = stencil_of(cascade, x, z);
             height += s.scalar(cascade.height());
             displacement += s.vector(cascade.displacement());
             slope += s.vector(cascade.slope());
-            clear *= 1.0 - s.scalar(foam);
         }
         SurfaceSample {
             height,
             displacement: displacement.to_array(),
             slope: slope.to_array(),
             normal: normal_from_slope(slope).to_array(),
-            foam: (1.0 - clear).clamp(0.0, 1.0),
+            foam,
         }
     }
 
