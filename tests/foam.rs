@@ -53,20 +53,18 @@ const SPIN_UP: f64 = 20.0;
 ///
 /// Grids: three cascades of 64² over 8, 1.84 and 0.41 peak wavelengths. The calibration takes
 /// the statistics of whatever band the grid resolves, so a small grid is as honest a test as
-/// a large one (the guide lists the default 256² ocean too); what a small grid costs is
-/// counting noise: a whitecap is an episode at a grid point, and the coverage of a run is
-/// known to about 1/√(episodes). The runs are long enough for about 400 episodes or more
-/// (at 5 m/s, 2.8e-4 episodes per point per second: 120 s on 64² points), a standard error of
-/// about 5 % (10 % allowing for episodes clustered in wave groups), far inside the factor 1.5.
-/// Steps of 1/20 s: a breaking episode lasts 0.08–0.55 s here (printed), and 1/20 s and 1/30 s
-/// give the same coverage to 3 % in these runs.
+/// a large one (the `whitecaps` example measures the default 256² ocean, within 10 %). What a
+/// small grid costs is noise: the coverage of 4096 points, averaged over 40 s (ten active
+/// lifetimes), moves by a few per cent from seed to seed and run to run (0.98–1.06 here, and
+/// within 0.97–1.04 over 120 s), far inside the factor 1.5. Steps of 1/10 s: the breaking
+/// intensity follows cascade 0's waves, whose shortest periods here are above 2 s, and steps
+/// of 1/20 s gave the same ratios to three digits.
 ///
 /// Beyond the factor 1.5, the geometric mean of the ten ratios must lie within 20 % of 1: the
-/// model's own prediction, not only the tolerance, is what the runs check (its residual
-/// error measured over four seeds was below 10 %).
+/// model's own prediction, not only the tolerance, is what the runs check.
 #[test]
 fn whitecap_coverage_follows_monahan_and_omuircheartaigh() {
-    let dt = 1.0 / 20.0;
+    let dt = 1.0 / 10.0;
     let mut log_sum = 0.0;
     let mut count = 0;
     println!("spectrum  U10 m/s  W (MO80)   active     ratio  residual  J_b    episode s");
@@ -79,7 +77,7 @@ fn whitecap_coverage_follows_monahan_and_omuircheartaigh() {
             let mut ocean = peak_ocean(spectrum, 64, seed, FoamConfig::default());
             ocean.set_time(1000.0).unwrap();
             ocean.pre_roll(SPIN_UP, dt).unwrap();
-            let seconds = if wind < 10.0 { 120.0 } else { 40.0 };
+            let seconds = 40.0;
             let (active, residual) = mean_coverage(&mut ocean, seconds, dt);
             let expected = monahan(f64::from(wind));
             let ratio = active / expected;
@@ -197,7 +195,7 @@ fn breaking_intensity_follows_the_documented_model() {
     let dot = |a: [f64; 3], b: [f64; 3]| -> f64 { (0..3).map(|i| a[i] * b[i]).sum() };
     let phi = |x: f64| (-0.5 * x * x).exp() / TAU.sqrt();
     let (mut high, mut largest) = (0, 0.0f64);
-    for k in 0..n * n {
+    for (k, &got) in ocean.breaking().iter().enumerate() {
         let [xx, zz, xz] = [0, 1, 2].map(|a| f64::from(g0[a][k]));
         let jacobian = (1.0 + xx) * (1.0 + zz) - xz * xz;
         let gradient = [1.0 + zz, 1.0 + xx, -2.0 * xz];
@@ -237,7 +235,7 @@ fn breaking_intensity_follows_the_documented_model() {
                 expected += phi(x) * speed / (TAU.sqrt() * disc.sqrt());
             }
         }
-        let got = f64::from(ocean.breaking()[k]);
+        let got = f64::from(got);
         // The crate's tail approximation is good to 0.3 %; f32 arithmetic adds less.
         assert!(
             (got - expected).abs() <= 5e-3 * expected + 1e-9,
@@ -308,10 +306,10 @@ fn residual_foam_forms_streaks_along_the_wind() {
     let spectrum = Spectrum::jonswap(18.0, 1e7)
         .and_then(|s| s.with_wind_direction(wind_direction))
         .unwrap();
-    let mut ocean = peak_ocean(spectrum, 128, 5, FoamConfig::default());
+    let mut ocean = peak_ocean(spectrum, 64, 5, FoamConfig::default());
     ocean.set_time(500.0).unwrap();
-    ocean.pre_roll(60.0, 0.05).unwrap();
-    let n = 128;
+    ocean.pre_roll(45.0, 0.1).unwrap();
+    let n = 64;
     let residual = ocean.residual_foam();
     let mean = residual.iter().map(|&r| f64::from(r)).sum::<f64>() / (n * n) as f64;
     let value = |x: f64, z: f64| -> f64 {
@@ -346,8 +344,10 @@ fn residual_foam_forms_streaks_along_the_wind() {
     for lag in [2.0, 4.0] {
         let (along, across) = (correlation(lag, true), correlation(lag, false));
         println!("lag {lag} points: correlation along the wind {along:.3}, across {across:.3}");
+        // Measured 0.93 against 0.54 at 2 points and 0.81 against 0.08 at 4; isotropic
+        // spreading would give equal values.
         assert!(
-            along > across + 0.1,
+            along > across + 0.2,
             "lag {lag}: along {along}, across {across}"
         );
     }

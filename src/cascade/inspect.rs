@@ -194,6 +194,8 @@ impl Cascade {
 }
 
 #[cfg(test)]
+// Matrix arithmetic reads best with its indices.
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
     use crate::{CascadeConfig, Spectrum};

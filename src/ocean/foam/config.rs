@@ -95,7 +95,7 @@ impl Default for FoamConfig {
             coverage: 1.0,
             wind_speed: None,
             active_decay: 3.85,
-            residual_decay: 30.0,
+            residual_decay: 15.0,
             drift: 0.03,
             streak_length: 1.0,
             streak_width: 0.03,
