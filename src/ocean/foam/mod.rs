@@ -89,41 +89,41 @@ fn upper_tail(x: f32, density: f32) -> f32 {
     density / (0.661 * x + 0.339 * (x * x + 5.51).sqrt())
 }
 
-/// For x standard normal: P(q(x) < 0) for q(x) = a2·x² + a1·x + c, the roots of q (up to two)
-/// and |q'| there. In f32, with the roots found stably.
+/// Φ(x) and φ(x) of the standard normal at a crossing x, from one exponential (Φ in the lower
+/// tail with full relative accuracy); beyond |x| = 12 (φ < 1e-31) exactly 0 or 1 and 0.
 #[inline(always)]
-fn quadratic_below(a2: f32, a1: f32, c: f32) -> (f32, [Option<f32>; 2], f32) {
-    // P(x < root) with full relative accuracy in the lower tail.
-    let below = |x: f32| {
-        let density = (-0.5 * x * x).exp() * INV_SQRT_TAU;
-        if x <= 0.0 {
-            upper_tail(-x, density)
-        } else {
-            1.0 - upper_tail(x, density)
-        }
+fn normal_at(x: f32) -> (f32, f32) {
+    if x.abs() > 12.0 {
+        return (if x > 0.0 { 1.0 } else { 0.0 }, 0.0);
+    }
+    let density = (-0.5 * x * x).exp() * INV_SQRT_TAU;
+    let cdf = if x <= 0.0 {
+        upper_tail(-x, density)
+    } else {
+        1.0 - upper_tail(x, density)
     };
+    (cdf, density)
+}
+
+/// For x standard normal and q(x) = a2·x² + a1·x + c: the roots of q (up to two, in increasing
+/// order) and |q'| there, found stably in f32; `None` where q does not change sign, with
+/// P(q < 0) then 0 or 1.
+#[inline(always)]
+fn crossings(a2: f32, a1: f32, c: f32) -> Result<([f32; 2], usize, f32), f32> {
     if a2 == 0.0 {
         if a1 == 0.0 {
-            return (if c < 0.0 { 1.0 } else { 0.0 }, [None; 2], 0.0);
+            return Err(if c < 0.0 { 1.0 } else { 0.0 });
         }
-        let root = -c / a1;
-        let p = if a1 > 0.0 { below(root) } else { below(-root) };
-        return (p, [Some(root), None], a1.abs());
+        return Ok(([-c / a1, 0.0], 1, a1.abs()));
     }
     let disc = a1 * a1 - 4.0 * a2 * c;
     if disc.is_nan() || disc <= 0.0 {
-        return (if a2 < 0.0 { 1.0 } else { 0.0 }, [None; 2], 0.0);
+        return Err(if a2 < 0.0 { 1.0 } else { 0.0 });
     }
     let sq = disc.sqrt();
     let q = -0.5 * (a1 + sq.copysign(a1));
     let (r1, r2) = (q / a2, c / q);
-    let (lo, hi) = if r1 < r2 { (r1, r2) } else { (r2, r1) };
-    let p = if a2 > 0.0 {
-        (below(hi) - below(lo)).max(0.0)
-    } else {
-        (below(lo) + below(-hi)).min(1.0)
-    };
-    (p, [Some(lo), Some(hi)], sq)
+    Ok(([r1.min(r2), r1.max(r2)], 2, sq))
 }
 
 impl Params {
@@ -154,42 +154,108 @@ impl Params {
         let kappa = beta[0] * beta[1] - beta[2] * beta[2];
         let a2 = kappa * variance;
         let sigma = variance.sqrt();
-        let (fraction, roots, slope) = quadratic_below(a2, sigma, jacobian - a2 - self.threshold);
-        let mut episodes = 0.0;
-        for x in roots.into_iter().flatten() {
-            // J̇ = ∇J·ġ with ∇J where the surface crosses J_b: U at its mean given w = σx.
-            let w = sigma * x;
-            let at = [
-                gradient[0] + beta[1] * w,
-                gradient[1] + beta[0] * w,
-                gradient[2] - 2.0 * beta[2] * w,
-            ];
-            let speed = quadratic_form(&self.rate, at).max(0.0).sqrt();
-            episodes += (-0.5 * x * x).exp() * speed;
+        let (roots, count, slope) = match crossings(a2, sigma, jacobian - a2 - self.threshold) {
+            Ok(found) => found,
+            Err(fraction) => return fraction * self.inv_active,
+        };
+        // P(J < J_b): below the one root of a linear J (a1 = σ > 0), between the roots where
+        // J opens upward, outside them where it opens downward.
+        let (mut cdf, mut episodes) = ([0.0f32; 2], 0.0f32);
+        for (k, &x) in roots[..count].iter().enumerate() {
+            let (below, density) = normal_at(x);
+            cdf[k] = below;
+            if density > 0.0 {
+                // J̇ = ∇J·ġ with ∇J where the surface crosses J_b: U at its mean given w = σx.
+                let w = sigma * x;
+                let at = [
+                    gradient[0] + beta[1] * w,
+                    gradient[1] + beta[0] * w,
+                    gradient[2] - 2.0 * beta[2] * w,
+                ];
+                episodes += density * quadratic_form(&self.rate, at).max(0.0).sqrt();
+            }
         }
-        episodes * (INV_SQRT_TAU * INV_SQRT_TAU) / slope.max(f32::MIN_POSITIVE)
-            + fraction * self.inv_active
+        let fraction = match (count, a2 > 0.0) {
+            (1, _) => cdf[0],
+            (_, true) => (cdf[1] - cdf[0]).max(0.0),
+            _ => (cdf[0] + 1.0 - cdf[1]).min(1.0),
+        };
+        episodes * INV_SQRT_TAU / slope + fraction * self.inv_active
     }
 
-    /// Active and residual foam after `dt` seconds with the intensity going from `old` to
-    /// `new` (trapezoidal mean held over the step, the linear equations solved exactly).
+    /// The constants of a step of `dt` seconds.
+    fn step(&self, dt: f32) -> Step {
+        let x = dt * self.inv_active;
+        let e_active = (-x).exp();
+        Step {
+            dt,
+            e_active,
+            mean_active: mean_factor(x, e_active),
+            e_residual: (-dt * self.inv_residual).exp(),
+        }
+    }
+
+    /// Active and residual foam after a step with the intensity going from `old` to `new`
+    /// (trapezoidal mean held over the step, the linear equations solved exactly). Where
+    /// nothing breaks (the intensity 0 at both ends, most of the sea) the exponentials are the
+    /// step's constants.
     #[inline(always)]
-    fn react(&self, active: f32, residual: f32, old: f32, new: f32, dt: f32) -> (f32, f32) {
+    fn react(&self, step: &Step, active: f32, residual: f32, old: f32, new: f32) -> (f32, f32) {
+        let dt = step.dt;
         let s = 0.5 * (old + new);
-        let kappa = s + self.inv_active;
-        let x = kappa * dt;
-        let e = (-x).exp();
-        let a_star = s / kappa;
-        let a1 = a_star + (active - a_star) * e;
-        // Mean of a over the step: a* + (a₀ − a*)(1 − e^{−x})/x.
-        let mean_factor = if x > 0.0 { -(-x).exp_m1() / x } else { 1.0 };
-        let a_mean = a_star + (active - a_star) * mean_factor;
+        let (a1, a_mean) = if s == 0.0 {
+            (active * step.e_active, active * step.mean_active)
+        } else {
+            let kappa = s + self.inv_active;
+            let x = kappa * dt;
+            let e = (-x).exp();
+            let a_star = s / kappa;
+            (
+                a_star + (active - a_star) * e,
+                a_star + (active - a_star) * mean_factor(x, e),
+            )
+        };
         let g = a_mean * self.inv_active;
-        let rho = g + self.inv_residual;
-        let r_star = g / rho;
-        let r1 = r_star + (residual - r_star) * (-rho * dt).exp();
+        let r1 = if g == 0.0 {
+            residual * step.e_residual
+        } else {
+            let rho = g + self.inv_residual;
+            let r_star = g / rho;
+            // e^{−ρΔt} = e^{−Δt/τ_R}·e^{−gΔt}, the second by its series where gΔt is small
+            // (error below 5e-10 for gΔt < 0.01).
+            let y = g * dt;
+            let e_g = if y < 0.01 {
+                1.0 - y * (1.0 - y * (0.5 - y / 6.0))
+            } else {
+                (-y).exp()
+            };
+            r_star + (residual - r_star) * (step.e_residual * e_g)
+        };
         (a1.clamp(0.0, 1.0), r1.clamp(0.0, 1.0))
     }
+}
+
+/// (1 − e^{−x})/x from x and e = e^{−x}, by its series for small x: the mean of an
+/// exponential relaxation over a step, as a fraction of its start.
+#[inline(always)]
+fn mean_factor(x: f32, e: f32) -> f32 {
+    if x > 1e-3 {
+        (1.0 - e) / x
+    } else {
+        1.0 - x * (0.5 - x / 6.0)
+    }
+}
+
+/// What every point's update over one step shares.
+#[derive(Debug, Clone, Copy)]
+struct Step {
+    dt: f32,
+    /// e^{−Δt/τ_A}.
+    e_active: f32,
+    /// (1 − e^{−Δt/τ_A})/(Δt/τ_A).
+    mean_active: f32,
+    /// e^{−Δt/τ_R}.
+    e_residual: f32,
 }
 
 /// The foam of an ocean: its state (active and residual foam), the breaking intensity at the
@@ -369,6 +435,7 @@ impl Foam {
     fn react(&mut self, cascades: &[Cascade], dt: f32) {
         let n = self.n;
         let params = self.params;
+        let step = params.step(dt);
         let first = &cascades[0];
         let block = ROWS * n;
         (
@@ -389,7 +456,7 @@ impl Foam {
                     let gradient = first.gradient_row(b * ROWS + r);
                     for i in 0..n {
                         let new = params.intensity(gradient.get(i));
-                        let (a1, r1) = params.react(a[i], rr[i], s[i], new, dt);
+                        let (a1, r1) = params.react(&step, a[i], rr[i], s[i], new);
                         s[i] = new;
                         a[i] = a1;
                         rr[i] = r1;
