@@ -1,6 +1,7 @@
 //! The default ocean in a few seconds: builds `Spectrum::jonswap(10.0, 100_000.0)` (U10 = 10 m/s,
 //! 100 km fetch) with `OceanConfig::default()` (three cascades of 256² over 1000, 230 and 51 m),
-//! steps it at 60 Hz to t = 10 s and maps a 400 m × 400 m world-space window of the whole
+//! pre-rolls its foam over the 15 s before t = 10 s (300 steps of 1/20 s) and maps a
+//! 400 m × 400 m world-space window of the whole
 //! ocean (every cascade summed, `OceanState::sample_grid`), 512 × 512 pixels of 0.78 m, each
 //! the mean of 3 × 3 samples (so waves shorter than a pixel average out instead of aliasing
 //! into speckle):
@@ -10,13 +11,16 @@
 //! - `out/normal.png`: 8-bit RGB normal map of the displaced surface, each component mapped
 //!   from [−1, 1] to [0, 255] with **R = n_x, G = n_z, B = n_y** (the usual tangent-space
 //!   layout with the surface's up axis y in blue, so flat water is (128, 128, 255));
-//! - `out/foam.png`: 8-bit foam coverage in [0, 1] after 5 s of 60 Hz steps.
+//! - `out/foam.png`: 8-bit foam of the whole ocean (active whitecaps and residual foam
+//!   together, [0, 1] → [0, 255]; the field lives on the largest cascade's grid, 3.9 m here,
+//!   and is interpolated between its points).
 //!
 //! In each picture the top 512 rows are the window (pixel (i, j) covers x ∈ [i, i + 1)·s,
 //! z ∈ [j, j + 1)·s, s = 0.78 m; image rows are z) and a 32-pixel band below holds a scale bar
 //! and the window's size.
 //!
-//! It also prints the significant wave height H_s = 4·std(η) measured on a grid of world
+//! It prints the foam coverage beside the whitecap fraction the calibration aims at, and the
+//! significant wave height H_s = 4·std(η) measured on a grid of world
 //! points (all cascades summed, via `sample_many`) beside the spectrum's 4√m0 and the
 //! expected 4√(Σ S(k)Δk²) of the grids.
 //!
@@ -52,13 +56,10 @@ fn main() -> Result<()> {
     let hs_spectrum = spectrum.significant_wave_height();
     let mut ocean = OceanState::new(spectrum, OceanConfig::default())?;
 
-    // Jump to t = 5 s, then 300 steps of 1/60 s to t = 10 s: the foam builds up over these
-    // steps.
-    ocean.set_time(5.0)?;
-    let dt = 1.0 / 60.0;
-    for _ in 0..300 {
-        ocean.step(dt)?;
-    }
+    // Jump to t = 10 s and pre-roll the foam over the 15 s before it: active whitecaps (τ_A =
+    // 3.85 s) reach their steady coverage, residual foam (τ_R = 20 s) is still building.
+    ocean.set_time(10.0)?;
+    ocean.pre_roll(15.0, 1.0 / 20.0)?;
     let simulated = start.elapsed().as_secs_f32();
 
     // The window: SUPER × SUPER samples per pixel at the centres of its sub-pixels.
@@ -130,11 +131,18 @@ fn main() -> Result<()> {
     image.extend(footer.chunks(3).map(|c| c[1]));
     let path = dir.join("foam.png");
     save_gray8(&path, n, n + FOOTER, &image)?;
-    let covered = foam.iter().filter(|&&f| f > 0.1).count() as f32 / foam.len() as f32;
+    let coverage = ocean.foam_coverage();
+    let calibration = ocean.foam_calibration();
     println!(
-        "wrote {} (foam in [0, 1] → [0, 255]; {:.1} % of the window above 0.1)",
+        "wrote {} (foam in [0, 1] → [0, 255]); coverage: active whitecaps {:.2} %, residual \
+         {:.2} %; whitecap fraction aimed at (Monahan & O'Muircheartaigh 1980, U10 = {} m/s): \
+         {:.2} %, breaking threshold J_b = {:.3}",
         path.display(),
-        100.0 * covered
+        100.0 * coverage.active,
+        100.0 * coverage.residual,
+        calibration.wind_speed,
+        100.0 * calibration.target,
+        calibration.threshold,
     );
 
     // Measured H_s: the summed surface on a 512×512 grid of world points spanning exactly
