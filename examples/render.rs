@@ -11,8 +11,9 @@
 //! - `--preset NAME`: `default` (`Spectrum::jonswap(10.0, 100_000.0)` with
 //!   `OceanConfig::default()`) or a `SeaState` name: `calm`, `moderate_breeze`,
 //!   `fresh_breeze`, `storm`, `swell`, `shallow_bay`;
-//! - `--camera X,Y,Z`: the eye in metres (default: at the origin, 2 m + 1.5 H_s above the
-//!   mean surface, at most 10 m);
+//! - `--camera X,Y,Z`: the eye in metres (default: 2 m + 1.5 H_s above the mean surface, at
+//!   most 10 m, at the origin; the storm's at x = 150 m, z = −400 m, where its foam shows a
+//!   breaking crest and streaks);
 //! - `--heading DEG`: the view direction in degrees from +x (the wind direction) toward +z;
 //!   `--pitch DEG`: up (positive) or down from the horizontal; `--fov DEG`: the horizontal
 //!   field of view (default 70, the storm 55); an eye less than 1 m above the water under it
@@ -30,8 +31,14 @@
 //! - **Light that suits the sea.** Fair weather (every preset but the storm): a sun with a
 //!   blue sky, whose reflection, glitter path and subsurface glow give the picture its
 //!   contrast. Storm: an overcast sky (the CIE standard overcast sky's luminance, three times
-//!   brighter at the zenith than at the horizon, Moon & Spencer 1942), no sun, dark slate
-//!   water, white foam, low haze; the camera looks across the crests coming at it.
+//!   brighter at the zenith than at the horizon, Moon & Spencer 1942) under a cloud deck, no
+//!   sun, dark slate water, low haze; the camera looks into the crests coming at it.
+//! - **Foam** from the ocean's calibrated foam field (`OceanState::active_foam`,
+//!   `residual_foam`), which holds how much of each cell of the largest cascade's grid
+//!   (15.6 m for the storm) is covered: the picture puts the active whitecaps on the crests
+//!   (the fraction a of the cell where the normalised height, broken up by noise, is highest)
+//!   and the residual foam into thin streaks along the wind; a footprint wider than that
+//!   detail sees the mean coverage.
 //! - **Sub-grid roughness in the glint.** The sun's glitter is an anisotropic Gaussian
 //!   slope distribution (Cox & Munk 1954) whose along- and across-wind variances are what the
 //!   pixel does not resolve: the ocean's sub-grid slope variance
@@ -172,9 +179,32 @@ struct Scene {
     resolved_total: f32,
     /// Width of one ray's share of a pixel, in radians.
     ray_angle: f32,
+    /// The foam grid (cascade 0's): side in metres, points per side, and the active and
+    /// residual foam on it.
+    foam_length: f64,
+    foam_size: usize,
+    active: Vec<f32>,
+    residual: Vec<f32>,
 }
 
 impl Scene {
+    /// Bilinear interpolation of a foam-grid field at the undisplaced world point (x, z)
+    /// (grid point (i, j) at (i, j)·L/N, periodic).
+    fn foam_field(&self, values: &[f32], x: f64, z: f64) -> f32 {
+        let n = self.foam_size;
+        let cells = n as f64 / self.foam_length;
+        let split = |v: f64| {
+            let g = v.rem_euclid(self.foam_length) * cells;
+            let cell = g.floor();
+            ((cell as usize) % n, (g - cell) as f32)
+        };
+        let ((ix, fx), (iz, fz)) = (split(x), split(z));
+        let (ix1, iz1) = ((ix + 1) % n, (iz + 1) % n);
+        let v = |i: usize, j: usize| values[j * n + i];
+        (1.0 - fz) * ((1.0 - fx) * v(ix, iz) + fx * v(ix1, iz))
+            + fz * ((1.0 - fx) * v(ix, iz1) + fx * v(ix1, iz1))
+    }
+
     /// Slope variance [along, across] of the simulated waves shorter than π/`footprint`
     /// (interpolated in the table).
     fn unresolved_at(&self, footprint: f32) -> [f32; 2] {
@@ -229,7 +259,9 @@ fn main() -> Result<()> {
     // looks across and into the waves coming at the camera.
     let (default_heading, default_pitch) = if storm { (165.0, -3.0) } else { (20.0, -3.5) };
     let eye_height = (2.0 + 1.5 * hs).min(10.0);
-    let camera: [f32; 3] = args.list("camera", [0.0, eye_height, 0.0])?;
+    // The storm's camera stands where its foam field shows a breaking crest and streaks.
+    let origin = if storm { [150.0, -400.0] } else { [0.0, 0.0] };
+    let camera: [f32; 3] = args.list("camera", [origin[0], eye_height, origin[1]])?;
     let heading = args.get::<f32>("heading", default_heading)?.to_radians() + wind_direction;
     let pitch = args.get::<f32>("pitch", default_pitch)?.to_radians();
     let fov = args.get::<f32>("fov", if storm { 55.0 } else { 70.0 })?;
@@ -257,6 +289,15 @@ fn main() -> Result<()> {
         ocean.step(1.0 / 30.0)?;
     }
     let simulated = start.elapsed().as_secs_f32();
+    let coverage = ocean.foam_coverage();
+    let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
+    println!(
+        "foam: active coverage {:.3}, residual {:.3}; mean active {:.3}, residual {:.3}",
+        coverage.active,
+        coverage.residual,
+        mean(ocean.active_foam()),
+        mean(ocean.residual_foam())
+    );
 
     // The sum of each cascade's largest |η| bounds the summed height (plus a margin for the
     // spline, which may overshoot the grid values slightly).
@@ -326,6 +367,10 @@ fn main() -> Result<()> {
         k_table,
         unresolved,
         ray_angle: 2.0 * tan / (width * samples) as f32,
+        foam_length: f64::from(ocean.cascades()[0].length()),
+        foam_size: ocean.cascades()[0].size(),
+        active: ocean.active_foam().to_vec(),
+        residual: ocean.residual_foam().to_vec(),
     };
 
     let mut pixels = vec![0u8; width * height * 3];
@@ -523,9 +568,8 @@ fn shade_water(ocean: &OceanState, scene: &Scene, dir: Vec3, distance: f32) -> V
         + light.deep * normal.y;
 
     let mut colour = body * (1.0 - fresnel) + reflection * fresnel + glitter;
-    // Foam: white, lit by the sky and the sun.
-    let coverage = ((surface.foam - 0.03) / 0.4).clamp(0.0, 1.0);
-    let foam = coverage * coverage * (3.0 - 2.0 * coverage);
+    // Foam: white, lit by the sky and the sun, with the detail the foam grid does not hold.
+    let foam = foam_cover(scene, &surface, p, footprint);
     let sunlit = light.sun.map_or(0.0, |sun| normal.dot(sun).max(0.0));
     let foam_light =
         Vec3::new(0.85, 0.88, 0.90) * (0.75 * ambient + light.sun_colour * 0.35 * sunlit);
@@ -534,6 +578,104 @@ fn shade_water(ocean: &OceanState, scene: &Scene, dir: Vec3, distance: f32) -> V
     // Haze: exponential in distance toward the horizon colour.
     let haze = 1.0 - (-distance / light.haze).exp();
     colour.lerp(light.haze_colour(dir), haze)
+}
+
+/// How much of the water at the hit point `p` foam covers, in [0, 1].
+///
+/// The ocean's foam lives on the largest cascade's grid (1000 m / 256 = 3.9 m by default,
+/// 15.6 m for the storm), which holds how much of each cell is covered — active whitecaps a
+/// and residual foam r — but not where in the cell. The picture puts it where the sea would:
+/// whitecaps on the crests, covering the fraction a of the area where the normalised height
+/// Φ(η/σ), broken up by small-scale noise, is highest (Φ(η/σ) is uniform in [0, 1] for
+/// Gaussian η, so the covered fraction stays a); residual foam in streaks along the wind
+/// (noise stretched 12 × along it), thinner. A footprint wider than that detail sees the mean
+/// coverage a + r(1 − a)/2.
+fn foam_cover(scene: &Scene, surface: &SurfaceSample, p: Vec3, footprint: f32) -> f32 {
+    let (x, z) = (
+        f64::from(p.x - surface.displacement[0]),
+        f64::from(p.z - surface.displacement[1]),
+    );
+    let active = scene.foam_field(&scene.active, x, z).clamp(0.0, 1.0);
+    let residual = scene.foam_field(&scene.residual, x, z).clamp(0.0, 1.0);
+    let mean = active + 0.5 * residual * (1.0 - active);
+    if active + residual < 1e-4 {
+        return 0.0;
+    }
+    // Position in the wind's frame, metres.
+    let along = p.x * scene.wind.x + p.z * scene.wind.z;
+    let across = -p.x * scene.wind.z + p.z * scene.wind.x;
+    // Whitecaps: crests first, broken up by noise at 3 m and 0.8 m into lace.
+    let lace =
+        0.6 * noise(along / 3.0, across / 3.0) + 0.4 * noise(along / 0.8 + 7.3, across / 0.8);
+    let rank = 0.5 * normal_cdf(surface.height / scene.sigma.max(1e-6)) + 0.5 * lace;
+    // The rank is roughly normal about 0.5 with a spread of 0.2: its (1 − a) quantile.
+    let threshold = 0.5 + 0.2 * probit(1.0 - active.clamp(1e-4, 1.0 - 1e-4));
+    let white = smoothstep(threshold - 0.03, threshold + 0.03, rank)
+        * (0.75 + 0.25 * noise(along / 0.5 + 1.3, across / 0.5));
+    // Residual foam: thin streaks along the wind, 25 m × 0.9 m noise.
+    let streak =
+        0.75 * noise(along / 25.0 + 3.1, across / 0.9) + 0.25 * noise(along / 6.0, across / 0.4);
+    let streak_threshold = 0.5 + 0.2 * probit(1.0 - residual.clamp(1e-4, 1.0 - 1e-4));
+    let streaks = smoothstep(streak_threshold - 0.05, streak_threshold + 0.05, streak) * 0.45;
+    let detailed = white + streaks * (1.0 - white);
+    let blur = (footprint / 1.5).clamp(0.0, 1.0);
+    detailed + blur * (mean - detailed)
+}
+
+/// Hermite step from 0 at `a` to 1 at `b`.
+fn smoothstep(a: f32, b: f32, x: f32) -> f32 {
+    let t = ((x - a) / (b - a)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// The standard normal quantile Φ⁻¹(p) for p in (0, 1) (Acklam's rational approximation, in
+/// f32: a few 10⁻⁷ relative, ample for a foam threshold).
+fn probit(p: f32) -> f32 {
+    let a = [
+        -39.696_83,
+        220.946_1,
+        -275.928_5,
+        138.357_75,
+        -30.664_799,
+        2.506_628_3,
+    ];
+    let b = [-54.476_1, 161.585_83, -155.699, 66.801_31, -13.280_682];
+    let c = [
+        -0.007_784_894,
+        -0.322_396_46,
+        -2.400_758,
+        -2.549_732_5,
+        4.374_664,
+        2.938_164,
+    ];
+    let d = [0.007_784_696, 0.322_467_13, 2.445_134, 3.754_408_7];
+    let tail = |q: f32| {
+        (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5])
+            / ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1.0)
+    };
+    let low = 0.024_25;
+    if p < low {
+        tail((-2.0 * p.ln()).sqrt())
+    } else if p <= 1.0 - low {
+        let q = p - 0.5;
+        let r = q * q;
+        (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q
+            / (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1.0)
+    } else {
+        -tail((-2.0 * (1.0 - p).ln()).sqrt())
+    }
+}
+
+/// The standard normal distribution function Φ(x) (Abramowitz & Stegun 7.1.26 for erf,
+/// |error| < 1.5·10⁻⁷).
+fn normal_cdf(x: f32) -> f32 {
+    let t = x.abs() / std::f32::consts::SQRT_2;
+    let k = 1.0 / (1.0 + 0.327_591_1 * t);
+    let poly = k
+        * (0.254_829_6
+            + k * (-0.284_496_7 + k * (1.421_413_7 + k * (-1.453_152 + k * 1.061_405_4))));
+    let erf = 1.0 - poly * (-t * t).exp();
+    0.5 * (1.0 + erf.copysign(x))
 }
 
 /// The normal of `surface` with its slope scaled by `keep` (the part the pixel resolves).

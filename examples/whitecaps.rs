@@ -5,8 +5,12 @@
 //! active lifetimes) and the coverage averaged over the next 20 s in steps of 1/20 s. Prints
 //! the active and residual coverage beside the whitecap fraction of Monahan &
 //! O'Muircheartaigh (1980), W = 3.84e-6 U10^3.41, and plots them on log–log axes into
-//! `out/whitecaps.png` (the line: the formula; dots: active coverage, JONSWAP blue, P–M
-//! orange; rings: residual coverage).
+//! `out/whitecaps.png` (wind speed in m/s against the fraction of the surface covered; the
+//! black line: the formula, grey lines: 1.5 times above and below it; filled dots: active
+//! whitecaps, rings: residual foam; JONSWAP blue, Pierson–Moskowitz orange).
+//!
+//! Option: `--palette` writes the plot as an indexed PNG of 256 colours (for the README's
+//! gallery).
 //!
 //! Run with `cargo run --release -p ocean-fft-examples --example whitecaps` (two to three minutes
 //! on 2 cores).
@@ -14,13 +18,12 @@
 mod common;
 
 use ocean_fft::{OceanConfig, OceanState, Spectrum};
+use plotters::prelude::*;
 
-use common::{out_dir, Canvas, Result};
+use common::plot::{draw_png, FONT, SERIES};
+use common::{out_dir, Args, Result};
 
 const WINDS: [f32; 5] = [5.0, 7.5, 10.0, 15.0, 20.0];
-const WIDTH: usize = 640;
-const HEIGHT: usize = 480;
-const MARGIN: f32 = 60.0;
 
 fn monahan(wind: f64) -> f64 {
     3.84e-6 * wind.powf(3.41)
@@ -28,6 +31,7 @@ fn monahan(wind: f64) -> f64 {
 
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
+    let args = Args::parse(&["palette"])?;
     let dt = 1.0 / 20.0;
     let mut rows = Vec::new();
     println!("spectrum  U10 m/s   W (MO80)   active    ratio  residual   J_b");
@@ -60,75 +64,101 @@ fn main() -> Result<()> {
         }
     }
 
-    // Log–log axes: U10 from 4 to 25 m/s, coverage from 1e-4 to 1.
-    let mut canvas = Canvas::new(WIDTH, HEIGHT, [255, 255, 255]);
-    let (u0, u1, w0, w1) = (4f32.ln(), 25f32.ln(), 1e-4f32.ln(), 1f32.ln());
-    let to_px = |u: f32, w: f32| {
-        let x = MARGIN + (u.ln() - u0) / (u1 - u0) * (WIDTH as f32 - 2.0 * MARGIN);
-        let y = HEIGHT as f32 - MARGIN - (w.ln() - w0) / (w1 - w0) * (HEIGHT as f32 - 2.0 * MARGIN);
-        (x, y)
-    };
-    let grey = [200, 200, 200];
-    for decade in [1e-4f32, 1e-3, 1e-2, 1e-1, 1.0] {
-        let (a, b) = (to_px(4.0, decade), to_px(25.0, decade));
-        canvas.line(a, b, 1, grey);
-        let label = format!("{decade:e}").to_uppercase();
-        canvas.text(8, a.1 as i64 - 3, &label, 1, [80, 80, 80]);
-    }
-    for wind in [5.0f32, 10.0, 20.0] {
-        let (a, b) = (to_px(wind, 1e-4), to_px(wind, 1.0));
-        canvas.line(a, b, 1, grey);
-        canvas.text(
-            a.0 as i64 - 4,
-            HEIGHT as i64 - 40,
-            &format!("{wind}"),
-            2,
-            [80, 80, 80],
-        );
-    }
-    canvas.text(
-        WIDTH as i64 / 2 - 60,
-        HEIGHT as i64 - 20,
-        "U10 M/S (LOG)",
-        2,
-        [80, 80, 80],
-    );
-    canvas.text(
-        MARGIN as i64,
-        12,
-        "COVERAGE (LOG): LINE MO80, DOTS ACTIVE, RINGS RESIDUAL",
-        1,
-        [80, 80, 80],
-    );
-    let line: Vec<(f32, f32)> = (0..=100)
-        .map(|k| {
-            let u = 4.0 * (25.0f32 / 4.0).powf(k as f32 / 100.0);
-            to_px(u, monahan(f64::from(u)) as f32)
-        })
-        .collect();
-    canvas.polyline(&line, 2, [40, 40, 40]);
-    let colours = [[31, 119, 180], [255, 127, 14]];
-    for &(index, wind, active, residual) in &rows {
-        let shift = if index == 0 { -3.0 } else { 3.0 };
-        let (x, y) = to_px(wind, active as f32);
-        canvas.dot((x + shift) as i64 - 4, y as i64 - 4, 9, colours[index]);
-        let (x, y) = to_px(wind, residual as f32);
-        for k in 0..24 {
-            let angle = k as f32 / 24.0 * std::f32::consts::TAU;
-            canvas.dot(
-                (x + shift + 5.0 * angle.cos()) as i64,
-                (y + 5.0 * angle.sin()) as i64,
-                2,
-                colours[index],
-            );
-        }
-    }
     let path = out_dir("")?.join("whitecaps.png");
-    canvas.save(&path)?;
+    plot(&path, &rows, args.flag("palette"))?;
     println!(
         "wrote {}; done in {:.0} s",
         path.display(),
         start.elapsed().as_secs_f32()
     );
     Ok(())
+}
+
+/// Coverage against U10 on log–log axes: the Monahan & O'Muircheartaigh (1980) line with its
+/// factor-1.5 band, active coverage as dots and residual coverage as rings, JONSWAP and
+/// Pierson–Moskowitz in two colours.
+fn plot(path: &std::path::Path, rows: &[(usize, f32, f64, f64)], palette: bool) -> Result<()> {
+    draw_png(path, 760, 520, palette, |root| {
+        let text = 15.0;
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                "Whitecap coverage against wind, default ocean",
+                (FONT, text * 1.2).into_font(),
+            )
+            .margin(12)
+            .x_label_area_size(text * 3.0)
+            .y_label_area_size(text * 4.5)
+            .build_cartesian_2d(
+                (4.0f64..25.0)
+                    .log_scale()
+                    .with_key_points(vec![4.0, 5.0, 7.5, 10.0, 15.0, 20.0, 25.0]),
+                (1e-4f64..1.0).log_scale(),
+            )?;
+        chart
+            .configure_mesh()
+            .x_desc("wind speed U10 [m/s]")
+            .y_desc("fraction of the surface covered")
+            .label_style((FONT, text).into_font())
+            .axis_desc_style((FONT, text).into_font())
+            .x_label_formatter(&|v| format!("{v}"))
+            .y_label_formatter(&|v| {
+                if *v >= 0.01 {
+                    format!("{:.0} %", v * 100.0)
+                } else {
+                    format!("{} %", v * 100.0)
+                }
+            })
+            .light_line_style(RGBColor(235, 235, 235))
+            .draw()?;
+        let winds: Vec<f64> = (0..=100)
+            .map(|i| 4.0 * (25.0f64 / 4.0).powf(f64::from(i) / 100.0))
+            .collect();
+        let grey = RGBColor(190, 190, 190);
+        for factor in [1.5, 1.0 / 1.5] {
+            chart.draw_series(LineSeries::new(
+                winds.iter().map(|&u| (u, factor * monahan(u))),
+                ShapeStyle::from(&grey).stroke_width(1),
+            ))?;
+        }
+        chart
+            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
+            .label("× 1.5 and ÷ 1.5 of the formula")
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
+        let black = RGBColor(30, 30, 30);
+        chart
+            .draw_series(LineSeries::new(
+                winds.iter().map(|&u| (u, monahan(u))),
+                black.stroke_width(2),
+            ))?
+            .label("Monahan & O'Muircheartaigh (1980): W = 3.84·10⁻⁶ U10^3.41")
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], black.stroke_width(2))
+            });
+        for (index, name) in [(0usize, "JONSWAP"), (1, "Pierson–Moskowitz")] {
+            let colour = SERIES[index];
+            let shift = if index == 0 { 0.985 } else { 1.015 };
+            chart
+                .draw_series(
+                    rows.iter()
+                        .filter(|r| r.0 == index && r.2 > 0.0)
+                        .map(|r| Circle::new((f64::from(r.1) * shift, r.2), 5, colour.filled())),
+                )?
+                .label(format!("{name}: active whitecaps"))
+                .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.filled()));
+            chart
+                .draw_series(rows.iter().filter(|r| r.0 == index && r.3 > 0.0).map(|r| {
+                    Circle::new((f64::from(r.1) * shift, r.3), 5, colour.stroke_width(2))
+                }))?
+                .label(format!("{name}: residual foam"))
+                .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.stroke_width(2)));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .label_font((FONT, text * 0.9).into_font())
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(180, 180, 180))
+            .draw()?;
+        Ok(())
+    })
 }
