@@ -27,8 +27,10 @@
 //!
 //! Shading: a low sun from the upper left on the surface normal (hill shading, which shows
 //! the slopes of small and large seas alike), a tint that brightens crests by η/H_s of that
-//! preset, and foam blended to white. Each preset is built at size 256 (its default), started
-//! at t = 20 s and stepped for 4 s at 30 Hz so that foam builds up.
+//! preset, residual foam as a pale veil and active whitecaps in white (the ocean's foam
+//! field, `OceanState::active_foam` and `residual_foam`, interpolated from the largest
+//! cascade's grid). Each preset is built at size 256 (its default) and shown at t = 24 s,
+//! its foam pre-rolled over the 15 s before (`OceanState::pre_roll`).
 //!
 //! Options: `--tile PIXELS` (side of each tile, default 240); `--palette`: write an indexed
 //! PNG of 256 colours (median cut), about a third of the size, as the README's gallery does.
@@ -42,7 +44,7 @@ use ocean_fft::{Error, OceanState, SeaState, SurfaceSample};
 use plotters::prelude::*;
 
 use common::plot::{draw_on, metres, scale_bar, FONT};
-use common::{out_dir, save_indexed, save_rgb8, Args, Result};
+use common::{foam_grid_at, out_dir, save_indexed, save_rgb8, Args, Result};
 
 /// Samples per pixel along each axis (averaged).
 const SUPER: usize = 2;
@@ -128,10 +130,10 @@ fn main() -> Result<()> {
                 other => break other?,
             }
         };
-        ocean.set_time(20.0)?;
-        for _ in 0..120 {
-            ocean.step(1.0 / 30.0)?;
-        }
+        // t = 24 s with the foam of the 15 s before it (active whitecaps at their steady
+        // coverage, residual foam building).
+        ocean.set_time(24.0)?;
+        ocean.pre_roll(15.0, 0.1)?;
         let spacing = window / fine as f64;
         ocean.sample_grid(
             [0.5 * spacing, 0.5 * spacing],
@@ -142,6 +144,14 @@ fn main() -> Result<()> {
         let repeat = repeat_correlation(&ocean, window, wavelength, 160)?;
         repeats.push((state.name(), window, repeat, tile_config.lengths.len()));
 
+        let (foam_size, foam_length) = (
+            ocean.cascades()[0].size(),
+            f64::from(ocean.cascades()[0].length()),
+        );
+        let foam = |values: &[f32], p: usize| {
+            let (i, j) = ((p % fine) as f64 + 0.5, (p / fine) as f64 + 0.5);
+            foam_grid_at(values, foam_size, foam_length, i * spacing, j * spacing).clamp(0.0, 1.0)
+        };
         let x0 = PAD + (index % COLUMNS) * (tile_px + PAD);
         let y0 = PAD + (index / COLUMNS) * (tile_px + label + PAD) + label;
         for j in 0..tile_px {
@@ -149,8 +159,10 @@ fn main() -> Result<()> {
                 let mut sum = Vec3::ZERO;
                 for dj in 0..SUPER {
                     for di in 0..SUPER {
-                        let sample = &samples[(j * SUPER + dj) * fine + i * SUPER + di];
-                        sum += shade(sample, sun, hs);
+                        let p = (j * SUPER + dj) * fine + i * SUPER + di;
+                        let (active, residual) =
+                            (foam(ocean.active_foam(), p), foam(ocean.residual_foam(), p));
+                        sum += shade(&samples[p], sun, hs, active, residual);
                     }
                 }
                 let colour = to_srgb(sum / (SUPER * SUPER) as f32);
@@ -351,14 +363,16 @@ fn correlation<const D: usize>(a: &[[f64; D]], b: &[[f64; D]]) -> f64 {
 }
 
 /// Linear colour of one top-view sample: hill shading from the normal, crests tinted by
-/// η/H_s, foam blended to white.
-fn shade(sample: &SurfaceSample, sun: Vec3, hs: f32) -> Vec3 {
+/// η/H_s, residual foam a pale veil (half its coverage), active whitecaps white.
+fn shade(sample: &SurfaceSample, sun: Vec3, hs: f32, active: f32, residual: f32) -> Vec3 {
     let deep = Vec3::new(0.01, 0.07, 0.14);
     let crest = Vec3::new(0.06, 0.30, 0.36);
     let lit = Vec3::from_array(sample.normal).dot(sun).max(0.0);
     let relative = (sample.height / hs.max(1e-6)).clamp(-0.5, 0.5) + 0.5;
     let water = deep.lerp(crest, relative) * (0.15 + 2.2 * lit * lit);
-    water.lerp(Vec3::splat(0.95), sample.foam.clamp(0.0, 1.0))
+    water
+        .lerp(Vec3::new(0.55, 0.62, 0.66), 0.5 * residual)
+        .lerp(Vec3::splat(0.95), active)
 }
 
 /// Linear colour to 8-bit with gamma 2.2.

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the README's gallery, docs/images/*.png, by running the examples with the
-# parameters the README's captions give. Takes about two minutes on 2 cores after the build
-# (the three renders are most of it). Run from anywhere: bash scripts/gallery.sh
+# parameters the README's captions give. Takes about four minutes on 2 cores after the build
+# (the whitecaps sweep and the three renders are most of it). Run from anywhere: bash scripts/gallery.sh
 #
 # The examples write into out/ under the directory they run in; this script runs them in a
 # temporary directory and copies what the gallery shows into docs/images/. Indexed PNGs of
@@ -32,6 +32,8 @@ run spectrum --width 720 --height 450 --palette
 cp "$work/out/spectrum.png" "$images/spectrum.png"
 run buoyancy --palette
 cp "$work/out/buoyancy.png" "$images/buoyancy.png"
+run whitecaps --palette
+cp "$work/out/whitecaps.png" "$images/whitecaps.png"
 
 ls -l "$images"
 du -ch "$images"/*.png | tail -n 1
