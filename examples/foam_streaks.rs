@@ -6,7 +6,7 @@
 //! the 45 s before t = 600 s (900 steps of 1/20 s), then drawn twice, the whole foam tile
 //! (left) and a quarter of it enlarged (right): the summed surface hill-shaded from its normal
 //! (`sample_grid`, undisplaced points), residual foam blended in pale grey and active
-//! whitecaps in white, with the wind direction as an arrow. The coverage is printed beside the
+//! whitecaps in white, with the wind direction as an arrow and a scale bar under each view. The coverage is printed beside the
 //! whitecap fraction the calibration aims at.
 //!
 //! Run with `cargo run --release -p ocean-fft-examples --example foam_streaks`.
@@ -15,7 +15,9 @@ mod common;
 
 use glam::Vec3;
 use ocean_fft::{OceanConfig, OceanState, Spectrum, SurfaceSample};
+use plotters::prelude::*;
 
+use common::plot::{draw_on, metres, outlined_text, scale_bar, FONT};
 use common::{out_dir, Canvas, Result};
 
 /// Side of each view in pixels, the gap around them and the label strip.
@@ -88,18 +90,12 @@ fn main() -> Result<()> {
     // Two views: the whole foam tile (left) and a quarter of it, a 162 m square, enlarged
     // (right), each PANEL² pixels of undisplaced points shaded from the summed surface.
     let mut canvas = Canvas::new(2 * PANEL + 3 * PAD, PANEL + 2 * PAD + LABEL, [20, 24, 30]);
+    let mut labels = Vec::new();
     for (panel, side) in [(0, f64::from(first)), (1, f64::from(first) / 4.0)] {
         let image = draw(&ocean, side)?;
         let x = PAD + panel * (PANEL + PAD);
         canvas.blit(x as i64, PAD as i64, PANEL, PANEL, &image);
-        let label = format!("{side:.0} M SQUARE");
-        canvas.text(
-            x as i64,
-            (PAD + PANEL + 8) as i64,
-            &label,
-            2,
-            [230, 230, 230],
-        );
+        labels.push((x, side));
     }
     // The zoomed square, outlined on the whole tile.
     let quarter = (PANEL / 4) as f32;
@@ -125,13 +121,27 @@ fn main() -> Result<()> {
         );
         canvas.line(tip, back, 3, yellow);
     }
-    canvas.text(
-        origin.0 as i64 - 20,
-        origin.1 as i64 + 30,
-        "WIND 14 M/S",
-        2,
-        yellow,
-    );
+    // Labels and scale bars.
+    let (width, height) = (canvas.width as u32, canvas.height as u32);
+    draw_on(&mut canvas.pixels, width, height, |root| {
+        for &(x, side) in &labels {
+            root.draw(&Text::new(
+                format!("{} × {} window", metres(side), metres(side)),
+                (x as i32, (PAD + PANEL + 5) as i32),
+                (FONT, 16.0).into_font().color(&RGBColor(230, 230, 230)),
+            ))?;
+            let bar = root
+                .clone()
+                .shrink((x as u32, (PAD + PANEL - 30) as u32), (PANEL as u32, 30));
+            scale_bar(&bar, side / PANEL as f64, PANEL as u32, "")?;
+        }
+        outlined_text(
+            root,
+            "wind 14 m/s",
+            (origin.0 as i32 - 30, origin.1 as i32 + 44),
+            16.0,
+        )
+    })?;
 
     let dir = out_dir("")?;
     let path = dir.join("foam_streaks.png");
