@@ -155,6 +155,7 @@
 #![warn(clippy::missing_errors_doc)]
 
 mod cascade;
+mod determinism;
 mod dispersion;
 mod engine;
 mod error;
@@ -170,6 +171,7 @@ mod simd;
 mod spectrum;
 
 pub use cascade::{Cascade, CascadeConfig, Field, LoopError};
+pub use determinism::Determinism;
 pub use dispersion::{Dispersion, GRAVITY, SURFACE_TENSION, WATER_DENSITY};
 pub use engine::Engine;
 pub use error::Error;

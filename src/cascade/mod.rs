@@ -16,6 +16,7 @@ use std::ops::Bound::Included;
 use num_complex::Complex32;
 use rayon::prelude::*;
 
+use crate::determinism::{Determinism, Libm, Math, Std};
 use crate::error::{self, Error};
 use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK, TILE};
 use crate::grid::{self, wave_index};
@@ -126,11 +127,11 @@ pub(crate) fn check_time(name: &'static str, t: f64) -> Result<f64, Error> {
 
 /// Bytes a cascade of size `n` holds: its buffers, tables, FFT plan and scratch (planned
 /// for a valid size; for larger ones the scratch is estimated at N per task).
-pub(crate) fn memory_bytes(n: usize) -> usize {
+pub(crate) fn memory_bytes(n: usize, determinism: Determinism) -> usize {
     let points = n.saturating_mul(n);
     let complex = std::mem::size_of::<Complex32>();
     let scratch_len = if n <= grid::MAX_SIZE {
-        RowFft::new(n).scratch_len()
+        RowFft::new(n, determinism).scratch_len()
     } else {
         n
     };
@@ -265,6 +266,14 @@ impl Cascade {
     /// system refuses an allocation.
     pub fn new(spectrum: &Spectrum, config: CascadeConfig) -> Result<Cascade, Error> {
         config.validate()?;
+        match config.determinism {
+            Determinism::SameMachine => Self::new_with::<Std>(spectrum, config),
+            Determinism::CrossPlatform => Self::new_with::<Libm>(spectrum, config),
+        }
+    }
+
+    /// [`Cascade::new`] for a checked config, with the functions of its determinism mode.
+    fn new_with<M: Math>(spectrum: &Spectrum, config: CascadeConfig) -> Result<Cascade, Error> {
         let n = config.size;
         let dk64 = TAU / f64::from(config.length);
         let dk = dk64 as f32;
@@ -272,14 +281,14 @@ impl Cascade {
             h0,
             expected_variance,
             amplitude_bound,
-        } = Amplitudes::draw(spectrum, &config)?;
+        } = Amplitudes::draw::<M>(spectrum, &config)?;
         check_amplitude(amplitude_bound, config.choppiness)?;
         let looping = config.repeat_period.map(f64::from);
-        let evolution = EvolutionTable::new(&h0, n, dk64, spectrum.dispersion(), looping);
-        let loop_error =
-            looping.map(|period| LoopError::new(&h0, n, dk64, spectrum.dispersion(), period));
+        let evolution = EvolutionTable::new::<M>(&h0, n, dk64, spectrum.dispersion(), looping);
+        let loop_error = looping
+            .map(|period| LoopError::new::<M>(&h0, n, dk64, spectrum.dispersion(), period));
         let kz = (0..n).map(|j| wave_index(j, n) as f32 * dk).collect();
-        let rows = RowFft::new(n);
+        let rows = RowFft::new(n, config.determinism);
         let tasks = Tasks::new(n);
         let pruning = RowPruning::of(&evolution, n);
         let live_pairs = (1..n / 2).rev().find(|&i| !pruning[i].empty).unwrap_or(0);
