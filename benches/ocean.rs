@@ -1,15 +1,18 @@
 //! `OceanState::step` of the default ocean (three cascades of 1000, 230 and 51 m) beside the
 //! bare floor of its FFTs (the three cascades' twelve packed complex 2D inverse FFTs done by
-//! one `Fft2d`), in one process, and the world queries.
+//! one `Fft2d`), in one process, and the world queries with cubic B-spline and bilinear
+//! interpolation.
 //!
 //! Groups (throughput in grid points of one cascade, N² per iteration):
 //! - `ocean_step`: `step_1t`, `twelve_ffts_1t`, `step_2t`, `twelve_ffts_2t` at
 //!   N = 64 … 1024, each inside a rayon pool of that many threads; the project's target is
 //!   step ≤ 1.2 × twelve_ffts.
 //! - `ocean_parallel_cascades`: at N = 256 in a pool of 2 threads, `sequential` and
-//!   `parallel` (`OceanConfig::parallel_cascades` off and on).
-//! - `ocean_queries`: one `sample`, one `height_at` and `heights_at` of 10 000 points on the
-//!   default ocean at 256².
+//!   `parallel` (`OceanConfig::parallel_cascades` off and on), and `parallel_bilinear_queries`
+//!   (parallel, with bilinear queries: no spline prefilter on the first query).
+//! - `ocean_queries`: one `sample`, one `height_at`, `heights_at` and `sample_many` of 10 000
+//!   points and a 100×100 `sample_grid` on the default ocean at 256², with cubic B-spline and
+//!   bilinear interpolation.
 //!
 //! `cargo bench -p ocean-fft-benches --bench ocean [-- GROUP]`; the first line printed names
 //! the CPU.
@@ -20,18 +23,25 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput};
-use ocean_fft::{Complex32, Fft2d, OceanConfig, OceanState, Spectrum};
+use ocean_fft::{
+    Complex32, Fft2d, Interpolation, OceanConfig, OceanState, Spectrum, SurfaceSample,
+};
 
 const SIZES: [usize; 5] = [64, 128, 256, 512, 1024];
 const THREADS: [usize; 2] = [1, 2];
 
 fn ocean(size: usize, parallel_cascades: bool) -> OceanState {
+    ocean_with(size, parallel_cascades, Interpolation::CubicBSpline)
+}
+
+fn ocean_with(size: usize, parallel_cascades: bool, interpolation: Interpolation) -> OceanState {
     let spectrum = Spectrum::jonswap(10.0, 100_000.0).expect("valid spectrum");
-    let config = OceanConfig {
+    let mut config = OceanConfig {
         size,
         parallel_cascades,
         ..OceanConfig::default()
     };
+    config.query.interpolation = interpolation;
     OceanState::new(spectrum, config).expect("valid ocean")
 }
 
@@ -121,6 +131,13 @@ fn parallel_cascades(c: &mut Criterion) {
             pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step")))
         });
     }
+    // The same parallel step without the cubic B-spline prefilter of the queries.
+    let mut state = ocean_with(size, true, Interpolation::Bilinear);
+    group.bench_with_input(
+        BenchmarkId::new("parallel_bilinear_queries", size),
+        &size,
+        |b, _| pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step"))),
+    );
     group.finish();
 }
 
@@ -133,29 +150,49 @@ fn queries(c: &mut Criterion) {
         .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));
-    let mut state = ocean(256, false);
-    state.step(3.0).expect("step");
     let points: Vec<[f64; 2]> = (0..10_000)
         .map(|i| [f64::from(i % 100) * 7.3 - 300.0, f64::from(i / 100) * 5.1])
         .collect();
     let mut heights = vec![0.0f32; points.len()];
-    group.bench_function("sample", |b| {
-        b.iter(|| {
-            state
-                .sample(black_box(123.4), black_box(-56.7))
-                .expect("sample")
-        })
-    });
-    group.bench_function("height_at", |b| {
-        b.iter(|| {
-            state
-                .height_at(black_box(123.4), black_box(-56.7))
-                .expect("height_at")
-        })
-    });
-    group.bench_function("heights_at_10k", |b| {
-        b.iter(|| state.heights_at(&points, &mut heights).expect("heights_at"))
-    });
+    let mut samples = vec![SurfaceSample::default(); points.len()];
+    for (name, interpolation) in [
+        ("cubic", Interpolation::CubicBSpline),
+        ("bilinear", Interpolation::Bilinear),
+    ] {
+        let mut state = ocean_with(256, false, interpolation);
+        state.step(3.0).expect("step");
+        group.bench_function(BenchmarkId::new("sample", name), |b| {
+            b.iter(|| {
+                state
+                    .sample(black_box(123.4), black_box(-56.7))
+                    .expect("sample")
+            })
+        });
+        group.bench_function(BenchmarkId::new("height_at", name), |b| {
+            b.iter(|| {
+                state
+                    .height_at(black_box(123.4), black_box(-56.7))
+                    .expect("height_at")
+            })
+        });
+        group.bench_function(BenchmarkId::new("heights_at_10k", name), |b| {
+            b.iter(|| state.heights_at(&points, &mut heights).expect("heights_at"))
+        });
+        group.bench_function(BenchmarkId::new("sample_many_10k", name), |b| {
+            b.iter(|| {
+                state
+                    .sample_many(&points, &mut samples)
+                    .expect("sample_many")
+            })
+        });
+        group.bench_function(BenchmarkId::new("sample_grid_100x100", name), |b| {
+            b.iter(|| {
+                state
+                    .sample_grid([-300.0, 0.0], 3.1, [100, 100], &mut samples)
+                    .expect("sample_grid")
+            })
+        });
+    }
     group.finish();
 }
 

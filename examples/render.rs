@@ -9,7 +9,9 @@
 //! shaded from `OceanState::surface_at` (normal and foam):
 //!
 //! - sky gradient reflected with Schlick's Fresnel (water n = 1.33, F0 ≈ 0.02);
-//! - a sun specular highlight whose lobe widens with distance (the glitter path);
+//! - a sun glitter path: a Beckmann lobe whose slope variance is the ocean's sub-grid
+//!   mean-square slope (`OceanState::subgrid_slope_variance`, the waves too small for the
+//!   finest grid), plus the grid's own slopes that a distant pixel averages over;
 //! - a deep-water colour plus a subsurface tint that is brighter on high crests;
 //! - foam blended to white;
 //! - distance fog to the horizon colour.
@@ -43,6 +45,10 @@ struct Scene {
     bound: f32,
     /// Standard deviation of the height in m (for the crest tint).
     sigma: f32,
+    /// Mean-square slope of the waves shorter than the finest grid (sub-grid roughness).
+    subgrid_mss: f32,
+    /// Mean-square slope the grids hold (averaged away by a distant pixel).
+    resolved_mss: f32,
 }
 
 fn main() -> Result<()> {
@@ -89,6 +95,12 @@ fn main() -> Result<()> {
         sun,
         bound,
         sigma,
+        subgrid_mss: ocean.subgrid_slope_variance().total(),
+        resolved_mss: {
+            let bands = ocean.config().bands()?;
+            let top = bands.last().map_or(0.0, |band| band.1);
+            ocean.spectrum().slope_variance(0.0, top).total()
+        },
     };
 
     let mut pixels = vec![0u8; WIDTH * HEIGHT * 3];
@@ -245,11 +257,16 @@ fn shade_water(ocean: &OceanState, scene: &Scene, dir: Vec3, distance: f32) -> V
     reflected.y = reflected.y.abs();
     let reflection = sky(reflected.normalize_or(Vec3::Y), scene.sun, false);
 
-    // Sun highlight: a lobe that widens with distance.
-    let shininess = 900.0 / (1.0 + distance / 40.0);
+    // Sun glitter: a Beckmann lobe over the facet slopes the pixel does not resolve — the
+    // sub-grid mean-square slope the ocean reports, plus the share of the grid's own slopes
+    // that the flattened normal (above) averages away far off.
+    let mss = scene.subgrid_mss + 0.75 * far * scene.resolved_mss;
     let half = (scene.sun + view).normalize_or(Vec3::Y);
-    let specular = normal.dot(half).max(0.0).powf(shininess) * (shininess + 8.0) / 8.0;
-    let sun_light = Vec3::new(1.0, 0.85, 0.65) * 2.2 * specular * fresnel.max(0.1);
+    let nh = normal.dot(half).max(1e-3);
+    let tan2 = (1.0 - nh * nh) / (nh * nh);
+    let lobe = (-tan2 / mss).exp() / (std::f32::consts::PI * mss * nh.powi(4));
+    let specular = lobe / (4.0 * cosine.max(0.05));
+    let sun_light = Vec3::new(1.0, 0.85, 0.65) * 0.9 * specular * fresnel.max(0.1);
 
     // Body colour: deep blue-green, lit more where the wave is high and thin, and more when
     // looking toward the sun through the crest.

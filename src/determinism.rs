@@ -49,6 +49,50 @@ pub enum Determinism {
     CrossPlatform,
 }
 
+impl Determinism {
+    /// √(x² + y²) with the functions of this mode (for the few run-time call sites).
+    #[inline]
+    pub(crate) fn hypot(self, x: f64, y: f64) -> f64 {
+        match self {
+            Determinism::SameMachine => Std::hypot(x, y),
+            Determinism::CrossPlatform => Libm::hypot(x, y),
+        }
+    }
+
+    /// (sin x, cos x) with the functions of this mode.
+    #[inline]
+    pub(crate) fn sin_cos(self, x: f64) -> (f64, f64) {
+        match self {
+            Determinism::SameMachine => Std::sin_cos(x),
+            Determinism::CrossPlatform => Libm::sin_cos(x),
+        }
+    }
+}
+
+/// `x` to the integer power `n` by binary exponentiation, the algorithm of compiler-rt's
+/// and compiler-builtins' `__powisf2` (which `f32::powi` calls on x86-64 for a run-time
+/// exponent), written out so that every target runs it: Rust does not specify how `powi`
+/// rounds, and other targets or a constant exponent may compute it otherwise.
+pub(crate) fn powi_f32(mut x: f32, n: i32) -> f32 {
+    let mut power = n.unsigned_abs();
+    let mut product = 1.0f32;
+    loop {
+        if power & 1 != 0 {
+            product *= x;
+        }
+        power >>= 1;
+        if power == 0 {
+            break;
+        }
+        x *= x;
+    }
+    if n < 0 {
+        1.0 / product
+    } else {
+        product
+    }
+}
+
 /// The transcendental functions a simulation calls: [`Std`] or [`Libm`].
 pub(crate) trait Math: Copy + Send + Sync + 'static {
     /// The mode these functions belong to.
@@ -215,6 +259,19 @@ mod tests {
 
     /// Both sets agree with each other to a few ulps on ordinary arguments: they compute the
     /// same functions (a swapped argument or a wrong function would be far off).
+    /// The written-out binary exponentiation gives the bits of this platform's `powi` for a
+    /// run-time exponent (on x86-64 that is the same algorithm, so every bit matches).
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn powi_f32_matches_std_powi() {
+        for n in -70..=70 {
+            for x in [0.267_949_2f32, -0.5, 1.000_001, 3.7, -0.99, 1e-3] {
+                let n = std::hint::black_box(n);
+                assert_eq!(powi_f32(x, n).to_bits(), x.powi(n).to_bits(), "{x}^{n}");
+            }
+        }
+    }
+
     #[test]
     fn std_and_libm_compute_the_same_functions() {
         fn close(a: f64, b: f64) -> bool {
@@ -234,13 +291,19 @@ mod tests {
             assert!(close(Std::sin(x), Libm::sin(x)), "sin {x}");
             assert!(close(Std::cos(x), Libm::cos(x)), "cos {x}");
             let (s, c) = Libm::sin_cos(x);
-            assert!(close(s, Std::sin(x)) && close(c, Std::cos(x)), "sin_cos {x}");
+            assert!(
+                close(s, Std::sin(x)) && close(c, Std::cos(x)),
+                "sin_cos {x}"
+            );
             assert!(close(Std::atan2(x, y), Libm::atan2(x, y)), "atan2 {x} {y}");
             assert!(close(Std::hypot(x, y), Libm::hypot(x, y)), "hypot {x} {y}");
             assert!(close(Std::cbrt(x), Libm::cbrt(x)), "cbrt {x}");
             let xf = x as f32;
             let (a, b) = (f64::from(Std::expf(xf)), f64::from(Libm::expf(xf)));
-            assert!((a - b).abs() <= 4.0 * f64::from(f32::EPSILON) * a, "expf {xf}");
+            assert!(
+                (a - b).abs() <= 4.0 * f64::from(f32::EPSILON) * a,
+                "expf {xf}"
+            );
         }
     }
 }

@@ -19,10 +19,11 @@
 /// not rotations; Blender's is the rotation by +90° about x that its glTF importer uses.
 /// "Texture rows" says where the first row of an image file (the top row of a PNG or EXR, the
 /// crate's texel row j = 0, at z = 0) lands in the engine's texture coordinates: with the
-/// origin at the top, a tile of side L is sampled at uv = (x, z)/L; with it at the bottom,
-/// at uv = (x/L, 1 − z/L) (or flip the image on import). Data uploaded straight to a GPU API
-/// (wgpu, Vulkan, Direct3D, Metal, OpenGL) puts the first row at v = 0 in every API, so
-/// uv = (x, z)/L there. The green column is the tangent-space normal-map convention each
+/// origin at the top, world point (x, z) of a tile of side L and N texels is sampled at
+/// uv = (x/L + ½/N, z/L + ½/N) (texel centres sit at (i + ½)/N); with it at the bottom, at
+/// uv = (x/L + ½/N, 1 − z/L − ½/N) (or flip the image on import). Data uploaded straight to a
+/// GPU API (wgpu, Vulkan, Direct3D, Metal, OpenGL) puts the first row at v = 0 in every API,
+/// so uv = (x/L + ½/N, z/L + ½/N) there. The green column is the tangent-space normal-map convention each
 /// engine expects by default.
 ///
 /// ```

@@ -1,7 +1,7 @@
 //! The crate's one error type and the checks that produce it.
 
 use std::fmt;
-use std::ops::Bound;
+use std::ops::{Bound, RangeBounds};
 
 /// Everything that can go wrong when building a spectrum, a cascade or an ocean, stepping it
 /// or querying it.
@@ -285,17 +285,7 @@ pub(crate) fn in_range(
     max: Bound<f32>,
 ) -> Result<f32, Error> {
     finite(name, value)?;
-    let above = match min {
-        Bound::Included(a) => value >= a,
-        Bound::Excluded(a) => value > a,
-        Bound::Unbounded => true,
-    };
-    let below = match max {
-        Bound::Included(b) => value <= b,
-        Bound::Excluded(b) => value < b,
-        Bound::Unbounded => true,
-    };
-    if above && below {
+    if (min, max).contains(&value) {
         Ok(value)
     } else {
         Err(out_of_range(
@@ -317,25 +307,11 @@ pub(crate) fn in_range_f64(
     if !value.is_finite() {
         return Err(Error::NonFinite { name });
     }
-    if contains(value, min, max) {
+    if (min, max).contains(&value) {
         Ok(value)
     } else {
         Err(out_of_range(name, value, min, max))
     }
-}
-
-fn contains(value: f64, min: Bound<f64>, max: Bound<f64>) -> bool {
-    let above = match min {
-        Bound::Included(a) => value >= a,
-        Bound::Excluded(a) => value > a,
-        Bound::Unbounded => true,
-    };
-    let below = match max {
-        Bound::Included(b) => value <= b,
-        Bound::Excluded(b) => value < b,
-        Bound::Unbounded => true,
-    };
-    above && below
 }
 
 /// Checks that `value` is finite and strictly positive.

@@ -257,7 +257,10 @@ mod tests {
     #[test]
     fn fft2d_matches_a_naive_inverse_dft() {
         let modes = [Determinism::SameMachine, Determinism::CrossPlatform];
-        for (n, determinism) in [4, 6, 8, 34, 62].into_iter().flat_map(|n| modes.map(|d| (n, d))) {
+        for (n, determinism) in [4, 6, 8, 34, 62]
+            .into_iter()
+            .flat_map(|n| modes.map(|d| (n, d)))
+        {
             let count = 2;
             let input: Vec<Complex32> = (0..count * n * n)
                 .map(|v| Complex32::new(((v * 7) % 11) as f32 - 5.0, ((v * 3) % 5) as f32))
@@ -283,8 +286,14 @@ mod tests {
                         let got = out[a * n * n + x * n + z];
                         let scale = (n * n) as f64 * 8.0;
                         let tolerance = 1e-5 * scale;
-                        assert!((f64::from(got.re) - re).abs() < tolerance, "{determinism:?} {n}");
-                        assert!((f64::from(got.im) - im).abs() < tolerance, "{determinism:?} {n}");
+                        assert!(
+                            (f64::from(got.re) - re).abs() < tolerance,
+                            "{determinism:?} {n}"
+                        );
+                        assert!(
+                            (f64::from(got.im) - im).abs() < tolerance,
+                            "{determinism:?} {n}"
+                        );
                     }
                 }
             }

@@ -26,7 +26,7 @@ use crate::ocean::OceanState;
 /// | [`DisplacementJacobian`](Self::DisplacementJacobian) | D_x | η | D_z | J | yes |
 /// | [`DisplacementFoam`](Self::DisplacementFoam) | D_x | η | D_z | foam | no |
 /// | [`SlopeJacobianFoam`](Self::SlopeJacobianFoam) | ∂y/∂x | ∂y/∂z | J | foam | no |
-/// | [`Normal`](Self::Normal) | n_x | n_y | n_z | 0 (reserved) | yes |
+/// | [`Normal`](Self::Normal) | n_x | n_y | n_z | σ² sub-grid | yes |
 ///
 /// The layouts with foam take the foam an [`OceanState`] holds, so they are packed with
 /// [`OceanState::pack_texels`]; [`Cascade::pack_texels`] refuses them with
@@ -46,9 +46,17 @@ pub enum TexelLayout {
     /// sum the RG of every cascade and take the normal of the sum as
     /// normalize(−s_x, 1, −s_z). Only through [`OceanState::pack_texels`].
     SlopeJacobianFoam,
-    /// `[n_x, n_y, n_z, 0]`: the unit normal of the displaced surface (y up; n_y < 0 where
-    /// the surface folds). The alpha channel is **reserved** for the sub-grid slope variance
-    /// (roughness) a later version will fill; it is 0 for now.
+    /// `[n_x, n_y, n_z, σ²]`: the unit normal of the displaced surface (y up; n_y < 0 where
+    /// the surface folds), and in alpha the **sub-grid mean-square slope** σ² (dimensionless,
+    /// linear, not squared again or remapped): the slope variance, along plus across the
+    /// wind, that the spectrum holds between the top of this cascade's band and
+    /// [`SlopeVariance::DEFAULT_CUTOFF`](crate::SlopeVariance::DEFAULT_CUTOFF)
+    /// ([`Cascade::subgrid_slope_variance`]). It is the same in every texel of a cascade.
+    /// A renderer that draws cascades 0..=c takes cascade c's σ² as the roughness of its
+    /// specular lobe: a Beckmann or GGX slope variance, i.e. α² = σ² for Beckmann and
+    /// α ≈ √(σ²) for GGX (Bruneton, Neyret & Holzschuch 2010 add it per axis; the split
+    /// along and across the wind is on [`Cascade::subgrid_slope_variance`]). Typical values
+    /// are 0.01–0.05; f16 keeps them to about 2.5·10⁻⁵.
     Normal,
 }
 
@@ -128,6 +136,8 @@ struct Sources<'a> {
     normal: &'a [[f32; 3]],
     jacobian: &'a [f32],
     foam: &'a [f32],
+    /// The sub-grid mean-square slope of the cascade (alpha of the normal layout).
+    roughness: f32,
 }
 
 impl<'a> Sources<'a> {
@@ -139,6 +149,7 @@ impl<'a> Sources<'a> {
             normal: cascade.normal(),
             jacobian: cascade.jacobian(),
             foam,
+            roughness: cascade.subgrid_slope_variance().total(),
         }
     }
 
@@ -176,8 +187,9 @@ impl<'a> Sources<'a> {
                 }
             }
             TexelLayout::Normal => {
+                let roughness = self.roughness;
                 for (texel, n) in out.iter_mut().zip(&self.normal[range]) {
-                    *texel = [n[0], n[1], n[2], 0.0];
+                    *texel = [n[0], n[1], n[2], roughness];
                 }
             }
         }

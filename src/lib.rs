@@ -183,7 +183,21 @@ pub use gpu::{NormalMapGreen, TexelLayout, Vertex};
 pub use half;
 pub use num_complex::Complex32;
 pub use ocean::{
-    FoamConfig, Location, OceanConfig, OceanSnapshot, OceanState, QueryConfig, SurfaceSample,
+    FoamConfig, Interpolation, Location, OceanConfig, OceanSnapshot, OceanState, QueryConfig,
+    SurfaceSample,
 };
 pub use presets::SeaState;
-pub use spectrum::{DepthFactor, Spectrum, Spreading};
+pub use spectrum::{DepthFactor, SlopeVariance, Spectrum, Spreading};
+
+// docs/guide.md's Rust blocks are doc-tests when every optional feature is on (its serde block
+// needs `serde`), as CI runs them: `cargo test --release --doc --all-features`. A `rust,ignore`
+// block there is a verbatim copy of code compiled in clients/ or says why it is not compiled;
+// tests/guide.rs checks both.
+#[cfg(all(doctest, feature = "serde", feature = "half", feature = "bytemuck"))]
+#[doc = include_str!("../docs/guide.md")]
+struct GuideDocTests;
+
+// The README's example is a doc-test with or without features.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDocTests;

@@ -163,7 +163,10 @@ mod tests {
         let tail = draws.iter().filter(|x| x.abs() > 3.0).count() as f64 / n;
         let expected = 2.0 * phi(-3.0);
         let sigma = (expected * (1.0 - expected) / n).sqrt();
-        assert!((tail - expected).abs() < 5.0 * sigma, "tail {tail} vs {expected}");
+        assert!(
+            (tail - expected).abs() < 5.0 * sigma,
+            "tail {tail} vs {expected}"
+        );
     }
 
     /// The transform's edges: the smallest and largest draws give finite values, u₁ = 1

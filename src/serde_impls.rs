@@ -13,7 +13,8 @@ use std::ops::Bound::{Included, Unbounded};
 use crate::dispersion::Dispersion;
 use crate::error::{self, Error};
 use crate::spectrum::{
-    check_wind_speed, DepthFactor, Model, Spectrum, Spreading, G, PIERSON_MOSKOWITZ_PEAK,
+    check_inverse_wave_age, check_wind_speed, DepthFactor, Model, Spectrum, Spreading, G,
+    PIERSON_MOSKOWITZ_PEAK,
 };
 
 /// An f32 in a validated mirror struct (`Spectrum`, `Dispersion`, `Spreading`).
@@ -175,6 +176,7 @@ pub(crate) enum SpreadingData {
     Flat,
     Cos2,
     Cosine { exponent: Float, upwind: Float },
+    Elfouhaily,
 }
 
 impl From<Spreading> for SpreadingData {
@@ -185,6 +187,7 @@ impl From<Spreading> for SpreadingData {
             Spreading::Cos2s { s } => SpreadingData::Cos2s { s: s.into() },
             Spreading::DonelanBanner => SpreadingData::DonelanBanner,
             Spreading::Flat => SpreadingData::Flat,
+            Spreading::Elfouhaily => SpreadingData::Elfouhaily,
             Spreading::Cos2 => SpreadingData::Cos2,
             Spreading::Cosine { exponent, upwind } => SpreadingData::Cosine {
                 exponent: exponent.into(),
@@ -204,6 +207,7 @@ impl TryFrom<SpreadingData> for Spreading {
             SpreadingData::Cos2s { s } => Spreading::Cos2s { s: s.0 },
             SpreadingData::DonelanBanner => Spreading::DonelanBanner,
             SpreadingData::Flat => Spreading::Flat,
+            SpreadingData::Elfouhaily => Spreading::Elfouhaily,
             SpreadingData::Cos2 => Spreading::Cos2,
             SpreadingData::Cosine { exponent, upwind } => Spreading::Cosine {
                 exponent: exponent.0,
@@ -225,6 +229,9 @@ enum ModelData {
     },
     Phillips {
         amplitude: Float,
+    },
+    Elfouhaily {
+        inverse_wave_age: Float,
     },
 }
 
@@ -259,6 +266,9 @@ impl From<Spectrum> for SpectrumData {
             Model::Phillips { amplitude } => ModelData::Phillips {
                 amplitude: amplitude.into(),
             },
+            Model::Elfouhaily { inverse_wave_age } => ModelData::Elfouhaily {
+                inverse_wave_age: inverse_wave_age.into(),
+            },
         };
         SpectrumData {
             model,
@@ -291,6 +301,9 @@ impl TryFrom<SpectrumData> for Spectrum {
             },
             ModelData::Phillips { amplitude } => Model::Phillips {
                 amplitude: amplitude.0,
+            },
+            ModelData::Elfouhaily { inverse_wave_age } => Model::Elfouhaily {
+                inverse_wave_age: inverse_wave_age.0,
             },
         };
         let spectrum = Spectrum {
@@ -357,6 +370,16 @@ fn validate_spectrum(mut spectrum: Spectrum) -> Result<Spectrum, Error> {
                 return Err(Error::NotApplicable {
                     name: "fetch",
                     reason: "the Phillips spectrum is not built from a fetch",
+                });
+            }
+        }
+        Model::Elfouhaily { inverse_wave_age } => {
+            check_wind_speed(spectrum.wind_speed)?;
+            check_inverse_wave_age(inverse_wave_age)?;
+            if spectrum.fetch.is_some() {
+                return Err(Error::NotApplicable {
+                    name: "fetch",
+                    reason: "the Elfouhaily spectrum is built from its inverse wave age",
                 });
             }
         }

@@ -186,6 +186,15 @@ fn single_wave_is_a_gerstner_trochoid() {
         let t = 3.7;
         cascade.update(t).unwrap();
         let lam = f64::from(lambda);
+        // The trochoid's Eulerian mean level: over one wavelength of X = x0 − λa sin θ,
+        // ∫ y dX / ∫ dX = ⟨a cos θ (1 − λ a k cos θ)⟩ = −λ k a²/2. The cascade lifts every
+        // height by that much (its mean-level correction), so the water's mean is 0.
+        let lift = lam * k * a * a / 2.0;
+        let offset = f64::from(cascade.mean_level_offset());
+        assert!(
+            (offset - lift).abs() <= 1e-6 * lift.max(a * 1e-3),
+            "λ={lambda}: mean-level offset {offset} vs λka²/2 = {lift}"
+        );
         let (height, disp) = (cascade.height(), cascade.displacement());
         let mut points = Vec::new();
         for j in [0, 17, n - 1] {
@@ -194,7 +203,7 @@ fn single_wave_is_a_gerstner_trochoid() {
                 let theta = k * x - omega * t + phi0;
                 let (big_x, big_y) = (
                     x + f64::from(disp[j * n + i][0]),
-                    f64::from(height[j * n + i]),
+                    f64::from(height[j * n + i]) - lift,
                 );
                 // The trochoid x = x0 − λa sin θ, y = a cos θ; f32 synthesis of a single mode
                 // is good to a few 1e-7 of a, so 1e-5·a is "f32 exact" with a margin.

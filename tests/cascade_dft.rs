@@ -169,12 +169,39 @@ fn packed_transforms_equal_naive_dft_of_a_plus_i_b() {
     }
 }
 
+/// λ · 2 Σ_k |k| |h0(k)|² in f64 over the grid's wave vectors: the time average of
+/// λ Σ_k |k| |h̃(k, t)|², which the cascade adds to every height.
+fn mean_level(cascade: &Cascade, lambda: f64) -> f64 {
+    let n = cascade.size();
+    let dk = f64::from(cascade.delta_k());
+    let index = |i: usize| {
+        if i < n / 2 {
+            i as f64
+        } else {
+            i as f64 - n as f64
+        }
+    };
+    let mut sum = 0.0;
+    for (idx, h) in cascade.h0().iter().enumerate() {
+        let (kx, kz) = (index(idx % n) * dk, index(idx / n) * dk);
+        let (re, im) = (f64::from(h.re), f64::from(h.im));
+        sum += kx.hypot(kz) * (re * re + im * im);
+    }
+    2.0 * lambda * sum
+}
+
 #[test]
 fn derived_outputs_match_reference_fields() {
     let lambda = f64::from(LAMBDA);
     for (name, spectrum) in spectra() {
         for n in SIZES {
             let mut cascade = cascade(&spectrum, n);
+            let level = mean_level(&cascade, lambda);
+            assert!(
+                (f64::from(cascade.mean_level_offset()) - level).abs() <= 1e-6 * level,
+                "{name} N={n}: offset {} vs λ·2Σ|k||h0|² = {level}",
+                cascade.mean_level_offset()
+            );
             let mut worst = [0.0f64; 5];
             let mut slope_points = 0;
             for t in TIMES {
@@ -219,7 +246,9 @@ fn derived_outputs_match_reference_fields() {
                         + ez.abs() * lambda * e_xx;
                     let d_raw = (d_rx * d_rx + d_j * d_j + d_rz * d_rz).sqrt() + 1e-6 * len;
 
-                    let h = f64::from(cascade.height()[idx]);
+                    // The height buffer carries the mean-level correction λ·2Σ|k||h0(k)|²
+                    // (Cascade::mean_level_offset), computed here from h0 in f64.
+                    let h = f64::from(cascade.height()[idx]) - level;
                     let d = cascade.displacement()[idx];
                     let jac = f64::from(cascade.jacobian()[idx]);
                     let nrm = cascade.normal()[idx];

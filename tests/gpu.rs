@@ -49,7 +49,7 @@ fn expected_texel(cascade: &Cascade, foam: &[f32], layout: TexelLayout, k: usize
         TexelLayout::DisplacementJacobian => [d[0], eta, d[1], j],
         TexelLayout::DisplacementFoam => [d[0], eta, d[1], foam[k]],
         TexelLayout::SlopeJacobianFoam => [s[0], s[1], j, foam[k]],
-        TexelLayout::Normal => [n[0], n[1], n[2], 0.0],
+        TexelLayout::Normal => [n[0], n[1], n[2], cascade.subgrid_slope_variance().total()],
         other => panic!("no expectation written for {other:?}"),
     }
 }

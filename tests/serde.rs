@@ -5,8 +5,8 @@
 #![cfg(feature = "serde")]
 
 use ocean_fft::{
-    CascadeConfig, DepthFactor, Dispersion, FoamConfig, OceanConfig, OceanState, QueryConfig,
-    SeaState, Spectrum, Spreading,
+    CascadeConfig, DepthFactor, Dispersion, FoamConfig, Interpolation, OceanConfig, OceanState,
+    QueryConfig, SeaState, Spectrum, Spreading,
 };
 use serde_json::{json, Value};
 
@@ -130,6 +130,17 @@ fn assorted_spectra() -> Vec<Spectrum> {
             .unwrap()
             .with_wind_direction(0.1)
             .unwrap(),
+        Spectrum::elfouhaily(10.0, 0.84).unwrap(),
+        Spectrum::elfouhaily(7.0, 3.0)
+            .unwrap()
+            .with_wind_direction(1.2)
+            .unwrap()
+            .with_depth(30.0)
+            .unwrap(),
+        Spectrum::jonswap(12.0, 50_000.0)
+            .unwrap()
+            .with_spreading(Spreading::Elfouhaily)
+            .unwrap(),
     ]
 }
 
@@ -182,6 +193,7 @@ fn the_serialised_form_is_readable() {
 fn valid(kind: &str) -> Value {
     let spectrum = match kind {
         "Phillips" => Spectrum::phillips(10.0, 1e-3).unwrap(),
+        "Elfouhaily" => Spectrum::elfouhaily(10.0, 1.0).unwrap(),
         _ => Spectrum::jonswap(10.0, 100_000.0).unwrap(),
     };
     serde_json::to_value(spectrum).unwrap()
@@ -201,6 +213,19 @@ fn tampered_spectra_fail_naming_the_parameter() {
     type Tamper = fn(&mut Value);
     let cases: Vec<(&str, &str, Tamper)> = vec![
         ("Jonswap", "`wind_speed`", |v| v["wind_speed"] = json!(-5.0)),
+        ("Elfouhaily", "`wind_speed`", |v| {
+            v["wind_speed"] = json!(0.0)
+        }),
+        ("Elfouhaily", "`inverse_wave_age`", |v| {
+            v["model"]["Elfouhaily"]["inverse_wave_age"] = json!(0.5)
+        }),
+        ("Elfouhaily", "`inverse_wave_age`", |v| {
+            v["model"]["Elfouhaily"]["inverse_wave_age"] = json!("nan")
+        }),
+        ("Elfouhaily", "`fetch`", |v| v["fetch"] = json!(1000.0)),
+        ("Elfouhaily", "`depth_factor`", |v| {
+            v["depth_factor"] = json!("Kitaigorodskii")
+        }),
         ("Jonswap", "`wind_speed`", |v| v["wind_speed"] = json!(0)),
         ("Jonswap", "`wind_speed`", |v| {
             v["wind_speed"] = json!("NaN")
@@ -400,6 +425,7 @@ fn an_infinite_band_limit_is_saved_as_null() {
         query: QueryConfig {
             max_iterations: 7,
             tolerance: 2e-3,
+            interpolation: Interpolation::Bilinear,
         },
         memory_limit: 123_456_789,
         ..OceanConfig::default()
@@ -522,6 +548,9 @@ fn every_constructible_spectrum_loads() {
     for u in winds {
         spectra.push(Spectrum::pierson_moskowitz(u));
         spectra.push(Spectrum::phillips(u, 1e-3));
+        for omega in [0.84f32, 1.0, 5.0] {
+            spectra.push(Spectrum::elfouhaily(u, omega));
+        }
         for f in lengths {
             spectra.push(Spectrum::jonswap(u, f));
             spectra.push(Spectrum::tma(u, f, f));

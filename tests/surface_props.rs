@@ -16,8 +16,9 @@
 use std::ops::Bound;
 
 use ocean_fft::{
-    Cascade, CascadeConfig, DepthFactor, Dispersion, Error, Fft2d, Field, FoamConfig, OceanConfig,
-    OceanState, QueryConfig, SeaState, Spectrum, Spreading, SurfaceSample,
+    Cascade, CascadeConfig, DepthFactor, Determinism, Dispersion, Error, Fft2d, Field, FoamConfig,
+    Interpolation, OceanConfig, OceanState, QueryConfig, SeaState, Spectrum, Spreading,
+    SurfaceSample,
 };
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed};
@@ -314,7 +315,11 @@ fn cascade_finite(cascade: &Cascade) -> bool {
 }
 
 fn ocean_finite(ocean: &OceanState) -> bool {
+    let subgrid = ocean.subgrid_slope_variance();
     ocean.cascades().iter().all(cascade_finite)
+        && ocean.mean_level_offset().is_finite()
+        && subgrid.along.is_finite()
+        && subgrid.across.is_finite()
         && (0..ocean.cascades().len()).all(|i| {
             let foam = ocean.foam(i).expect("every cascade has foam");
             foam.iter().all(|f| (0.0..=1.0).contains(f))
@@ -332,6 +337,7 @@ enum Build {
     Tma(f32, f32, f32),
     Phillips(f32, f32),
     FromParameters(f32, f32, f32),
+    Elfouhaily(f32, f32),
 }
 
 fn any_build() -> impl Strategy<Value = Build> {
@@ -342,6 +348,8 @@ fn any_build() -> impl Strategy<Value = Build> {
         (scale_f32(), scale_f32()).prop_map(|(u, a)| Build::Phillips(u, a)),
         (scale_f32(), scale_f32(), scale_f32())
             .prop_map(|(a, w, g)| Build::FromParameters(a, w, g)),
+        (scale_f32(), prop_oneof![0.84f32..5.0, any_f32()])
+            .prop_map(|(u, omega)| Build::Elfouhaily(u, omega)),
     ]
 }
 
@@ -352,6 +360,7 @@ fn build(b: &Build) -> Result<Spectrum, Error> {
         Build::Tma(u, f, h) => Spectrum::tma(u, f, h),
         Build::Phillips(u, a) => Spectrum::phillips(u, a),
         Build::FromParameters(a, w, g) => Spectrum::jonswap_from_parameters(a, w, g),
+        Build::Elfouhaily(u, omega) => Spectrum::elfouhaily(u, omega),
     }
 }
 
@@ -375,6 +384,7 @@ fn any_spreading() -> impl Strategy<Value = Spreading> {
         Just(Spreading::DonelanBanner),
         Just(Spreading::Flat),
         Just(Spreading::Cos2),
+        Just(Spreading::Elfouhaily),
         any_f32().prop_map(|s| Spreading::Cos2s { s }),
         (any_f32(), any_f32())
             .prop_map(|(exponent, upwind)| Spreading::Cosine { exponent, upwind }),
@@ -474,6 +484,12 @@ proptest! {
             prop_assert!(spectrum.spreading(a, b).is_finite(), "D at ({a}, {b})");
             prop_assert!(spectrum.band_variance(a, b).is_finite(), "variance on [{a}, {b})");
             prop_assert!(spectrum.density([a, b]) >= 0.0);
+            let slopes = spectrum.slope_variance(a, b);
+            prop_assert!(
+                slopes.along.is_finite() && slopes.across.is_finite()
+                    && slopes.along >= 0.0 && slopes.across >= 0.0,
+                "slope variance on [{a}, {b}): {slopes:?}"
+            );
         }
     }
 
@@ -540,9 +556,20 @@ fn any_cascade_config() -> impl Strategy<Value = CascadeConfig> {
         any::<u64>(),
         mostly(Just(None), any_f32().prop_map(Some)),
         any_memory_limit(),
+        any_determinism(),
     )
         .prop_map(
-            |(size, length, k_min, k_max, choppiness, seed, repeat_period, memory_limit)| {
+            |(
+                size,
+                length,
+                k_min,
+                k_max,
+                choppiness,
+                seed,
+                repeat_period,
+                memory_limit,
+                determinism,
+            )| {
                 // A valid large grid would allocate gigabytes: bound what these tests build.
                 let memory_limit = if size > 32 {
                     memory_limit.min(TEST_MEMORY_LIMIT)
@@ -558,9 +585,15 @@ fn any_cascade_config() -> impl Strategy<Value = CascadeConfig> {
                     seed,
                     repeat_period,
                     memory_limit,
+                    determinism,
                 }
             },
         )
+}
+
+/// Either mode, half the time each.
+fn any_determinism() -> impl Strategy<Value = Determinism> {
+    prop::sample::select(vec![Determinism::SameMachine, Determinism::CrossPlatform])
 }
 
 #[derive(Debug, Clone)]
@@ -711,9 +744,10 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
         (
             mostly(1usize..40, any_index()),
             mostly(1e-6f32..1.0, any_f32()),
+            any::<bool>(),
         ),
         any_memory_limit(),
-        any::<bool>(),
+        (any::<bool>(), any_determinism()),
     )
         .prop_map(
             |(
@@ -725,9 +759,9 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
                 band_split,
                 foam,
                 repeat_period,
-                (max_iterations, tolerance),
+                (max_iterations, tolerance, bilinear),
                 memory_limit,
-                parallel_cascades,
+                (parallel_cascades, determinism),
             )| {
                 let memory_limit = if size > 16 {
                     memory_limit.min(TEST_MEMORY_LIMIT)
@@ -748,8 +782,14 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
                     query: QueryConfig {
                         max_iterations,
                         tolerance,
+                        interpolation: if bilinear {
+                            Interpolation::Bilinear
+                        } else {
+                            Interpolation::CubicBSpline
+                        },
                     },
                     memory_limit,
+                    determinism,
                 }
             },
         )

@@ -21,7 +21,7 @@ use crate::error::{self, Error};
 use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK, TILE};
 use crate::grid::{self, wave_index};
 use crate::simd::Simd;
-use crate::spectrum::Spectrum;
+use crate::spectrum::{SlopeVariance, Spectrum};
 
 pub(crate) use config::check_band;
 pub use config::CascadeConfig;
@@ -63,6 +63,12 @@ pub struct Cascade {
     amplitude_bound: f64,
     /// How far looping moved the frequencies (None without a repeat period).
     loop_error: Option<LoopError>,
+    /// 2 Σ |k| |h0(k)|² in m: the mean-level correction per unit choppiness.
+    mean_level: f64,
+    /// The correction in m the buffers were last computed with (λ · `mean_level`).
+    mean_level_offset: f32,
+    /// Slope variance the spectrum holds above this cascade's band (to the cut-off).
+    subgrid_slope: SlopeVariance,
     h0: Vec<Complex32>,
     /// Evolution table, transposed layout: rows are k_x index i in 0..N/2, columns k_z
     /// index j.
@@ -244,6 +250,25 @@ impl RowPruning {
     }
 }
 
+/// 2 Σ_k |k| |h0(k)|² in m over the grid's wave vectors (h0 in FFT order, index j·N + i at
+/// k = Δk·(m(i), m(j))): the time-averaged Σ_k |k| |h̃(k, t)|², since |h̃(k)|² averages to
+/// |h0(k)|² + |h0(−k)|².
+fn mean_level_per_choppiness<M: Math>(h0: &[Complex32], n: usize, dk: f64) -> f64 {
+    let mut sum = 0.0;
+    for j in 0..n {
+        let kz = f64::from(wave_index(j, n)) * dk;
+        for i in 0..n {
+            let kx = f64::from(wave_index(i, n)) * dk;
+            let h = h0[j * n + i];
+            // In f64: |h0|² of an extreme (but accepted) spectrum can overflow f32, while
+            // λ Σ|k||h0|² stays below the square of the amplitude bound (≤ 1e30).
+            let (re, im) = (f64::from(h.re), f64::from(h.im));
+            sum += M::hypot(kx, kz) * (re * re + im * im);
+        }
+    }
+    2.0 * sum
+}
+
 impl Cascade {
     /// Largest |t| accepted by [`Cascade::update`], in seconds (about 31.7 years). Up to here
     /// the f64 phase ω·t keeps an error below 1e-5 rad.
@@ -285,9 +310,14 @@ impl Cascade {
         check_amplitude(amplitude_bound, config.choppiness)?;
         let looping = config.repeat_period.map(f64::from);
         let evolution = EvolutionTable::new::<M>(&h0, n, dk64, spectrum.dispersion(), looping);
-        let loop_error = looping
-            .map(|period| LoopError::new::<M>(&h0, n, dk64, spectrum.dispersion(), period));
+        let loop_error =
+            looping.map(|period| LoopError::new::<M>(&h0, n, dk64, spectrum.dispersion(), period));
         let kz = (0..n).map(|j| wave_index(j, n) as f32 * dk).collect();
+        let mean_level = mean_level_per_choppiness::<M>(&h0, n, dk64);
+        let nyquist = std::f64::consts::PI * n as f64 / f64::from(config.length);
+        let band_top = f64::from(config.k_max).min(nyquist);
+        let subgrid_slope =
+            spectrum.slope_variance_with::<M>(band_top, f64::from(SlopeVariance::DEFAULT_CUTOFF));
         let rows = RowFft::new(n, config.determinism);
         let tasks = Tasks::new(n);
         let pruning = RowPruning::of(&evolution, n);
@@ -301,6 +331,9 @@ impl Cascade {
             expected_variance,
             amplitude_bound,
             loop_error,
+            mean_level,
+            mean_level_offset: 0.0,
+            subgrid_slope,
             h0,
             evolution,
             kz,
@@ -458,6 +491,8 @@ impl Cascade {
         let row_len = TRANSFORMS * n;
         let stride = row_stride(n);
         let lambda = self.config.choppiness;
+        let offset = (f64::from(lambda) * self.mean_level) as f32;
+        self.mean_level_offset = offset;
         let spectral = &self.spectral;
         let rows = &self.rows;
         let s = rows.scratch_len();
@@ -496,6 +531,7 @@ impl Cascade {
                                         row,
                                         n,
                                         lambda,
+                                        offset,
                                         &mut height[out.clone()],
                                         &mut displacement[out.clone()],
                                         &mut slope[out.clone()],
@@ -579,7 +615,34 @@ impl Cascade {
         self.expected_variance
     }
 
-    /// Height η in metres at every grid point (undisplaced positions).
+    /// The mean-level correction in metres that the last update added to every height:
+    /// λ · 2 Σ_k |k| |h0(k)|², the time average of λ Σ_k |k| |h̃(k, t)|².
+    ///
+    /// Horizontal displacement moves water toward the crests (J < 1 there), so without it
+    /// the Eulerian mean of the displaced surface, the mean of η·J over the undisplaced grid,
+    /// would sit λ ∫ k S(k) d²k below still water (Nouguier, Guérin & Chapron 2009; the
+    /// mean-level term of Guérin et al.'s 2019 improved choppy wave model): to first order
+    /// ⟨η J⟩ = λ⟨η ∇·D⟩ = −λ Σ_k |k| |h̃(k)|², and the second-order term of J adds a third
+    /// moment of a Gaussian field, zero on average. Adding this constant to η puts the
+    /// mean water level back at y = 0 for any λ; it is 0 at λ = 0. The height buffer, the
+    /// texels and vertices packed from it and every world query include it. See
+    /// docs/theory.md.
+    pub fn mean_level_offset(&self) -> f32 {
+        self.mean_level_offset
+    }
+
+    /// Slope variance along and across the wind that the spectrum holds between the top of
+    /// this cascade's band (min(`k_max`, πN/L)) and [`SlopeVariance::DEFAULT_CUTOFF`]: the
+    /// slopes too short for this grid, computed once at construction by
+    /// [`Spectrum::slope_variance`]. A renderer that draws this cascade and the larger ones
+    /// adds it as BRDF roughness; it is the alpha channel of
+    /// [`TexelLayout::Normal`](crate::TexelLayout::Normal).
+    pub fn subgrid_slope_variance(&self) -> SlopeVariance {
+        self.subgrid_slope
+    }
+
+    /// Height η in metres at every grid point (undisplaced positions), including the
+    /// [mean-level correction](Self::mean_level_offset).
     pub fn height(&self) -> &[f32] {
         &self.height
     }

@@ -7,15 +7,17 @@ use num_complex::Complex32;
 /// kept at least this fraction of |n|, so the slope stays finite (≤ 1e4).
 const MIN_SLOPE_NY: f32 = 1e-4;
 
-/// Output buffers of one grid row from its four packed, transformed rows. Inlined into its
-/// caller's [`Simd::run`](crate::simd::Simd::run), so that its loops are compiled for the
-/// level the cascade runs at.
+/// Output buffers of one grid row from its four packed, transformed rows; `offset` (m) is
+/// added to every height (the mean-level correction, see `Cascade::mean_level_offset`).
+/// Inlined into its caller's [`Simd::run`](crate::simd::Simd::run), so that its loops are
+/// compiled for the level the cascade runs at.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(super) fn write_outputs(
     row: &[Complex32],
     n: usize,
     lambda: f32,
+    offset: f32,
     height: &mut [f32],
     displacement: &mut [[f32; 2]],
     slope: &mut [[f32; 2]],
@@ -41,6 +43,7 @@ pub(super) fn write_outputs(
             &t2[range.clone()],
             &t3[range.clone()],
             lambda,
+            offset,
             &mut height[range.clone()],
             &mut jacobian[range.clone()],
             &mut displacement[range.clone()],
@@ -67,6 +70,7 @@ fn output_block(
     t2: &[Complex32],
     t3: &[Complex32],
     lambda: f32,
+    offset: f32,
     height: &mut [f32],
     jacobian: &mut [f32],
     displacement: &mut [[f32; 2]],
@@ -99,7 +103,7 @@ fn output_block(
         // only comes with a NaN norm, where `valid` is false anyway.
         let min_ny = MIN_SLOPE_NY * norm;
         let inv_ny = 1.0 / if det > min_ny { det } else { min_ny };
-        height[i] = eta;
+        height[i] = eta + offset;
         displacement[i] = [lambda * dx, lambda * dz];
         jacobian[i] = det;
         nx[i] = if valid { rx * inv_len } else { 0.0 };

@@ -127,7 +127,10 @@ impl Amplitudes {
     /// `k_min` ≤ |k| < `k_max` (zero elsewhere, and on k = 0 and the Nyquist row and column),
     /// ξ standard normals drawn from (seed, m_x, m_z). Errors with [`Error::EmptyBand`] when
     /// the band holds no wave vector of the grid.
-    pub(super) fn draw<M: Math>(spectrum: &Spectrum, config: &CascadeConfig) -> Result<Self, Error> {
+    pub(super) fn draw<M: Math>(
+        spectrum: &Spectrum,
+        config: &CascadeConfig,
+    ) -> Result<Self, Error> {
         let n = config.size;
         let dk64 = TAU / f64::from(config.length);
         let k_min = f64::from(config.k_min);

@@ -3,6 +3,7 @@
 use std::ops::Bound::{Excluded, Included};
 
 use crate::cascade::{check_band, CascadeConfig};
+use crate::determinism::Determinism;
 use crate::error::{self, Error};
 use crate::grid;
 
@@ -91,6 +92,14 @@ pub struct OceanConfig {
         serde(default = "crate::serde_impls::default_memory_limit")
     )]
     pub memory_limit: usize,
+    /// How far the same config gives the same bits, for every cascade, the foam and the
+    /// world queries: [`Determinism::SameMachine`] (the default, fastest) or
+    /// [`Determinism::CrossPlatform`] (the same bits on every CPU and operating system, for
+    /// lockstep or server-authoritative networking and replays shared between machines;
+    /// slower, see the guide's section on determinism). The two modes draw different,
+    /// equally calibrated waves. Configs saved without it read back with the default.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub determinism: Determinism,
 }
 
 impl Default for OceanConfig {
@@ -108,12 +117,36 @@ impl Default for OceanConfig {
             parallel_cascades: true,
             query: QueryConfig::default(),
             memory_limit: CascadeConfig::DEFAULT_MEMORY_LIMIT,
+            determinism: Determinism::SameMachine,
         }
     }
 }
 
-/// How the world queries find the undisplaced point whose water lands on a query point:
-/// the fixed-point iteration x₀ ← p − D(x₀).
+/// How the world queries ([`OceanState::sample`](crate::OceanState::sample) and everything
+/// built on it) interpolate each cascade's grid between its points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
+pub enum Interpolation {
+    /// Cubic B-spline through the grid values (Unser, Aldroubi & Eden 1991): exact at the
+    /// grid points, C² between them, and its statistics hardly depend on where a point lies
+    /// in a cell: averaged over positions it keeps 97 % of the variance of a wave with 4
+    /// grid points per wavelength (bilinear keeps 67 %). 16 taps per cascade and field, and
+    /// a prefilter of the height, displacement and slope buffers, computed by the first
+    /// query after each update (about 0.4 ms per 256² cascade on one core, a third of the
+    /// cascade's own update; a step that is never queried does not pay it; see the guide's
+    /// performance section). The default.
+    #[default]
+    CubicBSpline,
+    /// Bilinear between the four surrounding grid points: the cheapest query and no work on
+    /// update, but between grid points it loses variance (a wave with 4 points per
+    /// wavelength keeps (2 + cos(π/2))/3 = 67 % along its axis, averaged over positions), so
+    /// heave and slope statistics depend on the position in a cell.
+    Bilinear,
+}
+
+/// How the world queries interpolate the cascades and find the undisplaced point whose
+/// water lands on a query point (the fixed-point iteration x₀ ← p − D(x₀)).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct QueryConfig {
@@ -127,6 +160,11 @@ pub struct QueryConfig {
         serde(serialize_with = "crate::serde_impls::finite::tolerance")
     )]
     pub tolerance: f32,
+    /// How each cascade is interpolated between its grid points (default:
+    /// [`Interpolation::CubicBSpline`]; configs saved without it read back with the
+    /// default).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub interpolation: Interpolation,
 }
 
 impl Default for QueryConfig {
@@ -134,6 +172,7 @@ impl Default for QueryConfig {
         QueryConfig {
             max_iterations: 16,
             tolerance: 1e-4,
+            interpolation: Interpolation::default(),
         }
     }
 }
@@ -250,18 +289,24 @@ impl OceanConfig {
         grid::check_memory(self.memory_bytes(), self.memory_limit)
     }
 
-    /// Bytes the ocean holds: every cascade ([`CascadeConfig::memory_bytes`]) and its foam,
-    /// about 131·N² per cascade. Any config gives an answer, even one
-    /// [`validate`](Self::validate) refuses.
+    /// Bytes the ocean holds: every cascade ([`CascadeConfig::memory_bytes`]), its foam and,
+    /// with [`Interpolation::CubicBSpline`], the spline coefficients of the world queries:
+    /// about 151·N² per cascade (131·N² with bilinear queries). Any config gives an answer,
+    /// even one [`validate`](Self::validate) refuses.
     pub fn memory_bytes(&self) -> usize {
-        let cascade = crate::cascade::memory_bytes(self.size);
+        let cascade = crate::cascade::memory_bytes(self.size, self.determinism);
         let foam = self.size.saturating_mul(self.size).saturating_mul(4);
+        let spline = match self.query.interpolation {
+            Interpolation::CubicBSpline => super::spline::Spline::memory_bytes(self.size),
+            Interpolation::Bilinear => 0,
+        };
         cascade
             .saturating_add(foam)
+            .saturating_add(spline)
             .saturating_mul(self.lengths.len())
     }
 
-    /// The config of cascade `index` (its length, band and seed).
+    /// The config of cascade `index` (its length, band, seed and determinism mode).
     pub(super) fn cascade_config(&self, index: usize, (k_min, k_max): (f32, f32)) -> CascadeConfig {
         CascadeConfig {
             size: self.size,
@@ -272,6 +317,7 @@ impl OceanConfig {
             seed: self.seed.wrapping_add(index as u64),
             repeat_period: self.repeat_period,
             memory_limit: self.memory_limit,
+            determinism: self.determinism,
         }
     }
 }

@@ -4,6 +4,7 @@ use std::ops::Bound::Included;
 
 use rayon::prelude::*;
 
+use crate::determinism::{Determinism, Libm, Math, Std};
 use crate::error::{self, Error};
 
 use super::OceanState;
@@ -90,6 +91,13 @@ impl FoamConfig {
 
 impl OceanState {
     pub(super) fn advance_foam(&mut self, dt: f32) {
+        match self.config.determinism {
+            Determinism::SameMachine => self.advance_foam_with::<Std>(dt),
+            Determinism::CrossPlatform => self.advance_foam_with::<Libm>(dt),
+        }
+    }
+
+    fn advance_foam_with<M: Math>(&mut self, dt: f32) {
         let FoamConfig {
             bias,
             injection,
@@ -102,7 +110,7 @@ impl OceanState {
                 .zip(cascade.jacobian().par_chunks(n))
                 .for_each(|(foam_row, jacobian_row)| {
                     for (f, &j) in foam_row.iter_mut().zip(jacobian_row) {
-                        *f = foam_step(*f, j, dt, bias, injection, inv_tau);
+                        *f = foam_step::<M>(*f, j, dt, bias, injection, inv_tau);
                     }
                 });
         }
@@ -112,10 +120,17 @@ impl OceanState {
 /// One exact step of df/dt = s(1 − f) − f/τ with s = injection·max(0, bias − J) held
 /// constant: f relaxes toward s/(s + 1/τ) at rate s + 1/τ.
 #[inline]
-fn foam_step(f: f32, jacobian: f32, dt: f32, bias: f32, injection: f32, inv_tau: f32) -> f32 {
+fn foam_step<M: Math>(
+    f: f32,
+    jacobian: f32,
+    dt: f32,
+    bias: f32,
+    injection: f32,
+    inv_tau: f32,
+) -> f32 {
     let source = injection * (bias - jacobian).max(0.0);
     let rate = source + inv_tau;
     let equilibrium = source / rate;
-    let next = equilibrium + (f - equilibrium) * (-rate * dt).exp();
+    let next = equilibrium + (f - equilibrium) * M::expf(-rate * dt);
     next.clamp(0.0, 1.0)
 }

@@ -5,6 +5,7 @@ mod config;
 mod foam;
 mod query;
 mod snapshot;
+mod spline;
 
 use rayon::prelude::*;
 
@@ -12,9 +13,10 @@ use std::ops::Bound::Included;
 
 use crate::cascade::{check_time, Cascade, LoopError};
 use crate::error::{self, Error};
-use crate::spectrum::Spectrum;
+use crate::spectrum::{SlopeVariance, Spectrum};
+use spline::{QuerySplines, Spline};
 
-pub use config::{OceanConfig, QueryConfig};
+pub use config::{Interpolation, OceanConfig, QueryConfig};
 pub use foam::FoamConfig;
 pub use query::{Location, SurfaceSample};
 pub use snapshot::OceanSnapshot;
@@ -41,6 +43,9 @@ pub struct OceanState {
     pub(crate) config: OceanConfig,
     pub(crate) cascades: Vec<Cascade>,
     pub(crate) foam: Vec<Vec<f32>>,
+    /// Cubic B-spline coefficients of each cascade's fields for the world queries, computed
+    /// on the first query after an update (none with [`Interpolation::Bilinear`]).
+    pub(crate) splines: QuerySplines,
     pub(crate) time: f64,
     /// The choppiness the cascades' buffers were last computed with (a new choppiness takes
     /// effect at the next update).
@@ -67,12 +72,21 @@ impl OceanState {
             .iter()
             .map(|c| error::try_vec(c.size() * c.size(), 0.0))
             .collect::<Result<Vec<_>, _>>()?;
+        let cubic = config.query.interpolation == Interpolation::CubicBSpline;
+        let splines = QuerySplines::new(
+            cascades
+                .iter()
+                .filter(|_| cubic)
+                .map(|c| Spline::new(c.size()))
+                .collect::<Result<Vec<_>, _>>()?,
+        );
         Ok(OceanState {
             spectrum,
             applied_choppiness: config.choppiness,
             config,
             cascades,
             foam,
+            splines,
             time: 0.0,
         })
     }
@@ -156,9 +170,11 @@ impl OceanState {
         }
     }
 
-    /// Updates every cascade to a time already checked (so none can fail).
+    /// Updates every cascade to a time already checked (so none can fail); the spline
+    /// coefficients of the queries become stale, to be recomputed by the next query.
     fn update_cascades(&mut self, t: f64) {
         self.applied_choppiness = self.config.choppiness;
+        self.splines.invalidate();
         let update = |cascade: &mut Cascade| cascade.update_checked(t);
         if self.config.parallel_cascades {
             self.cascades.par_iter_mut().for_each(update);
@@ -230,6 +246,27 @@ impl OceanState {
     /// of the height variance.
     pub fn loop_error(&self) -> Option<LoopError> {
         LoopError::combine(self.cascades.iter().filter_map(Cascade::loop_error))
+    }
+
+    /// The mean-level correction in metres in the summed height: the sum of every cascade's
+    /// [`Cascade::mean_level_offset`], λ·2 Σ_k |k| |h0(k)|² over all of them. With it the
+    /// Eulerian mean of the displaced surface is still water (y = 0) for any choppiness;
+    /// without it the sea would sit about λ ∫ k S(k) d²k lower (about 4.8 cm for the
+    /// default sea at λ = 1, 34 cm for the storm preset at its λ = 1.2).
+    pub fn mean_level_offset(&self) -> f32 {
+        self.cascades.iter().map(Cascade::mean_level_offset).sum()
+    }
+
+    /// Slope variance along and across the wind that the spectrum holds above the finest
+    /// cascade's band, up to [`SlopeVariance::DEFAULT_CUTOFF`]: the roughness the grids
+    /// cannot show (the last cascade's [`Cascade::subgrid_slope_variance`]; a cascade `c`
+    /// reports what lies above its own band). For another cut-off use
+    /// [`Spectrum::slope_variance`] from the top of the last band.
+    pub fn subgrid_slope_variance(&self) -> SlopeVariance {
+        self.cascades
+            .last()
+            .map(Cascade::subgrid_slope_variance)
+            .unwrap_or_default()
     }
 
     /// Expected variance of the summed height in m²: the sum over cascades of

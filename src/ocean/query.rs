@@ -1,11 +1,13 @@
-//! World-space queries on an [`OceanState`]: periodic bilinear sampling of every cascade,
-//! summed, and the inversion of the horizontal displacement for the water height at a point.
+//! World-space queries on an [`OceanState`]: periodic cubic B-spline sampling of every
+//! cascade's height, displacement and slope (bilinear for the foam), summed, and the
+//! inversion of the horizontal displacement for the water height at a point.
 
 use glam::{Vec2, Vec3};
 use std::ops::Bound::{Excluded, Included};
 
 use rayon::prelude::*;
 
+use super::spline::{Spline, SplineStencil};
 use super::OceanState;
 use crate::cascade::Cascade;
 use crate::error::{self, Error};
@@ -63,22 +65,27 @@ pub struct Location {
     pub converged: bool,
 }
 
-/// Bilinear weights and the four sample indices of world point (x, z) on a periodic N×N grid
-/// of side `length`. The wrap is done in f64, so a point a million metres out keeps the grid's
-/// sub-millimetre resolution.
+/// Bilinear weights and the four sample indices of a grid cell on a periodic N×N grid (for
+/// the foam).
 #[derive(Debug, Clone, Copy)]
 struct Stencil {
     index: [usize; 4],
     weight: [f32; 4],
 }
 
+/// The grid cell (ix, iz) of world point (x, z) on a periodic N×N grid of side `length`, and
+/// the fractions (fx, fz) in [0, 1] of the way across it, wrapped in f64.
+fn cell(x: f64, z: f64, length: f64, n: usize) -> (usize, f32, usize, f32) {
+    let cells = n as f64 / length;
+    let gx = x.rem_euclid(length) * cells;
+    let gz = z.rem_euclid(length) * cells;
+    let (ix, fx) = split(gx, n);
+    let (iz, fz) = split(gz, n);
+    (ix, fx, iz, fz)
+}
+
 impl Stencil {
-    fn new(x: f64, z: f64, length: f64, n: usize) -> Stencil {
-        let cells = n as f64 / length;
-        let gx = x.rem_euclid(length) * cells;
-        let gz = z.rem_euclid(length) * cells;
-        let (ix, fx) = split(gx, n);
-        let (iz, fz) = split(gz, n);
+    fn new((ix, fx, iz, fz): (usize, f32, usize, f32), n: usize) -> Stencil {
         let ix1 = (ix + 1) % n;
         let iz1 = (iz + 1) % n;
         Stencil {
@@ -123,24 +130,42 @@ fn check_point(x: f64, z: f64) -> Result<(), Error> {
     Ok(())
 }
 
-fn stencil_of(cascade: &Cascade, x: f64, z: f64) -> Stencil {
-    Stencil::new(x, z, f64::from(cascade.length()), cascade.size())
+/// The cell of (x, z) on `cascade`'s grid.
+#[inline]
+fn cell_of(cascade: &Cascade, x: f64, z: f64) -> (usize, f32, usize, f32) {
+    cell(x, z, f64::from(cascade.length()), cascade.size())
+}
+
+/// The cubic B-spline stencil of a cell on an N×N grid.
+#[inline]
+fn spline_of((ix, fx, iz, fz): (usize, f32, usize, f32), n: usize) -> SplineStencil {
+    SplineStencil::new(ix, fx, iz, fz, n)
 }
 
 impl OceanState {
     /// The surface at the undisplaced world point (`x`, `z`) in metres (any finite
-    /// coordinates; every cascade wraps periodically): each cascade sampled bilinearly and
-    /// summed.
+    /// coordinates; every cascade wraps periodically): each cascade's height, displacement
+    /// and slope interpolated by a cubic B-spline through its grid values (exact at the grid
+    /// points, smooth between them, with the same statistics wherever the point lies in a
+    /// cell; see docs/theory.md), its foam bilinearly, and summed. With
+    /// [`Interpolation::Bilinear`](crate::Interpolation::Bilinear) every field is
+    /// bilinear.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn sample(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
-        Ok(self.sample_unchecked(x, z))
+        Ok(self.sample_unchecked(x, z, &self.fresh_splines()))
     }
 
-    fn sample_unchecked(&self, x: f64, z: f64) -> SurfaceSample {
-        self.sample_range(x, z, 0..self.cascades.len())
+    /// The spline coefficients the queries need, fresh (computed now if the last update made
+    /// them stale).
+    fn fresh_splines(&self) -> super::spline::FreshSplines<'_> {
+        self.splines.fresh(&self.cascades)
+    }
+
+    fn sample_unchecked(&self, x: f64, z: f64, splines: &[Spline]) -> SurfaceSample {
+        self.sample_range(x, z, 0..self.cascades.len(), splines)
     }
 
     /// [`OceanState::sample`] summed over the cascades in `cascades` only (indices into
@@ -166,20 +191,38 @@ impl OceanState {
                 max: self.cascades.len(),
             });
         }
-        Ok(self.sample_range(x, z, cascades))
+        Ok(self.sample_range(x, z, cascades, &self.fresh_splines()))
     }
 
-    fn sample_range(&self, x: f64, z: f64, range: std::ops::Range<usize>) -> SurfaceSample {
+    fn sample_range(
+        &self,
+        x: f64,
+        z: f64,
+        range: std::ops::Range<usize>,
+        splines: &[Spline],
+    ) -> SurfaceSample {
         let (mut height, mut displacement, mut slope) = (0.0f32, Vec2::ZERO, Vec2::ZERO);
         let mut clear = 1.0f32;
         let cascades = &self.cascades[range.clone()];
+        // Empty with bilinear queries.
+        let splines = splines.get(range.clone()).unwrap_or_default();
         let foams = &self.foam[range];
-        for (cascade, foam) in cascades.iter().zip(foams) {
-            let s = stencil_of(cascade, x, z);
-            height += s.scalar(cascade.height());
-            displacement += s.vector(cascade.displacement());
-            slope += s.vector(cascade.slope());
-            clear *= 1.0 - s.scalar(foam);
+        for (c, (cascade, foam)) in cascades.iter().zip(foams).enumerate() {
+            let n = cascade.size();
+            let at = cell_of(cascade, x, z);
+            let bilinear = Stencil::new(at, n);
+            if let Some(spline) = splines.get(c) {
+                let s = spline_of(at, n);
+                let [eta, sx, sz] = s.apply(&spline.surface);
+                height += eta;
+                displacement += Vec2::from_array(s.apply(&spline.displacement));
+                slope += Vec2::new(sx, sz);
+            } else {
+                height += bilinear.scalar(cascade.height());
+                displacement += bilinear.vector(cascade.displacement());
+                slope += bilinear.vector(cascade.slope());
+            }
+            clear *= 1.0 - bilinear.scalar(foam);
         }
         SurfaceSample {
             height,
@@ -191,10 +234,24 @@ impl OceanState {
     }
 
     /// Summed horizontal displacement at the undisplaced point, in metres.
-    fn displacement_at(&self, x: f64, z: f64) -> Vec2 {
+    fn displacement_at(&self, x: f64, z: f64, splines: &[Spline]) -> Vec2 {
+        if splines.is_empty() {
+            return self
+                .cascades
+                .iter()
+                .map(|cascade| {
+                    Stencil::new(cell_of(cascade, x, z), cascade.size())
+                        .vector(cascade.displacement())
+                })
+                .sum();
+        }
         self.cascades
             .iter()
-            .map(|cascade| stencil_of(cascade, x, z).vector(cascade.displacement()))
+            .zip(splines)
+            .map(|(cascade, spline)| {
+                let s = spline_of(cell_of(cascade, x, z), cascade.size());
+                Vec2::from_array(s.apply(&spline.displacement))
+            })
             .sum()
     }
 
@@ -224,12 +281,12 @@ impl OceanState {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn locate(&self, x: f64, z: f64) -> Result<Location, Error> {
         check_point(x, z)?;
-        Ok(self.locate_unchecked(x, z))
+        Ok(self.locate_unchecked(x, z, &self.fresh_splines()))
     }
 
-    fn locate_unchecked(&self, x: f64, z: f64) -> Location {
+    fn locate_unchecked(&self, x: f64, z: f64, splines: &[Spline]) -> Location {
         let query = self.config.query;
-        let mut d = self.displacement_at(x, z);
+        let mut d = self.displacement_at(x, z, splines);
         let mut x0 = [x - f64::from(d.x), z - f64::from(d.y)];
         let mut best = Location {
             undisplaced: x0,
@@ -244,10 +301,10 @@ impl OceanState {
         let mut omega = 1.0;
         let mut previous = f32::INFINITY;
         for iteration in 1..=query.max_iterations {
-            d = self.displacement_at(x0[0], x0[1]);
+            d = self.displacement_at(x0[0], x0[1], splines);
             let landed = [x0[0] + f64::from(d.x), x0[1] + f64::from(d.y)];
             let residual = [x - landed[0], z - landed[1]];
-            let miss = residual[0].hypot(residual[1]) as f32;
+            let miss = self.config.determinism.hypot(residual[0], residual[1]) as f32;
             if miss < best.miss {
                 best = Location {
                     undisplaced: x0,
@@ -281,8 +338,9 @@ impl OceanState {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn surface_at(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
-        let x0 = self.locate_unchecked(x, z).undisplaced;
-        Ok(self.sample_unchecked(x0[0], x0[1]))
+        let splines = self.fresh_splines();
+        let x0 = self.locate_unchecked(x, z, &splines).undisplaced;
+        Ok(self.sample_unchecked(x0[0], x0[1], &splines))
     }
 
     /// Water height y in metres at world point (`x`, `z`), after horizontal displacement —
@@ -303,9 +361,10 @@ impl OceanState {
     /// for a NaN or infinite coordinate. Nothing is written then.
     pub fn heights_at(&self, points: &[[f64; 2]], out: &mut [f32]) -> Result<(), Error> {
         check_batch(points, out.len())?;
+        let splines = self.fresh_splines();
         for_each_point(points, out, |[x, z]| {
-            let x0 = self.locate_unchecked(x, z).undisplaced;
-            self.sample_unchecked(x0[0], x0[1]).height
+            let x0 = self.locate_unchecked(x, z, &splines).undisplaced;
+            self.sample_unchecked(x0[0], x0[1], &splines).height
         });
         Ok(())
     }
@@ -317,9 +376,10 @@ impl OceanState {
     /// As [`OceanState::heights_at`].
     pub fn surfaces_at(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
+        let splines = self.fresh_splines();
         for_each_point(points, out, |[x, z]| {
-            let x0 = self.locate_unchecked(x, z).undisplaced;
-            self.sample_unchecked(x0[0], x0[1])
+            let x0 = self.locate_unchecked(x, z, &splines).undisplaced;
+            self.sample_unchecked(x0[0], x0[1], &splines)
         });
         Ok(())
     }
@@ -331,7 +391,8 @@ impl OceanState {
     /// As [`OceanState::heights_at`].
     pub fn sample_many(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
-        for_each_point(points, out, |[x, z]| self.sample_unchecked(x, z));
+        let splines = self.fresh_splines();
+        for_each_point(points, out, |[x, z]| self.sample_unchecked(x, z, &splines));
         Ok(())
     }
 
@@ -388,12 +449,14 @@ impl OceanState {
             max: usize::MAX / columns,
         })?;
         error::length("out", out.len(), len)?;
+        let splines = self.fresh_splines();
+        let splines: &[Spline] = &splines;
         out.par_chunks_mut(columns)
             .enumerate()
             .for_each(|(r, row)| {
                 let z = origin[1] + r as f64 * spacing;
                 for (c, sample) in row.iter_mut().enumerate() {
-                    *sample = self.sample_unchecked(origin[0] + c as f64 * spacing, z);
+                    *sample = self.sample_unchecked(origin[0] + c as f64 * spacing, z, splines);
                 }
             });
         Ok(())

@@ -1,16 +1,20 @@
 //! The directional wave spectrum: what a [`Cascade`](crate) turns into waves.
 
 mod density;
+mod elfouhaily;
 mod omega;
+mod slope;
 mod spreading;
 mod variance;
 
 use std::f64::consts::PI;
 use std::ops::Bound::{Excluded, Included};
 
+use crate::determinism::{Libm, Math, Std};
 use crate::dispersion::Dispersion;
 use crate::error::{self, Error};
 
+pub use slope::SlopeVariance;
 pub use spreading::Spreading;
 
 use omega::PIERSON_MOSKOWITZ_ALPHA;
@@ -44,6 +48,9 @@ pub(crate) enum Model {
     },
     /// Tessendorf's Phillips spectrum, defined on k.
     Phillips { amplitude: f32 },
+    /// Elfouhaily et al.'s (1997) unified spectrum, defined on k, with inverse wave age
+    /// Ω = U10/c_p.
+    Elfouhaily { inverse_wave_age: f32 },
 }
 
 /// A directional wave spectrum S(k) = S(ω) · D(ω, θ) · (dω/dk)/k · F(k), in m⁴.
@@ -61,11 +68,12 @@ pub(crate) enum Model {
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```
 ///
-/// The default spreading is [`Spreading::DonelanBanner`] for the oceanographic spectra and
-/// `Spreading::Cosine { exponent: 2.0, upwind: 1.0 }` (Tessendorf's |k̂·ŵ|²) for Phillips.
+/// The default spreading is [`Spreading::DonelanBanner`] for the oceanographic spectra,
+/// `Spreading::Cosine { exponent: 2.0, upwind: 1.0 }` (Tessendorf's |k̂·ŵ|²) for Phillips
+/// and [`Spreading::Elfouhaily`] for [`Spectrum::elfouhaily`].
 ///
 /// With the `serde` feature a spectrum serialises as its stored parameters (the model's α,
-/// ω_p and γ or amplitude, the wind, fetch, spreading, swell, blend, short-wave length,
+/// ω_p and γ, amplitude or inverse wave age, the wind, fetch, spreading, swell, blend, short-wave length,
 /// dispersion and depth factor), and deserialising re-runs the checks of the constructors and
 /// setters on every one of them: invalid data gives a deserialisation error naming the
 /// parameter, never an invalid spectrum.
@@ -111,6 +119,7 @@ impl Spectrum {
                 exponent: 2.0,
                 upwind: 1.0,
             },
+            Model::Elfouhaily { .. } => Spreading::Elfouhaily,
         };
         Spectrum {
             model,
@@ -148,8 +157,10 @@ impl Spectrum {
         let full = Self::FULLY_DEVELOPED_FETCH * u * u / G as f32;
         let f = f.min(full);
         let (u64, f64_) = (f64::from(u), f64::from(f));
-        let alpha = omega::jonswap_alpha(u64, f64_) as f32;
-        let peak_omega = omega::jonswap_peak_omega(u64, f64_) as f32;
+        // With libm's functions whatever the mode: the parameters a spectrum stores are then
+        // the same bits on every platform (Determinism::CrossPlatform needs that).
+        let alpha = omega::jonswap_alpha::<Libm>(u64, f64_) as f32;
+        let peak_omega = omega::jonswap_peak_omega::<Libm>(u64, f64_) as f32;
         Self::check_model(alpha, peak_omega)?;
         Ok(Self::with_model(
             Model::Jonswap {
@@ -239,6 +250,61 @@ impl Spectrum {
         Ok(Self::with_model(Model::Phillips { amplitude }, u, None))
     }
 
+    /// Smallest accepted inverse wave age Ω = U10/c_p of [`Spectrum::elfouhaily`]: a fully
+    /// developed sea (Elfouhaily et al. 1997).
+    pub const MIN_INVERSE_WAVE_AGE: f32 = 0.84;
+
+    /// Largest accepted inverse wave age: a very young sea, the top of the range of the
+    /// paper's peak enhancement γ = 1.7 + 6 log₁₀ Ω.
+    pub const MAX_INVERSE_WAVE_AGE: f32 = 5.0;
+
+    /// The unified directional spectrum of Elfouhaily, Chapron, Katsaros & Vandemark (1997)
+    /// from the wind speed U10 in m/s and the inverse wave age Ω = U10/c_p (0.84 for a fully
+    /// developed sea, up to 5 for a very young one), deep water, with its own spreading
+    /// [`Spreading::Elfouhaily`]:
+    ///
+    /// ```text
+    /// S(k) = k⁻³ (B_l + B_h),   B_l = ½ α_p (c_p/c) F_p,   B_h = ½ α_m (c_m/c) F_m
+    /// ```
+    ///
+    /// a JONSWAP-like peak at k_p = Ω² g/U10² with a long-wave curvature B_l, and a
+    /// short-wave curvature B_h peaking at the gravity–capillary wave number k_m = 370 rad/m,
+    /// set by the friction velocity u* of the wind (from U10 by Wu's 1982 drag law). Its
+    /// mean-square slope follows Cox & Munk's (1954) sun-glitter measurements, which is what
+    /// a renderer's sub-grid roughness needs (see [`Spectrum::slope_variance`]). The
+    /// formulas and their parameters are listed in docs/theory.md.
+    ///
+    /// ```
+    /// # use ocean_fft::{Spectrum, SlopeVariance};
+    /// let spectrum = Spectrum::elfouhaily(10.0, 0.84)?;   // U10 [m/s], Ω
+    /// let mss = spectrum.slope_variance(0.0, 1e4).total();
+    /// assert!((mss - 0.054).abs() < 0.01);                 // Cox & Munk: 0.003 + 5.12e-3 U10
+    /// # Ok::<(), ocean_fft::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `wind_speed` is in
+    /// (0, [`MAX_WIND_SPEED`](Self::MAX_WIND_SPEED)] and `inverse_wave_age` in
+    /// [[`MIN_INVERSE_WAVE_AGE`](Self::MIN_INVERSE_WAVE_AGE),
+    /// [`MAX_INVERSE_WAVE_AGE`](Self::MAX_INVERSE_WAVE_AGE)].
+    pub fn elfouhaily(wind_speed: f32, inverse_wave_age: f32) -> Result<Self, Error> {
+        let u = check_wind_speed(wind_speed)?;
+        let inverse_wave_age = check_inverse_wave_age(inverse_wave_age)?;
+        Ok(Self::with_model(
+            Model::Elfouhaily { inverse_wave_age },
+            u,
+            None,
+        ))
+    }
+
+    /// Inverse wave age Ω = U10/c_p of an Elfouhaily spectrum (`None` for the others).
+    pub fn inverse_wave_age(&self) -> Option<f32> {
+        match self.model {
+            Model::Elfouhaily { inverse_wave_age } => Some(inverse_wave_age),
+            _ => None,
+        }
+    }
+
     pub(crate) fn check_model(alpha: f32, peak_omega: f32) -> Result<(), Error> {
         // Extreme but finite inputs can push the derived parameters out of f32.
         error::positive("alpha", alpha)?;
@@ -260,6 +326,13 @@ impl Spectrum {
                 return Err(Error::NotApplicable {
                     name: "gamma",
                     reason: "the Phillips spectrum has no peak enhancement",
+                })
+            }
+            Model::Elfouhaily { .. } => {
+                return Err(Error::NotApplicable {
+                    name: "gamma",
+                    reason: "the Elfouhaily spectrum's peak enhancement follows from its \
+                             inverse wave age",
                 })
             }
         }
@@ -356,10 +429,11 @@ impl Spectrum {
     /// [`Error::NotApplicable`] on a Phillips spectrum, which is defined on k directly.
     #[must_use = "with_* returns the changed spectrum"]
     pub fn with_depth_factor(mut self, depth_factor: DepthFactor) -> Result<Self, Error> {
-        if matches!(self.model, Model::Phillips { .. }) && depth_factor != DepthFactor::None {
+        if !matches!(self.model, Model::Jonswap { .. }) && depth_factor != DepthFactor::None {
             return Err(Error::NotApplicable {
                 name: "depth_factor",
-                reason: "the Phillips spectrum is defined on k and has no depth factor",
+                reason: "the Phillips and Elfouhaily spectra are defined on k and have no \
+                         depth factor",
             });
         }
         self.depth_factor = depth_factor;
@@ -424,19 +498,19 @@ impl Spectrum {
         self.depth_factor
     }
 
-    /// JONSWAP peak enhancement γ (`None` for Phillips).
+    /// JONSWAP peak enhancement γ (`None` for Phillips and Elfouhaily).
     pub fn gamma(&self) -> Option<f32> {
         match self.model {
             Model::Jonswap { gamma, .. } => Some(gamma),
-            Model::Phillips { .. } => None,
+            _ => None,
         }
     }
 
-    /// JONSWAP Phillips constant α, dimensionless (`None` for Phillips).
+    /// JONSWAP Phillips constant α, dimensionless (`None` for Phillips and Elfouhaily).
     pub fn alpha(&self) -> Option<f32> {
         match self.model {
             Model::Jonswap { alpha, .. } => Some(alpha),
-            Model::Phillips { .. } => None,
+            _ => None,
         }
     }
 
@@ -444,7 +518,8 @@ impl Spectrum {
     ///
     /// For JONSWAP, Pierson–Moskowitz and TMA the ω_p parameter of the JONSWAP shape (the
     /// TMA depth factor moves the actual maximum of S(ω) slightly). For Phillips the maximum
-    /// of its deep-water S(ω), at k = (2/√5)/L_w.
+    /// of its deep-water S(ω), at k = (2/√5)/L_w. For Elfouhaily the frequency
+    /// √(g k_p (1 + (k_p/k_m)²)) of its peak wave number k_p = Ω² g/U10².
     #[doc(alias = "Tp")]
     pub fn peak_omega(&self) -> f32 {
         self.peak_omega_f64() as f32
@@ -459,6 +534,21 @@ impl Spectrum {
         match self.model {
             Model::Jonswap { peak_omega, .. } => f64::from(peak_omega),
             Model::Phillips { .. } => (G * self.phillips_peak_wave_number()).sqrt(),
+            Model::Elfouhaily { .. } => {
+                let k_p = self.elfouhaily_peak_wave_number();
+                k_p * elfouhaily::phase_speed(k_p)
+            }
+        }
+    }
+
+    /// k_p = Ω² g/U10² of an Elfouhaily spectrum (0 for the others).
+    fn elfouhaily_peak_wave_number(&self) -> f64 {
+        match self.model {
+            Model::Elfouhaily { inverse_wave_age } => elfouhaily::peak_wave_number(
+                f64::from(self.wind_speed),
+                f64::from(inverse_wave_age),
+            ),
+            _ => 0.0,
         }
     }
 
@@ -466,11 +556,17 @@ impl Spectrum {
     /// for the spectra defined on ω; for Phillips, defined on k, the wave number of its
     /// deep-water peak whatever the dispersion (see [`Spectrum::peak_omega`]).
     pub(crate) fn peak_wave_number_f64(&self) -> f64 {
+        self.peak_wave_number_with::<Std>()
+    }
+
+    /// [`peak_wave_number_f64`](Self::peak_wave_number_f64) with the functions of `M`.
+    pub(crate) fn peak_wave_number_with<M: Math>(&self) -> f64 {
         match self.model {
-            Model::Jonswap { peak_omega, .. } => {
-                self.dispersion.k_from_omega_f64(f64::from(peak_omega))
-            }
+            Model::Jonswap { peak_omega, .. } => self
+                .dispersion
+                .k_from_omega_with::<M>(f64::from(peak_omega)),
             Model::Phillips { .. } => self.phillips_peak_wave_number(),
+            Model::Elfouhaily { .. } => self.elfouhaily_peak_wave_number(),
         }
     }
 
@@ -504,6 +600,16 @@ pub(crate) fn check_wind_speed(wind_speed: f32) -> Result<f32, Error> {
         wind_speed,
         Excluded(0.0),
         Included(Spectrum::MAX_WIND_SPEED),
+    )
+}
+
+/// Checks an inverse wave age Ω of the Elfouhaily spectrum.
+pub(crate) fn check_inverse_wave_age(value: f32) -> Result<f32, Error> {
+    error::in_range(
+        "inverse_wave_age",
+        value,
+        Included(Spectrum::MIN_INVERSE_WAVE_AGE),
+        Included(Spectrum::MAX_INVERSE_WAVE_AGE),
     )
 }
 

@@ -1,0 +1,259 @@
+//! The simulation side of a bake: frame f's state as a pure function of the sea and f.
+//!
+//! Waves are a closed-form function of time, so only the foam has a history. It is made a
+//! function of the frame alone by a fixed pre-roll:
+//!
+//! - **No loop.** Frames are grouped in blocks of K = `--anchor-every` frames; block b
+//!   starts at its anchor frame a = b·K. The foam of any frame f in the block is that of an
+//!   ocean started with no foam at frame a − P (P = ⌈W·fps⌉, W = τ·ln(1/ε)) and advanced
+//!   with `step_to` to every frame time i/fps, i = a − P + 1, …, f. Two solutions of the
+//!   foam equation with the same surface differ by at most e^{−Δt/τ} times their initial
+//!   difference (the exact step contracts by e^{−(s + 1/τ)dt} ≤ e^{−dt/τ}, and the clamp to
+//!   [0, 1] does not widen it), so after W seconds the foam is within ε of that of any
+//!   longer history, in particular of an ocean simulated forever. Across an anchor the foam
+//!   jumps by at most 2ε.
+//! - **Loop of F frames.** Frame f shows phase p = f mod F at time p/fps. The foam starts
+//!   at zero at phase 0 and whole loops are simulated (steps to i/fps, i = 1..=F, then back
+//!   to t = 0 with the foam kept) until one loop changes no foam value by more than ε (or
+//!   after [`Preroll::max_loops`](crate::setup::Preroll::max_loops)). One loop contracts the
+//!   foam by q = e^{−T/τ}, so the foam of phase 0 then meets the end of the loop within
+//!   q·ε: frame F (= frame 0) follows frame F − 1 as continuously as any two frames.
+
+use ocean_fft::{OceanSnapshot, OceanState, TexelLayout};
+
+use crate::error::CliError;
+use crate::setup::Sea;
+
+/// Every channel of one cascade at one frame, as the bake writes it (texel (i, j) at index
+/// j·N + i, the library's conventions).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Texels {
+    /// Grid size N.
+    pub size: usize,
+    /// `[D_x, η, D_z, J]` per texel ([`TexelLayout::DisplacementJacobian`]).
+    pub displacement_jacobian: Vec<[f32; 4]>,
+    /// `[n_x, n_y, n_z, 0]` per texel ([`TexelLayout::Normal`]).
+    pub normal: Vec<[f32; 4]>,
+    /// Foam coverage in [0, 1] per texel.
+    pub foam: Vec<f32>,
+}
+
+impl Texels {
+    /// Zeroed buffers for an N×N cascade.
+    pub fn new(size: usize) -> Texels {
+        let points = size * size;
+        Texels {
+            size,
+            displacement_jacobian: vec![[0.0; 4]; points],
+            normal: vec![[0.0; 4]; points],
+            foam: vec![0.0; points],
+        }
+    }
+}
+
+/// The foam of cascade `cascade` on its grid, into `out` (N² long). **The one place the
+/// tool reads foam**: when the library's foam becomes one ocean-wide field, only this
+/// function changes (to resample or pack that field onto the cascade's texels).
+pub fn foam_texels(ocean: &OceanState, cascade: usize, out: &mut [f32]) -> Result<(), CliError> {
+    let foam = ocean
+        .foam(cascade)
+        .map_err(|e| CliError::new(crate::error::Kind::Internal, e.to_string()))?;
+    out.copy_from_slice(foam);
+    Ok(())
+}
+
+/// Copies every channel of cascade `cascade` into `out`.
+///
+/// # Errors
+/// Only on a bug (wrong buffer sizes).
+pub fn capture(ocean: &OceanState, cascade: usize, out: &mut Texels) -> Result<(), CliError> {
+    let internal = |e: ocean_fft::Error| CliError::new(crate::error::Kind::Internal, e.to_string());
+    ocean
+        .pack_texels(
+            cascade,
+            TexelLayout::DisplacementJacobian,
+            &mut out.displacement_jacobian,
+        )
+        .map_err(internal)?;
+    ocean
+        .pack_texels(cascade, TexelLayout::Normal, &mut out.normal)
+        .map_err(internal)?;
+    foam_texels(ocean, cascade, &mut out.foam)
+}
+
+/// Where the simulator stands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Position {
+    /// Nothing simulated yet.
+    Fresh,
+    /// In the block anchored at frame `anchor`, at frame `frame` (no loop).
+    Block { anchor: i64, frame: i64 },
+    /// At phase `phase` of the loop (the steady state restored or stepped from).
+    Loop { phase: i64 },
+}
+
+/// How the loop's foam converged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoopConvergence {
+    /// Whole loops simulated before the steady state.
+    pub loops: u32,
+    /// The largest change of any foam value over the last of them.
+    pub last_change: f64,
+    /// A bound on the foam's jump from frame F − 1 to frame F (= frame 0): q·`last_change`,
+    /// q = e^{−T/τ}.
+    pub seam_bound: f64,
+}
+
+/// Steps an ocean to frames so that each frame's state depends only on the sea and the
+/// frame.
+pub struct Simulator<'a> {
+    sea: &'a Sea,
+    ocean: OceanState,
+    position: Position,
+    /// The loop's steady state at phase 0.
+    steady: Option<OceanSnapshot>,
+    /// How it converged.
+    convergence: Option<LoopConvergence>,
+    /// Simulation steps taken (pre-roll included).
+    pub steps: u64,
+}
+
+fn internal(e: ocean_fft::Error) -> CliError {
+    CliError::new(crate::error::Kind::Internal, format!("simulation: {e}"))
+}
+
+impl<'a> Simulator<'a> {
+    /// Builds the ocean (h0 of every cascade).
+    ///
+    /// # Errors
+    /// The library's refusal of the config (kind `Config`).
+    pub fn new(sea: &'a Sea) -> Result<Simulator<'a>, CliError> {
+        let ocean = OceanState::new(sea.spectrum.clone(), sea.config.clone())
+            .map_err(|e| CliError::config(format!("the sea's configuration: {e}")))?;
+        Ok(Simulator {
+            sea,
+            ocean,
+            position: Position::Fresh,
+            steady: None,
+            convergence: None,
+            steps: 0,
+        })
+    }
+
+    /// The ocean, at the last frame advanced to.
+    pub fn ocean(&self) -> &OceanState {
+        &self.ocean
+    }
+
+    /// The loop's convergence, once [`advance_to`](Self::advance_to) pre-rolled it.
+    pub fn convergence(&self) -> Option<LoopConvergence> {
+        self.convergence
+    }
+
+    fn step_to_frame(&mut self, index: i64) -> Result<(), CliError> {
+        self.ocean.step_to(self.sea.time(index)).map_err(internal)?;
+        self.steps += 1;
+        Ok(())
+    }
+
+    /// Brings the ocean to frame `frame`: its waves and its foam as the module's docs
+    /// define them, whatever was simulated before.
+    ///
+    /// # Errors
+    /// Only on a bug.
+    pub fn advance_to(&mut self, frame: u32) -> Result<(), CliError> {
+        let frame = i64::from(frame);
+        match self.sea.looping {
+            None => {
+                let k = i64::from(self.sea.preroll.anchor_every);
+                let anchor = frame - frame % k;
+                let from = match self.position {
+                    Position::Block {
+                        anchor: a,
+                        frame: f,
+                    } if a == anchor && f <= frame => f,
+                    _ => {
+                        let start = anchor - i64::from(self.sea.preroll.frames);
+                        self.ocean
+                            .set_time(self.sea.time(start))
+                            .map_err(internal)?;
+                        self.ocean.clear_foam();
+                        start
+                    }
+                };
+                for i in from + 1..=frame {
+                    self.step_to_frame(i)?;
+                }
+                self.position = Position::Block { anchor, frame };
+            }
+            Some(looping) => {
+                let phase = frame % i64::from(looping.frames);
+                let from = match self.position {
+                    Position::Loop { phase: p } if p <= phase => p,
+                    _ => {
+                        self.restore_steady()?;
+                        0
+                    }
+                };
+                for i in from + 1..=phase {
+                    self.step_to_frame(i)?;
+                }
+                self.position = Position::Loop { phase };
+            }
+        }
+        Ok(())
+    }
+
+    /// Restores the loop's steady state at phase 0, pre-rolling it the first time.
+    fn restore_steady(&mut self) -> Result<(), CliError> {
+        if self.steady.is_none() {
+            self.preroll_loops()?;
+        }
+        let steady = self.steady.as_ref().expect("pre-rolled above");
+        self.ocean.restore(steady).map_err(internal)?;
+        Ok(())
+    }
+
+    /// Whole loops from no foam until one loop changes the foam by at most ε.
+    fn preroll_loops(&mut self) -> Result<(), CliError> {
+        let looping = self.sea.looping.expect("only for loops");
+        let preroll = self.sea.preroll;
+        self.ocean.set_time(0.0).map_err(internal)?;
+        self.ocean.clear_foam();
+        let cascades = self.ocean.cascades().len();
+        let mut before: Vec<Vec<f32>> = (0..cascades)
+            .map(|c| vec![0.0; self.ocean.cascades()[c].size().pow(2)])
+            .collect();
+        let mut after = before.clone();
+        let mut loops = 0;
+        let mut change = f64::INFINITY;
+        let needed = self.sea.config.foam.injection > 0.0;
+        while needed && loops < preroll.max_loops && change > preroll.tolerance {
+            for i in 1..=i64::from(looping.frames) {
+                self.step_to_frame(i)?;
+            }
+            // Back to phase 0 with the foam kept: the waves at T equal those at 0.
+            self.ocean.set_time(0.0).map_err(internal)?;
+            loops += 1;
+            change = 0.0;
+            for (c, (b, a)) in before.iter_mut().zip(&mut after).enumerate() {
+                foam_texels(&self.ocean, c, a)?;
+                for (x, y) in b.iter().zip(a.iter()) {
+                    change = change.max(f64::from((x - y).abs()));
+                }
+                std::mem::swap(b, a);
+            }
+        }
+        if !needed {
+            change = 0.0;
+        }
+        let q = (-f64::from(looping.period) / f64::from(self.sea.config.foam.decay)).exp();
+        self.convergence = Some(LoopConvergence {
+            loops,
+            last_change: change,
+            seam_bound: q * change,
+        });
+        self.steady = Some(self.ocean.snapshot());
+        Ok(())
+    }
+}
