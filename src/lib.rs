@@ -160,6 +160,8 @@ mod dispersion;
 mod engine;
 mod error;
 mod fft2d;
+#[cfg(test)]
+mod golden;
 mod gpu;
 mod grid;
 mod ocean;
