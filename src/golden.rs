@@ -234,7 +234,11 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("tma 48²", "queries", 0xb2de17fec5a7ec59),
     ("elfouhaily 34²", "cascade 0 h0", 0x0a3c2a1c37fab219),
     ("elfouhaily 34²", "cascade 0 height", 0xa8a1ec35133c7e0a),
-    ("elfouhaily 34²", "cascade 0 displacement", 0x77859cbfa9567de2),
+    (
+        "elfouhaily 34²",
+        "cascade 0 displacement",
+        0x77859cbfa9567de2,
+    ),
     ("elfouhaily 34²", "cascade 0 slope", 0x5386022373041d56),
     ("elfouhaily 34²", "cascade 0 normal", 0xa5879ef329e4911a),
     ("elfouhaily 34²", "cascade 0 jacobian", 0x11f4435a7448d439),
@@ -307,4 +311,63 @@ fn cross_platform_mode_gives_the_golden_bits_on_every_level_and_thread_count() {
             levels.len()
         );
     }
+}
+
+/// How far, in units of the last place of `y`, the f64 `y` lies from the nearest point where
+/// rounding to f32 changes (a midpoint between two f32 values).
+fn margin_to_f32_rounding(y: f64) -> f64 {
+    let f = y as f32;
+    let (below, above) = (f.next_down(), f.next_up());
+    // Both midpoints next to f are exact in f64 (an f32 has 29 fewer significand bits).
+    let mid_low = 0.5 * (f64::from(below) + f64::from(f));
+    let mid_high = 0.5 * (f64::from(f) + f64::from(above));
+    let distance = (y - mid_low).abs().min((mid_high - y).abs());
+    let ulp = f64::from_bits(y.abs().to_bits() + 1) - y.abs();
+    distance / ulp
+}
+
+/// rustfft computes its f32 twiddle factors as cos and sin of (−2π/len)·index in f64 with
+/// std's functions (the platform's C library), then rounds them to f32. Another platform's
+/// cos may differ in the last f64 bit; that moves the f32 twiddle only if the value lies
+/// within an ulp or two of an f32 rounding point. No twiddle of any length up to 4096, nor
+/// of the Bluestein lengths up to 8192 (index² mod 2·len of len ≤ 4096, the prime factors an
+/// even N ≤ 4096 can have), lies within 4 f64 ulps of one (with libm's cos and sin, which,
+/// like the C libraries, are within an ulp of the exact values), so any two platforms whose
+/// cos and sin are within 2 ulps round every twiddle to the same f32. This is what makes
+/// rustfft's scalar FFT the same on every platform in spite of its std cos and sin.
+#[test]
+fn rustfft_twiddles_round_to_the_same_f32_on_every_platform() {
+    let mut worst: (f64, usize, usize) = (f64::INFINITY, 0, 0);
+    let mut check = |index: usize, len: usize| {
+        let angle = -2.0 * std::f64::consts::PI / len as f64 * index as f64;
+        for value in [libm::cos(angle), libm::sin(angle)] {
+            // Values that are exact in f32 (0, ±1, ±½) or tiny round the same for any ulp.
+            if value.abs() < 1e-30 || f64::from(value as f32) == value {
+                continue;
+            }
+            let margin = margin_to_f32_rounding(value);
+            if margin < worst.0 {
+                worst = (margin, index, len);
+            }
+        }
+    };
+    for len in 1..=4096 {
+        for index in 0..len {
+            check(index, len);
+        }
+    }
+    // Bluestein's chirp: twiddle(index² mod 2·len, 2·len) for its inner prime length.
+    for len in 1..=4096usize {
+        let twice = 2 * len;
+        for i in 0..len {
+            check((i * i) % twice, twice);
+        }
+    }
+    assert!(
+        worst.0 > 4.0,
+        "twiddle {} of length {} lies {} ulps from an f32 rounding point",
+        worst.1,
+        worst.2,
+        worst.0
+    );
 }

@@ -1116,3 +1116,91 @@ mod serde_round_trips {
         }
     }
 }
+
+// ----------------------------------------------------------------------------------------
+// Determinism modes
+// ----------------------------------------------------------------------------------------
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// The two modes evaluate the same spectrum and dispersion, one with std's functions and
+    /// one with libm's: where both build a cascade, the expected variance Σ S(k)Δk² and every
+    /// tabulated ω agree to 1e-10 relative. (The functions agree to an ulp or two; a density
+    /// chains a few dozen of them, and exponents up to 700 amplify a relative error of an
+    /// argument by 700: about 1e-13, so 1e-10 leaves room and still catches a wrong formula.)
+    /// The amplitudes differ (other Gaussian draws), so errors that depend on them
+    /// (`AmplitudeTooLarge`) may differ; every other error is the same.
+    #[test]
+    fn both_modes_evaluate_the_same_spectrum(
+        spectrum in valid_spectrum(),
+        size in prop::sample::select(vec![4usize, 8, 16, 34]),
+        length in 1f32..5000.0,
+        seed in any::<u64>(),
+    ) {
+        let config = |determinism| CascadeConfig {
+            size,
+            length,
+            seed,
+            determinism,
+            memory_limit: TEST_MEMORY_LIMIT,
+            ..CascadeConfig::default()
+        };
+        let fast = Cascade::new(&spectrum, config(Determinism::SameMachine));
+        let portable = Cascade::new(&spectrum, config(Determinism::CrossPlatform));
+        match (fast, portable) {
+            (Ok(fast), Ok(portable)) => {
+                let (a, b) = (fast.expected_variance(), portable.expected_variance());
+                prop_assert!((a - b).abs() <= 1e-10 * a.abs().max(b.abs()), "{} vs {}", a, b);
+                for j in 0..size {
+                    for i in 0..size {
+                        let (a, b) = (fast.omega_at(i, j).unwrap(), portable.omega_at(i, j).unwrap());
+                        prop_assert!((a - b).abs() <= 1e-10 * a.abs().max(b.abs()), "ω({}, {})", i, j);
+                    }
+                }
+                prop_assert!(cascade_finite(&portable));
+            }
+            (Err(Error::AmplitudeTooLarge { .. }), _) | (_, Err(Error::AmplitudeTooLarge { .. })) => {}
+            (fast, portable) => prop_assert_eq!(fast.err(), portable.err()),
+        }
+    }
+
+    /// An ocean in the cross-platform mode gives the same bits in pools of 1 and 2 threads,
+    /// with any spectrum, through steps, queries included.
+    #[test]
+    fn cross_platform_oceans_are_the_same_at_any_thread_count(
+        spectrum in valid_spectrum(),
+        size in prop::sample::select(vec![8usize, 16, 34]),
+        choppiness in 0f32..2.0,
+        steps in prop::collection::vec(0f64..2.0, 1..4),
+    ) {
+        let config = OceanConfig {
+            size,
+            choppiness,
+            determinism: Determinism::CrossPlatform,
+            memory_limit: TEST_MEMORY_LIMIT,
+            ..OceanConfig::default()
+        };
+        let run = |threads: usize| {
+            pool(threads).install(|| {
+                let mut ocean = OceanState::new(spectrum.clone(), config.clone()).ok()?;
+                let mut bits = Vec::new();
+                for &dt in &steps {
+                    ocean.step(dt).unwrap();
+                    bits.extend(ocean_bits(&ocean));
+                    let s = ocean.surface_at(31.7, -250.2).unwrap();
+                    bits.extend([s.height, s.foam].iter().chain(&s.normal).map(|v| u64::from(v.to_bits())));
+                }
+                Some(bits)
+            })
+        };
+        prop_assert_eq!(run(1), run(2));
+    }
+}
