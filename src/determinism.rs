@@ -36,6 +36,24 @@
 ///   determinism for what it costs and what else a game must keep equal.
 ///
 /// The two modes give different waves (the Gaussian draws differ), equally calibrated.
+///
+/// ```
+/// use ocean_fft::{Determinism, OceanConfig, OceanState, Spectrum};
+///
+/// // A server's ocean, which every client rebuilds from the same spectrum and config.
+/// let config = OceanConfig {
+///     size: 16,
+///     determinism: Determinism::CrossPlatform,
+///     ..OceanConfig::default()
+/// };
+/// let mut ocean = OceanState::new(Spectrum::jonswap(10.0, 100_000.0)?, config)?;
+/// for tick in 1..=3 {
+///     ocean.step_to(f64::from(tick) / 30.0)?;      // the same f64 times on every peer
+/// }
+/// let y = ocean.height_at(12.0, -3.5)?;             // m: the same bits on every machine
+/// assert!(y.is_finite());
+/// # Ok::<(), ocean_fft::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
