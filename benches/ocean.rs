@@ -200,8 +200,6 @@ fn queries(c: &mut Criterion) {
     let mut group = c.benchmark_group("ocean_queries");
     group
         .sample_size(20)
-        // Each sample the same number of iterations: the larger N take tens of ms an
-        // iteration, which linear sampling would stretch to minutes.
         .sampling_mode(SamplingMode::Flat)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(2));

@@ -197,10 +197,16 @@ fn main() {
                                 "{name} | threads {threads} | step {step} t {t} | cascade {index} {buffer} | {hash:016x}"
                             );
                         }
-                        let foam = ocean.foam(index).expect("cascade index");
-                        let hash = hash_bits(foam.iter().map(|v| v.to_bits()));
+                    }
+                    for (buffer, values) in [
+                        ("foam", ocean.foam()),
+                        ("active", ocean.active_foam()),
+                        ("residual", ocean.residual_foam()),
+                        ("breaking", ocean.breaking()),
+                    ] {
+                        let hash = hash_bits(values.iter().map(|v| v.to_bits()));
                         println!(
-                            "{name} | threads {threads} | step {step} t {t} | cascade {index} foam | {hash:016x}"
+                            "{name} | threads {threads} | step {step} t {t} | foam {buffer} | {hash:016x}"
                         );
                     }
                 }

@@ -12,8 +12,8 @@ use ocean_fft::{FoamConfig, OceanConfig, OceanState, Spectrum, SurfaceSample};
 
 const N: usize = 16;
 
-/// A small ocean (three cascades of 16²) after a second of steps, foaming wherever the surface
-/// is compressed (J < 1), so that the foam buffers are not all zero.
+/// A small ocean (three cascades of 16²) after a second of steps, with ten times the
+/// calibrated whitecaps, so that the foam buffers are not all zero.
 pub fn ocean() -> OceanState {
     let spectrum = Spectrum::jonswap(14.0, 300_000.0)
         .and_then(|s| s.with_wind_direction(0.3))
@@ -22,7 +22,7 @@ pub fn ocean() -> OceanState {
         size: N,
         choppiness: 1.5,
         foam: FoamConfig {
-            bias: 1.0,
+            coverage: 10.0,
             ..FoamConfig::default()
         },
         ..OceanConfig::default()
@@ -53,9 +53,21 @@ pub fn varies(values: impl IntoIterator<Item = f32>) {
 fn scalar_buffers_are_f32_slices_and_bytes_for_the_gpu() {
     let ocean = ocean();
     assert_eq!(ocean.cascades().len(), 3);
+    // The foam buffers live on cascade 0's grid.
+    let foam = [
+        ocean.foam(),
+        ocean.active_foam(),
+        ocean.residual_foam(),
+        ocean.breaking(),
+    ];
     for (c, cascade) in ocean.cascades().iter().enumerate() {
-        let foam = ocean.foam(c).expect("cascade index");
-        for buffer in [cascade.height(), cascade.jacobian(), foam] {
+        let own = [cascade.height(), cascade.jacobian()];
+        let buffers = if c == 0 {
+            &[own.as_slice(), &foam].concat()
+        } else {
+            &own.to_vec()
+        };
+        for &buffer in buffers {
             assert_eq!(buffer.len(), N * N);
             let floats: &[f32] = cast_slice(buffer);
             same_memory(floats, buffer);
@@ -67,7 +79,9 @@ fn scalar_buffers_are_f32_slices_and_bytes_for_the_gpu() {
         }
         varies(cascade.height().iter().copied());
         varies(cascade.jacobian().iter().copied());
-        varies(foam.iter().copied());
+    }
+    for buffer in foam {
+        varies(buffer.iter().copied());
     }
 }
 

@@ -1,15 +1,17 @@
 //! The default ocean in a few seconds: builds `Spectrum::jonswap(10.0, 100_000.0)` (U10 = 10 m/s,
 //! 100 km fetch) with `OceanConfig::default()` (three cascades of 256² over 1000, 230 and 51 m),
-//! steps it at 60 Hz to t = 10 s and writes, for the largest cascade (1000 m, 256×256):
+//! pre-rolls its foam over the 15 s before t = 10 s (300 steps of 1/20 s) and writes, for the
+//! largest cascade (1000 m, 256×256):
 //!
 //! - `out/heightmap.png`: 16-bit grayscale height η, mapped linearly from [−a, a] to
 //!   [0, 65535] with a = max |η| of the tile (printed);
 //! - `out/normal.png`: 8-bit RGB normal map of the displaced surface, each component mapped
 //!   from [−1, 1] to [0, 255] with **R = n_x, G = n_z, B = n_y** (the usual tangent-space
 //!   layout with the surface's up axis y in blue, so flat water is (128, 128, 255));
-//! - `out/foam.png`: 8-bit foam coverage of the largest cascade after 5 s of 60 Hz steps.
+//! - `out/foam.png`: 8-bit foam of the whole ocean, which lives on the largest cascade's grid
+//!   (active whitecaps and residual foam together, [0, 1] → [0, 255]).
 //!
-//! It also prints the significant wave height H_s = 4·std(η) measured on a grid of world
+//! It prints the foam coverage beside the whitecap fraction the calibration aims at, and the significant wave height H_s = 4·std(η) measured on a grid of world
 //! points (all cascades summed, via `sample_many`) beside the spectrum's 4√m0 and the
 //! expected 4√(Σ S(k)Δk²) of the grids.
 //!
@@ -29,13 +31,10 @@ fn main() -> Result<()> {
     let hs_spectrum = spectrum.significant_wave_height();
     let mut ocean = OceanState::new(spectrum, OceanConfig::default())?;
 
-    // Jump to t = 5 s, then 300 steps of 1/60 s to t = 10 s: the foam builds up over these
-    // steps (it decays with τ = 2.5 s, so 5 s is close to its steady state).
-    ocean.set_time(5.0)?;
-    let dt = 1.0 / 60.0;
-    for _ in 0..300 {
-        ocean.step(dt)?;
-    }
+    // Jump to t = 10 s and pre-roll the foam over the 15 s before it: active whitecaps (τ_A =
+    // 3.85 s) reach their steady coverage, residual foam (τ_R = 20 s) is still building.
+    ocean.set_time(10.0)?;
+    ocean.pre_roll(15.0, 1.0 / 20.0)?;
 
     let dir = out_dir("")?;
     let cascade = &ocean.cascades()[0];
@@ -66,16 +65,23 @@ fn main() -> Result<()> {
         path.display()
     );
 
-    // Foam of the largest cascade.
-    let foam = ocean.foam(0)?;
+    // The ocean's foam, on the largest cascade's grid.
+    let foam = ocean.foam();
     let pixels: Vec<u8> = foam.iter().map(|&f| to_u8(f)).collect();
     let path = dir.join("foam.png");
     save_gray8(&path, n, n, &pixels)?;
-    let covered = foam.iter().filter(|&&f| f > 0.1).count() as f32 / foam.len() as f32;
+    let coverage = ocean.foam_coverage();
+    let calibration = ocean.foam_calibration();
     println!(
-        "wrote {} (foam in [0, 1] → [0, 255]; {:.1} % of the tile above 0.1)",
+        "wrote {} (foam in [0, 1] → [0, 255]); coverage: active whitecaps {:.2} %, residual \
+         {:.2} %; whitecap fraction aimed at (Monahan & O'Muircheartaigh 1980, U10 = {} m/s): \
+         {:.2} %, breaking threshold J_b = {:.3}",
         path.display(),
-        100.0 * covered
+        100.0 * coverage.active,
+        100.0 * coverage.residual,
+        calibration.wind_speed,
+        100.0 * calibration.target,
+        calibration.threshold,
     );
 
     // Measured H_s: the summed surface on a 512×512 grid of world points spanning exactly

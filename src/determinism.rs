@@ -77,6 +77,51 @@ impl Determinism {
         }
     }
 
+    /// eˣ (f64) with the functions of this mode.
+    #[inline]
+    pub(crate) fn exp(self, x: f64) -> f64 {
+        match self {
+            Determinism::SameMachine => Std::exp(x),
+            Determinism::CrossPlatform => Libm::exp(x),
+        }
+    }
+
+    /// eˣ (f32) with the functions of this mode.
+    #[inline]
+    pub(crate) fn expf(self, x: f32) -> f32 {
+        match self {
+            Determinism::SameMachine => Std::expf(x),
+            Determinism::CrossPlatform => Libm::expf(x),
+        }
+    }
+
+    /// ln x with the functions of this mode.
+    #[inline]
+    pub(crate) fn ln(self, x: f64) -> f64 {
+        match self {
+            Determinism::SameMachine => Std::ln(x),
+            Determinism::CrossPlatform => Libm::ln(x),
+        }
+    }
+
+    /// xʸ with the functions of this mode.
+    #[inline]
+    pub(crate) fn powf(self, x: f64, y: f64) -> f64 {
+        match self {
+            Determinism::SameMachine => Std::powf(x, y),
+            Determinism::CrossPlatform => Libm::powf(x, y),
+        }
+    }
+
+    /// atan2(y, x) with the functions of this mode.
+    #[inline]
+    pub(crate) fn atan2(self, y: f64, x: f64) -> f64 {
+        match self {
+            Determinism::SameMachine => Std::atan2(y, x),
+            Determinism::CrossPlatform => Libm::atan2(y, x),
+        }
+    }
+
     /// (sin x, cos x) with the functions of this mode.
     #[inline]
     pub(crate) fn sin_cos(self, x: f64) -> (f64, f64) {

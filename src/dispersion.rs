@@ -1,7 +1,7 @@
 //! Dispersion relations ω(k) of surface gravity(-capillary) waves, their group-velocity
 //! derivative dω/dk, and the inverse k(ω).
 
-use crate::determinism::{Math, Std};
+use crate::determinism::{Determinism, Math, Std};
 use crate::error::{self, saturate, Error};
 
 /// Gravitational acceleration g, in m/s².
@@ -178,6 +178,14 @@ impl Dispersion {
     /// [`k_from_omega`](Self::k_from_omega) in f64.
     pub(crate) fn k_from_omega_f64(&self, omega: f64) -> f64 {
         self.k_from_omega_with::<Std>(omega)
+    }
+
+    /// [`k_from_omega`](Self::k_from_omega) in f64 with the functions of a mode.
+    pub(crate) fn k_from_omega_with_mode(&self, omega: f64, determinism: Determinism) -> f64 {
+        match determinism {
+            Determinism::SameMachine => self.k_from_omega_with::<Std>(omega),
+            Determinism::CrossPlatform => self.k_from_omega_with::<crate::determinism::Libm>(omega),
+        }
     }
 
     /// [`k_from_omega`](Self::k_from_omega) in f64 with the functions of `M`.

@@ -30,7 +30,8 @@ use crate::ocean::OceanState;
 ///
 /// The layouts with foam take the foam an [`OceanState`] holds, so they are packed with
 /// [`OceanState::pack_texels`]; [`Cascade::pack_texels`] refuses them with
-/// [`Error::NotApplicable`] naming `layout`.
+/// [`Error::NotApplicable`] naming `layout`. The foam is one field for the whole ocean on
+/// cascade 0's grid: cascade 0's texels carry it, the other cascades' foam channel is 0.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum TexelLayout {
@@ -127,21 +128,22 @@ fn rows_per_task(n: usize) -> usize {
     (TEXELS_PER_TASK / n).max(1)
 }
 
-/// The buffers a texel is packed from: one cascade's, and the foam on its grid (empty where
-/// there is none; a layout with foam is then refused before any packing).
+/// The buffers a texel is packed from: one cascade's, and the foam on its grid (`None` where
+/// the cascade carries none: its foam channel is 0; a bare cascade's layouts with foam are
+/// refused before any packing).
 struct Sources<'a> {
     height: &'a [f32],
     displacement: &'a [[f32; 2]],
     slope: &'a [[f32; 2]],
     normal: &'a [[f32; 3]],
     jacobian: &'a [f32],
-    foam: &'a [f32],
+    foam: Option<&'a [f32]>,
     /// The sub-grid mean-square slope of the cascade (alpha of the normal layout).
     roughness: f32,
 }
 
 impl<'a> Sources<'a> {
-    fn new(cascade: &'a Cascade, foam: &'a [f32]) -> Sources<'a> {
+    fn new(cascade: &'a Cascade, foam: Option<&'a [f32]>) -> Sources<'a> {
         Sources {
             height: cascade.height(),
             displacement: cascade.displacement(),
@@ -168,22 +170,37 @@ impl<'a> Sources<'a> {
                     *texel = [d[0], eta, d[1], j];
                 }
             }
-            TexelLayout::DisplacementFoam => {
-                let foam = &self.foam[range];
-                for (texel, ((&eta, d), &f)) in out
-                    .iter_mut()
-                    .zip(height.iter().zip(displacement).zip(foam))
-                {
-                    *texel = [d[0], eta, d[1], f];
+            TexelLayout::DisplacementFoam => match self.foam {
+                Some(foam) => {
+                    for (texel, ((&eta, d), &f)) in out
+                        .iter_mut()
+                        .zip(height.iter().zip(displacement).zip(&foam[range]))
+                    {
+                        *texel = [d[0], eta, d[1], f];
+                    }
                 }
-            }
+                None => {
+                    for (texel, (&eta, d)) in out.iter_mut().zip(height.iter().zip(displacement)) {
+                        *texel = [d[0], eta, d[1], 0.0];
+                    }
+                }
+            },
             TexelLayout::SlopeJacobianFoam => {
                 let slope = &self.slope[range.clone()];
-                let foam = &self.foam[range];
-                for (texel, ((s, &j), &f)) in
-                    out.iter_mut().zip(slope.iter().zip(jacobian).zip(foam))
-                {
-                    *texel = [s[0], s[1], j, f];
+                match self.foam {
+                    Some(foam) => {
+                        for (texel, ((s, &j), &f)) in out
+                            .iter_mut()
+                            .zip(slope.iter().zip(jacobian).zip(&foam[range]))
+                        {
+                            *texel = [s[0], s[1], j, f];
+                        }
+                    }
+                    None => {
+                        for (texel, (s, &j)) in out.iter_mut().zip(slope.iter().zip(jacobian)) {
+                            *texel = [s[0], s[1], j, 0.0];
+                        }
+                    }
                 }
             }
             TexelLayout::Normal => {
@@ -305,7 +322,7 @@ impl Cascade {
     pub fn pack_texels(&self, layout: TexelLayout, out: &mut [[f32; 4]]) -> Result<(), Error> {
         check_cascade_layout(layout)?;
         error::length("out", out.len(), self.n_squared())?;
-        Sources::new(self, &[]).pack_f32(self.size(), layout, out);
+        Sources::new(self, None).pack_f32(self.size(), layout, out);
         Ok(())
     }
 
@@ -325,7 +342,7 @@ impl Cascade {
     ) -> Result<(), Error> {
         check_cascade_layout(layout)?;
         error::length("out", out.len(), self.n_squared())?;
-        Sources::new(self, &[]).pack_f16(self.size(), layout, out);
+        Sources::new(self, None).pack_f16(self.size(), layout, out);
         Ok(())
     }
 
@@ -443,9 +460,11 @@ impl Cascade {
 
 impl OceanState {
     /// Packs cascade `cascade` (0 the largest) into interleaved RGBA32F texels of `layout`
-    /// (see [`TexelLayout`]), texel (i, j) of that cascade's N×N grid at `out[j * N + i]`;
-    /// the layouts with foam take the foam this ocean holds at that grid point (today each
-    /// cascade's own, [`OceanState::foam`]). Copies the values bit for bit. Row blocks in
+    /// (see [`TexelLayout`]), texel (i, j) of that cascade's N×N grid at `out[j * N + i]`.
+    /// The ocean's one foam field lives on cascade 0's grid ([`OceanState::foam`]), so the
+    /// layouts with foam carry it in cascade 0's texels and 0 in every other cascade's (a
+    /// shader that sums the foam channels, or combines them as 1 − Π(1 − f), gets the foam).
+    /// Copies the values bit for bit. Row blocks in
     /// parallel; allocates nothing inside a rayon pool; the result does not depend on the
     /// number of threads.
     ///
@@ -487,7 +506,8 @@ impl OceanState {
         error::index("cascade", cascade, self.cascades().len())?;
         let c = &self.cascades()[cascade];
         error::length("out", len, c.size() * c.size())?;
-        Ok((Sources::new(c, self.foam(cascade)?), c.size()))
+        let foam = (cascade == 0).then(|| self.foam());
+        Ok((Sources::new(c, foam), c.size()))
     }
 }
 

@@ -32,8 +32,11 @@
 //! - [`Cascade`]: one N×N patch; h0(k) drawn once, then every [`Cascade::update`] evolves
 //!   h̃(k, t) and runs four packed complex inverse FFTs for height, displacement, slope,
 //!   normal and Jacobian.
-//! - [`OceanState`]: several cascades on disjoint wave-number bands, the time, foam, and the
-//!   world queries [`OceanState::sample`] and [`OceanState::height_at`].
+//! - [`OceanState`]: several cascades on disjoint wave-number bands, the time, the foam (one
+//!   field for the whole ocean with whitecaps calibrated against measurements, residual foam
+//!   drawn into streaks and a breaking intensity: [`OceanState::foam`],
+//!   [`OceanState::breaking`], [`FoamConfig`]), and the world queries [`OceanState::sample`]
+//!   and [`OceanState::height_at`].
 //! - GPU upload into buffers you own: [`Cascade::pack_texels`] and
 //!   [`OceanState::pack_texels`] interleave the buffers into RGBA32F texels of a
 //!   [`TexelLayout`] (RGBA16F with the `half` feature), [`Cascade::write_vertices`] writes a
@@ -187,8 +190,8 @@ pub use gpu::{NormalMapGreen, TexelLayout, Vertex};
 pub use half;
 pub use num_complex::Complex32;
 pub use ocean::{
-    FoamConfig, Interpolation, Location, OceanConfig, OceanSnapshot, OceanState, QueryConfig,
-    SurfaceSample,
+    FoamCalibration, FoamConfig, FoamCoverage, Interpolation, Location, OceanConfig, OceanSnapshot,
+    OceanState, QueryConfig, SurfaceSample,
 };
 pub use presets::SeaState;
 pub use spectrum::{DepthFactor, SlopeVariance, Spectrum, Spreading};

@@ -36,6 +36,8 @@ pub enum SeaState {
     Storm,
     /// A long, narrow swell from a distant storm: JONSWAP from parameters with T_p = 12 s,
     /// α = 0.0025, γ = 5, Hasselmann spreading with Horvath's swell control at 1 (H_s 4.4 m).
+    /// Its whitecaps are those of a light local breeze, `FoamConfig::wind_speed` 4 m/s (the
+    /// swell's own fully developed wind, 16.4 m/s, blows far away).
     Swell,
     /// TMA: U10 = 8 m/s over 15 km in 4 m of water (H_s 0.55 m, T_p 3.1 s). Short, steep,
     /// depth-limited waves.
@@ -122,11 +124,14 @@ impl SeaState {
                 1.0,
             ),
         };
-        let config = OceanConfig {
+        let mut config = OceanConfig {
             lengths,
             choppiness,
             ..OceanConfig::default()
         };
+        if self == SeaState::Swell {
+            config.foam.wind_speed = Some(4.0);
+        }
         Ok((spectrum, config))
     }
 }

@@ -447,9 +447,12 @@ pub(crate) mod finite {
         k_min: "k_min",
         choppiness: "choppiness",
         band_split: "band_split",
-        bias: "foam.bias",
-        injection: "foam.injection",
-        decay: "foam.decay",
+        coverage: "foam.coverage",
+        active_decay: "foam.active_decay",
+        residual_decay: "foam.residual_decay",
+        drift: "foam.drift",
+        streak_length: "foam.streak_length",
+        streak_width: "foam.streak_width",
         tolerance: "query.tolerance",
     }
 
@@ -459,6 +462,13 @@ pub(crate) mod finite {
     ) -> Result<S::Ok, S::Error> {
         value
             .map(|v| check("repeat_period", v))
+            .transpose()?
+            .serialize(s)
+    }
+
+    pub(crate) fn wind_speed<S: Serializer>(value: &Option<f32>, s: S) -> Result<S::Ok, S::Error> {
+        value
+            .map(|v| check("foam.wind_speed", v))
             .transpose()?
             .serialize(s)
     }

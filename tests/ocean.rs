@@ -87,85 +87,6 @@ fn cascades_split_the_band_without_gaps_or_overlap_and_keep_all_the_energy() {
     }
 }
 
-#[test]
-fn foam_is_frame_rate_independent_and_bounded() {
-    let config = OceanConfig {
-        size: 64,
-        choppiness: 1.5,
-        foam: FoamConfig {
-            bias: 0.9,
-            injection: 10.0,
-            decay: 1.5,
-        },
-        ..OceanConfig::default()
-    };
-    let mut once = ocean(config.clone());
-    let mut twice = ocean(config);
-    let dt = 1.0 / 30.0;
-    let mut worst = 0.0f32;
-    let mut coverage = 0.0f32;
-    for _ in 0..120 {
-        once.step(2.0 * dt).unwrap();
-        twice.step(dt).unwrap();
-        twice.step(dt).unwrap();
-        assert!((once.time() - twice.time()).abs() < 1e-9);
-        for c in 0..3 {
-            let a = once.foam(c).unwrap();
-            let b = twice.foam(c).unwrap();
-            for (&x, &y) in a.iter().zip(b) {
-                assert!((0.0..=1.0).contains(&x) && (0.0..=1.0).contains(&y));
-                worst = worst.max((x - y).abs());
-            }
-            coverage += a.iter().sum::<f32>() / a.len() as f32;
-        }
-    }
-    // The two runs differ only in the Jacobian seen halfway through each 2·dt step: the foam
-    // relaxes at rate s + 1/τ ≤ 10·(0.9 − J) + 0.67 ≲ 5 /s, and J changes at the wave
-    // frequency (≈ 1–10 rad/s), so one 1/15 s step can differ by about rate·ΔJ·dt ≲ 0.1 at
-    // the sharpest crests of the smallest cascade; the mean over a field is far smaller.
-    println!(
-        "foam: largest difference {worst}, mean coverage {}",
-        coverage / 360.0
-    );
-    assert!(worst < 0.1, "largest foam difference {worst}");
-    assert!(coverage > 0.0, "the test needs foam to compare");
-    assert_eq!(
-        once.foam(3),
-        Err(Error::IndexOutOfRange {
-            name: "index",
-            index: 3,
-            len: 3
-        })
-    );
-}
-
-#[test]
-fn foam_follows_the_exact_solution_of_its_equation() {
-    // With choppiness 0 the Jacobian is exactly 1 everywhere, so with bias 1.5 the injection
-    // rate is s = injection·0.5 at every point, and f(t) = f*(1 − e^{−(s + 1/τ)t}) from 0.
-    let foam = FoamConfig {
-        bias: 1.5,
-        injection: 2.0,
-        decay: 4.0,
-    };
-    let config = OceanConfig {
-        size: 16,
-        choppiness: 0.0,
-        foam,
-        ..OceanConfig::default()
-    };
-    let mut state = ocean(config);
-    for _ in 0..7 {
-        state.step(0.1).unwrap();
-    }
-    let s = 2.0 * 0.5f64;
-    let rate = s + 1.0 / 4.0;
-    let expected = s / rate * (1.0 - (-rate * 0.7f64).exp());
-    for &f in state.foam(0).unwrap() {
-        assert!((f64::from(f) - expected).abs() < 1e-5, "{f} vs {expected}");
-    }
-}
-
 /// Bilinear sample of one cascade at world (x, z), written out independently of the crate:
 /// wrap by subtracting whole periods, then interpolate the four neighbours.
 fn reference_height(cascade: &Cascade, x: f64, z: f64) -> f64 {
@@ -460,9 +381,8 @@ fn parallel_and_sequential_cascade_updates_agree_bit_for_bit() {
         assert_eq!(bits(ca.height()), bits(cb.height()));
         assert_eq!(bits(ca.jacobian()), bits(cb.jacobian()));
     }
-    for c in 0..3 {
-        assert_eq!(a.foam(c), b.foam(c));
-    }
+    assert_eq!(a.foam(), b.foam());
+    assert_eq!(a.breaking(), b.breaking());
 }
 
 #[test]
@@ -478,7 +398,7 @@ fn set_time_reaches_the_same_waves_as_stepping() {
         stepped.cascades()[1].height(),
         jumped.cascades()[1].height()
     );
-    assert!(jumped.foam(0).unwrap().iter().all(|&f| f == 0.0));
+    assert!(jumped.foam().iter().all(|&f| f == 0.0));
 }
 
 #[test]
@@ -542,14 +462,14 @@ fn bad_input_is_an_error_and_leaves_the_state_alone() {
         },
         OceanConfig {
             foam: FoamConfig {
-                decay: 0.0,
+                active_decay: 0.0,
                 ..FoamConfig::default()
             },
             ..small_config()
         },
         OceanConfig {
             foam: FoamConfig {
-                bias: f32::INFINITY,
+                coverage: f32::INFINITY,
                 ..FoamConfig::default()
             },
             ..small_config()
@@ -572,21 +492,36 @@ fn bad_input_is_an_error_and_leaves_the_state_alone() {
         },
         OceanConfig {
             foam: FoamConfig {
-                bias: 11.0,
+                coverage: 101.0,
                 ..FoamConfig::default()
             },
             ..small_config()
         },
         OceanConfig {
             foam: FoamConfig {
-                injection: 2e4,
+                drift: 1.5,
                 ..FoamConfig::default()
             },
             ..small_config()
         },
         OceanConfig {
             foam: FoamConfig {
-                decay: 2e6,
+                residual_decay: 2e6,
+                ..FoamConfig::default()
+            },
+            ..small_config()
+        },
+        OceanConfig {
+            foam: FoamConfig {
+                streak_width: 0.6,
+                streak_length: 0.5,
+                ..FoamConfig::default()
+            },
+            ..small_config()
+        },
+        OceanConfig {
+            foam: FoamConfig {
+                wind_speed: Some(-1.0),
                 ..FoamConfig::default()
             },
             ..small_config()
@@ -678,12 +613,12 @@ fn outputs_stay_finite_in_a_folding_storm() {
     }
     let folded = state.cascades()[0].jacobian().iter().any(|&j| j < 0.0);
     assert!(folded, "choppiness 8 should fold the storm's surface");
-    for (index, c) in state.cascades().iter().enumerate() {
+    for c in state.cascades() {
         assert!(c.height().iter().all(|v| v.is_finite()));
         assert!(c.slope().iter().flatten().all(|v| v.is_finite()));
         assert!(c.normal().iter().flatten().all(|v| v.is_finite()));
-        assert!(state.foam(index).unwrap().iter().all(|v| v.is_finite()));
     }
+    assert!(state.foam().iter().all(|v| (0.0..=1.0).contains(v)));
     let y = state.height_at(100.0, 100.0).unwrap();
     assert!(y.is_finite());
 }

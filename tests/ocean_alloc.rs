@@ -68,12 +68,18 @@ fn stepping_and_querying_allocate_nothing() {
                 ocean.heights_at(&points, &mut heights).unwrap();
                 let _ = ocean.sample(3.0, 4.0).unwrap();
                 let _ = ocean.locate(3.0, 4.0).unwrap();
+                let _ = ocean.breaking_at(3.0, 4.0).unwrap();
+                let _ = ocean.foam_coverage();
                 // A networked game: follow a given clock, keep snapshots, roll back.
                 let t = ocean.time();
                 ocean.step_to(t + 0.01).unwrap();
                 ocean.snapshot_into(&mut snapshot);
                 if frame % 50 == 49 {
                     ocean.restore(&snapshot).unwrap();
+                }
+                // A bake or a joining client: spin the foam up from nothing.
+                if frame % 100 == 99 {
+                    ocean.pre_roll(0.5, 0.1).unwrap();
                 }
             }
             (before, ALLOCATIONS.load(Ordering::SeqCst))

@@ -15,13 +15,23 @@ fn ocean(size: usize, choppiness: f32) -> OceanState {
     OceanState::new(spectrum, config).unwrap()
 }
 
-/// Every buffer of every cascade, the foam and the time, bit for bit.
+/// Every buffer of every cascade, the foam buffers, the coverage and the time, bit for bit.
 fn bits(ocean: &OceanState) -> Vec<u32> {
     let mut out = vec![
         (ocean.time().to_bits() >> 32) as u32,
         ocean.time().to_bits() as u32,
     ];
-    for (index, cascade) in ocean.cascades().iter().enumerate() {
+    for buffer in [
+        ocean.foam(),
+        ocean.active_foam(),
+        ocean.residual_foam(),
+        ocean.breaking(),
+    ] {
+        out.extend(buffer.iter().map(|v| v.to_bits()));
+    }
+    let c = ocean.foam_coverage();
+    out.extend([c.active, c.residual, c.total].map(f32::to_bits));
+    for cascade in ocean.cascades() {
         out.extend(cascade.height().iter().map(|v| v.to_bits()));
         out.extend(cascade.jacobian().iter().map(|v| v.to_bits()));
         out.extend(
@@ -33,15 +43,12 @@ fn bits(ocean: &OceanState) -> Vec<u32> {
         );
         out.extend(cascade.slope().as_flattened().iter().map(|v| v.to_bits()));
         out.extend(cascade.normal().as_flattened().iter().map(|v| v.to_bits()));
-        out.extend(ocean.foam(index).unwrap().iter().map(|v| v.to_bits()));
     }
     out
 }
 
 fn foam_total(ocean: &OceanState) -> f64 {
-    (0..ocean.cascades().len())
-        .flat_map(|i| ocean.foam(i).unwrap().iter().map(|&f| f64::from(f)))
-        .sum()
+    ocean.foam().iter().map(|&f| f64::from(f)).sum()
 }
 
 #[test]
@@ -64,17 +71,10 @@ fn step_to_follows_a_given_clock_with_the_foam() {
         assert_eq!(a.height(), b.height());
         assert_eq!(a.jacobian(), b.jacobian());
     }
-    for i in 0..3 {
-        for (a, b) in client
-            .foam(i)
-            .unwrap()
-            .iter()
-            .zip(reference.foam(i).unwrap())
-        {
-            // Each interval t_k − t_(k−1) differs from dt by at most an ulp of t (4e-15 s
-            // here); over 240 frames the foam differs by far less than 1e-6.
-            assert!((a - b).abs() < 1e-6, "{a} vs {b}");
-        }
+    for (a, b) in client.foam().iter().zip(reference.foam()) {
+        // Each interval t_k − t_(k−1) differs from dt by at most an ulp of t (4e-15 s
+        // here); over 240 frames the foam differs by far less than 1e-6.
+        assert!((a - b).abs() < 1e-6, "{a} vs {b}");
     }
 }
 
@@ -109,13 +109,11 @@ fn set_time_keeps_the_foam_and_clear_foam_removes_it() {
     for _ in 0..60 {
         ocean.step(1.0 / 30.0).unwrap();
     }
-    let foam: Vec<Vec<f32>> = (0..3).map(|i| ocean.foam(i).unwrap().to_vec()).collect();
+    let foam = ocean.foam().to_vec();
     assert!(foam_total(&ocean) > 1.0);
     ocean.set_time(-500.0).unwrap();
     assert_eq!(ocean.time(), -500.0);
-    for (i, kept) in foam.iter().enumerate() {
-        assert_eq!(ocean.foam(i).unwrap(), kept.as_slice());
-    }
+    assert_eq!(ocean.foam(), foam.as_slice());
     // The cascades are those of t = −500 s.
     let mut fresh = ocean.clone();
     fresh.set_time(-500.0).unwrap();
@@ -174,9 +172,9 @@ fn a_snapshot_of_other_grids_is_refused_and_changes_nothing() {
     assert_eq!(
         ocean.restore(&small),
         Err(Error::LengthMismatch {
-            name: "snapshot.foam",
-            expected: 3 * 32 * 32,
-            got: 3 * 16 * 16
+            name: "snapshot.active",
+            expected: 32 * 32,
+            got: 16 * 16
         })
     );
     assert_eq!(bits(&ocean), before);

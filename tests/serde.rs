@@ -417,9 +417,13 @@ fn an_infinite_band_limit_is_saved_as_null() {
         repeat_period: Some(30.0),
         parallel_cascades: false,
         foam: FoamConfig {
-            bias: 0.5,
-            injection: 3.0,
-            decay: 1.0,
+            coverage: 0.5,
+            wind_speed: Some(12.5),
+            active_decay: 1.0,
+            residual_decay: 30.0,
+            drift: 0.02,
+            streak_length: 0.75,
+            streak_width: 0.25,
         },
         band_split: 0.375,
         query: QueryConfig {
@@ -592,16 +596,18 @@ fn a_saved_snapshot_restores_and_a_tampered_one_is_refused() {
     assert_eq!(ocean.cascades()[0].height(), heights.as_slice());
 
     // A file edited by hand: foam outside [0, 1], a time past the limit.
-    let mut value: Value = serde_json::from_str(&text).unwrap();
-    value["foam"][5] = json!(2.0);
-    let bad: ocean_fft::OceanSnapshot = serde_json::from_value(value).unwrap();
-    assert!(matches!(
-        ocean.restore(&bad),
-        Err(ocean_fft::Error::OutOfRange {
-            name: "snapshot.foam",
-            ..
-        })
-    ));
+    for (field, name) in [
+        ("active", "snapshot.active"),
+        ("residual", "snapshot.residual"),
+    ] {
+        let mut value: Value = serde_json::from_str(&text).unwrap();
+        value[field][5] = json!(2.0);
+        let bad: ocean_fft::OceanSnapshot = serde_json::from_value(value).unwrap();
+        assert!(matches!(
+            ocean.restore(&bad),
+            Err(ocean_fft::Error::OutOfRange { name: n, .. }) if n == name
+        ));
+    }
     let mut value: Value = serde_json::from_str(&text).unwrap();
     value["time"] = json!(1e12);
     let bad: ocean_fft::OceanSnapshot = serde_json::from_value(value).unwrap();

@@ -70,7 +70,7 @@ const EDGES_F32: [f32; 19] = [
 ];
 
 /// The crate's own limits (and a few physical scales), for values a few ulps either side.
-const LIMITS_F32: [f32; 18] = [
+const LIMITS_F32: [f32; 19] = [
     CascadeConfig::MIN_LENGTH,
     CascadeConfig::MAX_LENGTH,
     CascadeConfig::MIN_REPEAT_PERIOD,
@@ -79,9 +79,9 @@ const LIMITS_F32: [f32; 18] = [
     Spectrum::FULLY_DEVELOPED_FETCH,
     Spectrum::DEFAULT_GAMMA,
     Spreading::MAX_EXPONENT,
-    FoamConfig::MAX_BIAS,
-    -FoamConfig::MAX_BIAS,
-    FoamConfig::MAX_INJECTION,
+    FoamConfig::MAX_COVERAGE,
+    FoamConfig::MAX_STREAK,
+    FoamConfig::MAX_STREAK,
     FoamConfig::MIN_DECAY,
     FoamConfig::MAX_DECAY,
     OceanConfig::DEFAULT_BAND_SPLIT,
@@ -89,6 +89,7 @@ const LIMITS_F32: [f32; 18] = [
     -std::f32::consts::PI,
     1.0,
     0.0,
+    FoamConfig::MAX_DRIFT,
 ];
 
 /// `value` moved by `ulps` units in the last place (through zero and to ±∞ as the bits go;
@@ -298,11 +299,19 @@ fn cascade_bits(cascade: &Cascade) -> Vec<u64> {
 
 fn ocean_bits(ocean: &OceanState) -> Vec<u64> {
     let mut bits = vec![ocean.time().to_bits()];
-    for (index, cascade) in ocean.cascades().iter().enumerate() {
+    for cascade in ocean.cascades() {
         bits.extend(cascade_bits(cascade));
-        let foam = ocean.foam(index).expect("every cascade has foam");
-        bits.extend(foam.iter().map(|x| x.to_bits() as u64));
     }
+    for buffer in [
+        ocean.foam(),
+        ocean.active_foam(),
+        ocean.residual_foam(),
+        ocean.breaking(),
+    ] {
+        bits.extend(buffer.iter().map(|x| x.to_bits() as u64));
+    }
+    let c = ocean.foam_coverage();
+    bits.extend([c.active, c.residual, c.total].map(|x| x.to_bits() as u64));
     bits
 }
 
@@ -315,15 +324,18 @@ fn cascade_finite(cascade: &Cascade) -> bool {
 }
 
 fn ocean_finite(ocean: &OceanState) -> bool {
+    let unit = |v: &f32| (0.0..=1.0).contains(v);
+    let c = ocean.foam_coverage();
     let subgrid = ocean.subgrid_slope_variance();
     ocean.cascades().iter().all(cascade_finite)
         && ocean.mean_level_offset().is_finite()
         && subgrid.along.is_finite()
         && subgrid.across.is_finite()
-        && (0..ocean.cascades().len()).all(|i| {
-            let foam = ocean.foam(i).expect("every cascade has foam");
-            foam.iter().all(|f| (0.0..=1.0).contains(f))
-        })
+        && [ocean.foam(), ocean.active_foam(), ocean.residual_foam()]
+            .iter()
+            .all(|buffer| buffer.iter().all(unit))
+        && ocean.breaking().iter().all(|s| s.is_finite() && *s >= 0.0)
+        && [c.active, c.residual, c.total].iter().all(unit)
 }
 
 // ----------------------------------------------------------------------------------------
@@ -710,15 +722,33 @@ proptest! {
 
 fn any_foam() -> impl Strategy<Value = FoamConfig> {
     (
-        mostly(-1f32..2.0, any_f32()),
-        mostly(0f32..100.0, any_f32()),
+        mostly(0f32..20.0, any_f32()),
+        mostly(Just(None), any_f32().prop_map(Some)),
         mostly(0.01f32..100.0, any_f32()),
+        mostly(0.01f32..100.0, any_f32()),
+        mostly(0f32..0.2, any_f32()),
+        mostly(0f32..2.0, any_f32()),
+        mostly(0f32..0.5, any_f32()),
     )
-        .prop_map(|(bias, injection, decay)| FoamConfig {
-            bias,
-            injection,
-            decay,
-        })
+        .prop_map(
+            |(
+                coverage,
+                wind_speed,
+                active_decay,
+                residual_decay,
+                drift,
+                streak_length,
+                streak_width,
+            )| FoamConfig {
+                coverage,
+                wind_speed,
+                active_decay,
+                residual_decay,
+                drift,
+                streak_length,
+                streak_width,
+            },
+        )
 }
 
 fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
@@ -807,7 +837,8 @@ enum OceanOp {
     Locate(f64, f64),
     Batch(Vec<[f64; 2]>, usize),
     Grid([f64; 2], f64, [usize; 2], usize),
-    Foam(usize),
+    BreakingAt(f64, f64),
+    PreRoll(f64, f64),
     StepTo(f64),
     ClearFoam,
     Snapshot,
@@ -838,7 +869,15 @@ fn any_ocean_op() -> impl Strategy<Value = OceanOp> {
         1 => Just(OceanOp::Restore),
         1 => (prop::collection::vec((any_f64(), any_f64()).prop_map(|(x, z)| [x, z]), 0..80), 0usize..3)
             .prop_map(|(points, extra)| OceanOp::Batch(points, extra)),
-        1 => any_index().prop_map(OceanOp::Foam),
+        1 => (any_f64(), any_f64()).prop_map(|(x, z)| OceanOp::BreakingAt(x, z)),
+        1 => (
+            prop_oneof![3 => 0f64..1.0, 1 => prop::sample::select(vec![-1.0, f64::NAN, f64::INFINITY, 1e300, 0.0])],
+            prop_oneof![
+                3 => 0.05f64..0.5,
+                1 => prop::sample::select(vec![0.0, -0.1, 1e-300, f64::NAN, f64::INFINITY, OceanState::MAX_STEP, OceanState::MAX_STEP * (1.0 + 1e-15)]),
+            ],
+        )
+            .prop_map(|(seconds, dt)| OceanOp::PreRoll(seconds, dt)),
     ]
 }
 
@@ -897,8 +936,8 @@ fn query(ocean: &OceanState, op: &OceanOp) -> Result<(), Error> {
             assert_eq!(b.is_ok(), c.is_ok());
             a
         }
-        OceanOp::Foam(index) => ocean.foam(index).map(|foam| {
-            assert!(foam.iter().all(|f| (0.0..=1.0).contains(f)));
+        OceanOp::BreakingAt(x, z) => ocean.breaking_at(x, z).map(|s| {
+            assert!(s.is_finite() && s >= 0.0, "{s}");
         }),
         _ => unreachable!("not a query"),
     }
@@ -939,12 +978,17 @@ proptest! {
                     | OceanOp::StepTo(_)
                     | OceanOp::ClearFoam
                     | OceanOp::Restore
+                    | OceanOp::PreRoll(..)
             );
             let result = match *op {
                 OceanOp::Step(dt) => ocean.step(dt),
                 OceanOp::SetTime(t) => ocean.set_time(t),
                 OceanOp::SetChoppiness(lambda) => ocean.set_choppiness(lambda),
                 OceanOp::StepTo(offset) => ocean.step_to(ocean.time() + offset),
+                OceanOp::PreRoll(seconds, dt) => {
+                    let time = ocean.time();
+                    ocean.pre_roll(seconds, dt).map(|()| assert_eq!(ocean.time(), time))
+                }
                 OceanOp::ClearFoam => {
                     ocean.clear_foam();
                     Ok(())
@@ -1017,22 +1061,41 @@ proptest! {
         }
     }
 
-    /// Any foam setting the checks accept keeps the foam in [0, 1] and every query finite on
-    /// a folding sea, whatever the steps (including zero-length and the longest ones).
+    /// Any foam setting the checks accept keeps the foam in [0, 1], the breaking intensity in
+    /// finite and nonnegative and every query finite on a folding sea, whatever the steps (including
+    /// zero-length and the longest ones); a refused setting is refused by `OceanState::new`
+    /// with the error of `validate`.
     #[test]
     fn accepted_foam_settings_stay_finite(
-        bias in near(-1.0..2.0, &[FoamConfig::MAX_BIAS, -FoamConfig::MAX_BIAS, 0.0]),
-        injection in near(0.0..100.0, &[FoamConfig::MAX_INJECTION, 0.0]),
-        decay in near(0.01..100.0, &[FoamConfig::MIN_DECAY, FoamConfig::MAX_DECAY, 0.0]),
+        coverage in near(0.0..20.0, &[FoamConfig::MAX_COVERAGE, 0.0]),
+        wind in prop_oneof![
+            1 => Just(None),
+            2 => near(0.0..40.0, &[Spectrum::MAX_WIND_SPEED, 0.0]).prop_map(Some),
+        ],
+        active_decay in near(0.01..100.0, &[FoamConfig::MIN_DECAY, FoamConfig::MAX_DECAY, 0.0]),
+        residual_decay in near(0.01..100.0, &[FoamConfig::MIN_DECAY, FoamConfig::MAX_DECAY]),
+        drift in near(0.0..0.2, &[FoamConfig::MAX_DRIFT, 0.0]),
+        (streak_length, cross_fraction) in (
+            near(0.0..2.0, &[FoamConfig::MAX_STREAK, 0.0]),
+            prop_oneof![3 => 0f32..=1.0, 1 => prop::sample::select(vec![0.0f32, 1.0, 1.0000001, -0.0, f32::NAN])],
+        ),
         steps in prop::collection::vec(
             prop::sample::select(vec![0.0, 1e-300, 1.0 / 60.0, 0.5, 60.0, OceanState::MAX_STEP]),
             1..6,
         ),
     ) {
-        let foam = FoamConfig { bias, injection, decay };
+        let foam = FoamConfig {
+            coverage,
+            wind_speed: wind,
+            active_decay,
+            residual_decay,
+            drift,
+            streak_length,
+            streak_width: streak_length * cross_fraction,
+        };
         let (spectrum, mut config) = SeaState::Storm.build();
         config.size = 8;
-        config.lengths = vec![300.0];
+        config.lengths = vec![300.0, 60.0];
         config.choppiness = 3.0;
         config.foam = foam;
         let accepted = foam.validate();
@@ -1045,14 +1108,21 @@ proptest! {
             Ok(ocean) => ocean,
         };
         prop_assert!(accepted.is_ok());
+        let calibration = ocean.foam_calibration();
+        prop_assert!(!calibration.threshold.is_nan() && calibration.threshold < 1.5);
+        prop_assert!((0.0..=0.5).contains(&calibration.target));
         for dt in steps {
             ocean.step(dt).unwrap();
             prop_assert!(ocean_finite(&ocean), "foam {:?} after a step of {} s", foam, dt);
             for (x, z) in [(0.0, 0.0), (17.3, -120.9), (1e6, 3.5)] {
                 prop_assert!(finite_sample(&ocean.sample(x, z).unwrap()));
                 prop_assert!(finite_sample(&ocean.surface_at(x, z).unwrap()));
+                let s = ocean.breaking_at(x, z).unwrap();
+                prop_assert!(s.is_finite() && s >= 0.0);
             }
         }
+        ocean.pre_roll(1.0, 0.25).unwrap();
+        prop_assert!(ocean_finite(&ocean));
     }
 }
 

@@ -103,7 +103,7 @@ pub struct SeaArgs {
     #[arg(
         long,
         value_name = "EPS",
-        default_value_t = 1e-4,
+        default_value_t = 1e-3,
         help_heading = "Foam pre-roll"
     )]
     pub foam_tolerance: f64,

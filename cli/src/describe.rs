@@ -31,17 +31,20 @@ fn preroll_text(sea: &Sea) -> String {
     let p = sea.preroll;
     match sea.looping {
         None => format!(
-            "frame f's foam starts from zero at frame a − {} (a = f − f mod {}, its anchor) and is \
-             stepped with step_to to every frame time i/fps up to f; W = τ·ln(1/ε) = {:.3} s, so it \
-             is within ε = {} of an ocean simulated forever, and jumps by at most 2ε at anchors",
-            p.frames, p.anchor_every, p.window, p.tolerance
+            "frame f's foam is pre-rolled (OceanState::pre_roll) from zero over the {} frames \
+             before a = f − f mod {} (its anchor) in steps of {:.4} s, then stepped with step_to \
+             to every frame time i/fps up to f; W = (τ_A + τ_R)·ln(1/ε) = {:.3} s, so it is \
+             within about ε = {} of an ocean simulated forever, and jumps by at most about 2ε at \
+             anchors",
+            p.frames, p.anchor_every, p.step, p.window, p.tolerance
         ),
         Some(l) => format!(
             "the foam starts from zero at phase 0; whole loops of {} frames (steps to i/fps, i = \
              1..={}, then back to t = 0 with the foam kept) are simulated until one changes no \
-             foam value by more than ε = {} (at most {} loops); phase p is then stepped from \
-             that steady state",
-            l.frames, l.frames, p.tolerance, p.max_loops
+             foam value by more than ε·(1 − q) = {:.3e} (ε = {}, q = e^(−T/τ_R) the contraction \
+             of one loop; at most {} loops), which leaves the foam within ε of the loop's \
+             periodic steady state; phase p is then stepped from that steady state",
+            l.frames, l.frames, p.loop_change, p.tolerance, p.max_loops
         ),
     }
 }
@@ -109,7 +112,7 @@ pub fn sidecar(sea: &Sea, format: Format, ocean: &OceanState, scales: &[PngScale
             "frames": l.frames,
             "max_relative_frequency_error": error.map(|e| e.max_relative),
             "mean_relative_frequency_error": error.map(|e| e.mean_relative),
-            "foam_seam_bound": (-f64::from(l.period) / f64::from(sea.config.foam.decay)).exp() * sea.preroll.tolerance,
+            "foam_seam_bound": (-f64::from(l.period) / crate::sim::slowest_decay(sea)).exp() * sea.preroll.tolerance,
         })
     });
     let channels = match format {
@@ -146,7 +149,9 @@ pub fn sidecar(sea: &Sea, format: Format, ocean: &OceanState, scales: &[PngScale
         "loop": looping,
         "foam_preroll": {
             "tolerance": sea.preroll.tolerance,
-            "decay_s": sea.config.foam.decay,
+            "active_decay_s": sea.config.foam.active_decay,
+            "residual_decay_s": sea.config.foam.residual_decay,
+            "step_s": sea.preroll.step,
             "window_s": sea.preroll.window,
             "preroll_frames": sea.preroll.frames,
             "anchor_every_frames": if sea.looping.is_some() { None } else { Some(sea.preroll.anchor_every) },
@@ -227,8 +232,15 @@ pub fn info(sea: &Sea, ocean: &OceanState, convergence: Option<LoopConvergence>)
     );
     let _ = writeln!(
         s,
-        "  choppiness {}, seed {}, foam: bias {}, injection {} 1/s, decay τ = {} s",
-        config.choppiness, config.seed, config.foam.bias, config.foam.injection, config.foam.decay
+        "  choppiness {}, seed {}, foam: coverage ×{}, active decay τ_A = {} s, residual decay τ_R = {} s",
+        config.choppiness, config.seed, config.foam.coverage, config.foam.active_decay, config.foam.residual_decay
+    );
+    let calibration = ocean.foam_calibration();
+    let _ = writeln!(
+        s,
+        "  whitecaps: {:.2} % of the surface at U10 = {} m/s (Monahan & O'Muircheartaigh 1980)",
+        100.0 * calibration.target,
+        calibration.wind_speed
     );
     let bands = config.bands().unwrap_or_default();
     let _ = writeln!(
@@ -277,8 +289,8 @@ pub fn info(sea: &Sea, ocean: &OceanState, convergence: Option<LoopConvergence>)
             }
             let _ = writeln!(
                 s,
-                "  foam: whole loops pre-rolled until one changes the foam by ≤ {} (at most {} loops)",
-                sea.preroll.tolerance, sea.preroll.max_loops
+                "  foam: whole loops pre-rolled until one changes the foam by ≤ {:.3e} (within ε = {} of the steady state; at most {} loops)",
+                sea.preroll.loop_change, sea.preroll.tolerance, sea.preroll.max_loops
             );
             if let Some(c) = convergence {
                 let _ = writeln!(
@@ -291,8 +303,8 @@ pub fn info(sea: &Sea, ocean: &OceanState, convergence: Option<LoopConvergence>)
         None => {
             let _ = writeln!(
                 s,
-                "foam pre-roll: {} frames ({:.2} s = τ·ln(1/{})) before each anchor, anchors every {} frames",
-                sea.preroll.frames, sea.preroll.window, sea.preroll.tolerance, sea.preroll.anchor_every
+                "foam pre-roll: {} frames ({:.2} s = (τ_A + τ_R)·ln(1/{}), in steps of {:.4} s) before each anchor, anchors every {} frames",
+                sea.preroll.frames, sea.preroll.window, sea.preroll.tolerance, sea.preroll.step, sea.preroll.anchor_every
             );
         }
     }

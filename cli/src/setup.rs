@@ -33,15 +33,23 @@ pub struct Looping {
 pub struct Preroll {
     /// ε: the largest difference from the foam of an ocean simulated forever.
     pub tolerance: f64,
-    /// W = τ·ln(1/ε) in seconds: after W of simulation from any foam, the foam is within ε
-    /// of any other history's (0 when no foam is injected).
+    /// W = (τ_A + τ_R)·ln(1/ε) in seconds, a whole number of frames: after W of simulation
+    /// from any foam, the foam is within ε of any other history's (0 when no foam forms).
     pub window: f64,
-    /// P = ⌈W·fps⌉: pre-roll frames before an anchor.
+    /// P = ⌈(τ_A + τ_R)·ln(1/ε)·fps⌉: the pre-roll in frames before an anchor.
     pub frames: u32,
+    /// The step of the pre-roll in seconds: whole frames, as many as fit in 0.1 s (at least
+    /// one).
+    pub step: f64,
     /// Anchors every this many frames (not for loops).
     pub anchor_every: u32,
-    /// For loops: the most whole loops pre-rolled (enough for the decay alone to reach ε,
-    /// plus two).
+    /// For loops: the pre-roll stops once a whole loop changes no foam value by more than
+    /// this, ε·(1 − q) with q = e^{−T/τ_R} the contraction of one loop, so that the foam is
+    /// within ε of the loop's periodic steady state (a geometric series of changes ≤ q·ε/(1 − q)
+    /// is left).
+    pub loop_change: f64,
+    /// For loops: the most whole loops pre-rolled (twice what the contraction alone needs to
+    /// bring a change of 1 below `loop_change`, plus two).
     pub max_loops: u32,
 }
 
@@ -257,21 +265,33 @@ pub fn build(args: &SeaArgs) -> Result<Sea, CliError> {
         .validate()
         .map_err(|e| CliError::config(format!("the sea's configuration: {e}")))?;
 
-    let tau = f64::from(config.foam.decay);
-    let window = if config.foam.injection > 0.0 {
-        tau * (1.0 / tolerance).ln()
+    // The foam's memory: a difference in active foam decays at least as e^{−t/τ_A}, one in
+    // residual foam as e^{−t/τ_R} plus what the active difference still feeds it, which
+    // (τ_A + τ_R)·ln(1/ε) covers for the default decays (docs: guide, "Render farms").
+    let tau = f64::from(config.foam.active_decay) + f64::from(config.foam.residual_decay);
+    let frames = if config.foam.coverage > 0.0 {
+        (tau * (1.0 / tolerance).ln() * fps).ceil()
     } else {
         0.0
     };
-    let max_loops = match looping {
-        Some(l) => 2 + (window / f64::from(l.period)).ceil() as u32,
-        None => 0,
+    let window = frames / fps;
+    let (loop_change, max_loops) = match looping {
+        Some(l) => {
+            let slowest = f64::from(config.foam.active_decay.max(config.foam.residual_decay));
+            let q = (-f64::from(l.period) / slowest).exp();
+            let change = tolerance * (1.0 - q);
+            let needed = (change.ln() / q.ln()).ceil().min(1e6) as u32;
+            (change, 2 + 2 * needed)
+        }
+        None => (tolerance, 0),
     };
     let preroll = Preroll {
         tolerance,
         window,
-        frames: (window * fps).ceil() as u32,
+        frames: frames as u32,
+        step: (0.1 * fps).floor().max(1.0) / fps,
         anchor_every: args.anchor_every,
+        loop_change,
         max_loops,
     };
     Ok(Sea {

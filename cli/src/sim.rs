@@ -5,19 +5,22 @@
 //!
 //! - **No loop.** Frames are grouped in blocks of K = `--anchor-every` frames; block b
 //!   starts at its anchor frame a = b·K. The foam of any frame f in the block is that of an
-//!   ocean started with no foam at frame a − P (P = ⌈W·fps⌉, W = τ·ln(1/ε)) and advanced
-//!   with `step_to` to every frame time i/fps, i = a − P + 1, …, f. Two solutions of the
-//!   foam equation with the same surface differ by at most e^{−Δt/τ} times their initial
-//!   difference (the exact step contracts by e^{−(s + 1/τ)dt} ≤ e^{−dt/τ}, and the clamp to
-//!   [0, 1] does not widen it), so after W seconds the foam is within ε of that of any
-//!   longer history, in particular of an ocean simulated forever. Across an anchor the foam
-//!   jumps by at most 2ε.
+//!   ocean pre-rolled (`OceanState::pre_roll`) over the P frames before a
+//!   (P = ⌈W·fps⌉, W = (τ_A + τ_R)·ln(1/ε)) in steps of whole frames up to 0.1 s, then
+//!   advanced with `step_to` to every frame time i/fps, i = a + 1, …, f. Two solutions of
+//!   the foam equations with the same surface forget their difference: the active foam's
+//!   at least as e^{−t/τ_A}, the residual foam's as e^{−t/τ_R} plus what the active
+//!   difference feeds it (the clamp to [0, 1] and the transport do not widen it), so after
+//!   W seconds the foam is within about ε of that of any longer history, in particular of
+//!   an ocean simulated forever. Across an anchor the foam jumps by at most about 2ε.
 //! - **Loop of F frames.** Frame f shows phase p = f mod F at time p/fps. The foam starts
 //!   at zero at phase 0 and whole loops are simulated (steps to i/fps, i = 1..=F, then back
-//!   to t = 0 with the foam kept) until one loop changes no foam value by more than ε (or
-//!   after [`Preroll::max_loops`](crate::setup::Preroll::max_loops)). One loop contracts the
-//!   foam by q = e^{−T/τ}, so the foam of phase 0 then meets the end of the loop within
-//!   q·ε: frame F (= frame 0) follows frame F − 1 as continuously as any two frames.
+//!   to t = 0 with the foam kept) until one loop changes no foam value by more than
+//!   ε·(1 − q) (or after [`Preroll::max_loops`](crate::setup::Preroll::max_loops)), where
+//!   q = e^{−T/τ_R} (τ_R the slower decay) is about how much one loop contracts a difference
+//!   of foam. The changes of later loops then sum to at most q·ε: the foam of phase 0 is
+//!   within ε of the loop's periodic steady state, and it meets the end of the loop within
+//!   q·ε(1 − q) — frame F (= frame 0) follows frame F − 1 as continuously as any two frames.
 
 use ocean_fft::{OceanSnapshot, OceanState, TexelLayout};
 
@@ -52,13 +55,14 @@ impl Texels {
 }
 
 /// The foam of cascade `cascade` on its grid, into `out` (N² long). **The one place the
-/// tool reads foam**: when the library's foam becomes one ocean-wide field, only this
-/// function changes (to resample or pack that field onto the cascade's texels).
+/// tool reads foam**: the ocean's one foam field lives on cascade 0's grid, so cascade 0's
+/// texels carry it and the others' are 0, as the library's packed layouts do.
 pub fn foam_texels(ocean: &OceanState, cascade: usize, out: &mut [f32]) -> Result<(), CliError> {
-    let foam = ocean
-        .foam(cascade)
-        .map_err(|e| CliError::new(crate::error::Kind::Internal, e.to_string()))?;
-    out.copy_from_slice(foam);
+    if cascade == 0 {
+        out.copy_from_slice(ocean.foam());
+    } else {
+        out.fill(0.0);
+    }
     Ok(())
 }
 
@@ -173,12 +177,17 @@ impl<'a> Simulator<'a> {
                         frame: f,
                     } if a == anchor && f <= frame => f,
                     _ => {
-                        let start = anchor - i64::from(self.sea.preroll.frames);
+                        let preroll = self.sea.preroll;
                         self.ocean
-                            .set_time(self.sea.time(start))
+                            .set_time(self.sea.time(anchor))
                             .map_err(internal)?;
-                        self.ocean.clear_foam();
-                        start
+                        let start = self.sea.time(anchor - i64::from(preroll.frames));
+                        let seconds = self.ocean.time() - start;
+                        self.ocean
+                            .pre_roll(seconds, preroll.step)
+                            .map_err(internal)?;
+                        self.steps += (seconds / preroll.step).ceil() as u64;
+                        anchor
                     }
                 };
                 for i in from + 1..=frame {
@@ -227,8 +236,8 @@ impl<'a> Simulator<'a> {
         let mut after = before.clone();
         let mut loops = 0;
         let mut change = f64::INFINITY;
-        let needed = self.sea.config.foam.injection > 0.0;
-        while needed && loops < preroll.max_loops && change > preroll.tolerance {
+        let needed = self.sea.config.foam.coverage > 0.0;
+        while needed && loops < preroll.max_loops && change > preroll.loop_change {
             for i in 1..=i64::from(looping.frames) {
                 self.step_to_frame(i)?;
             }
@@ -247,7 +256,7 @@ impl<'a> Simulator<'a> {
         if !needed {
             change = 0.0;
         }
-        let q = (-f64::from(looping.period) / f64::from(self.sea.config.foam.decay)).exp();
+        let q = (-f64::from(looping.period) / slowest_decay(self.sea)).exp();
         self.convergence = Some(LoopConvergence {
             loops,
             last_change: change,
@@ -256,4 +265,10 @@ impl<'a> Simulator<'a> {
         self.steady = Some(self.ocean.snapshot());
         Ok(())
     }
+}
+
+/// The slower of the foam's two decay times in seconds: what bounds how fast a loop forgets.
+pub fn slowest_decay(sea: &Sea) -> f64 {
+    let foam = &sea.config.foam;
+    f64::from(foam.active_decay.max(foam.residual_decay))
 }

@@ -100,7 +100,7 @@ fn two_processes_write_what_one_writes_foam_included() {
         );
     }
     // The test is about foam: make sure there is some in the frames compared.
-    let foam = read_exr(&whole.join("storm_c2_0009.exr"));
+    let foam = read_exr(&whole.join("storm_c0_0009.exr"));
     assert!(foam["A"].iter().any(|&f| f > 0.05), "no foam to compare");
     for d in [whole, a, b, c, sparse] {
         std::fs::remove_dir_all(d).unwrap();
@@ -237,7 +237,13 @@ fn exr_files_hold_the_simulation_buffers_within_half_float_rounding() {
         assert_half("R", &channels["R"], d.iter().map(|v| v[0]));
         assert_half("G", &channels["G"], cascade.height().iter().copied());
         assert_half("B", &channels["B"], d.iter().map(|v| v[1]));
-        assert_half("A", &channels["A"], ocean.foam(c).unwrap().iter().copied());
+        // The ocean's one foam field is on cascade 0's grid; the other cascades carry 0.
+        let foam: Vec<f32> = if c == 0 {
+            ocean.foam().to_vec()
+        } else {
+            vec![0.0; 32 * 32]
+        };
+        assert_half("A", &channels["A"], foam.iter().copied());
         assert_half("normal.X", &channels["normal.X"], n.iter().map(|v| v[0]));
         assert_half("normal.Y", &channels["normal.Y"], n.iter().map(|v| v[1]));
         assert_half("normal.Z", &channels["normal.Z"], n.iter().map(|v| v[2]));
@@ -307,7 +313,7 @@ fn png_files_decode_with_the_sidecar_scales() {
             check(
                 "foam",
                 f64::from(disp[i][3]) / 65535.0,
-                ocean.foam(c).unwrap()[i],
+                if c == 0 { ocean.foam()[i] } else { 0.0 },
                 0.5,
             );
             for (&p, &n) in normal[i].iter().zip(&cascade.normal()[i]) {
@@ -346,28 +352,30 @@ fn a_loop_closes_in_every_channel_with_the_foam_in_its_periodic_steady_state() {
     }
 
     // Independently: an ocean of the sidecar's spectrum and config simulated without a
-    // break for 40 loops from no foam (continuous time, no jump back to t = 0). The foam
-    // contracts by e^{−T/τ} = e^{−1/2.5} per loop, so after 40 loops it is within 1e-7 of
-    // the periodic steady state; at t = 40 s and 40.3 s it must match frames 0 and 3.
+    // break for 200 loops from no foam (continuous time, no jump back to t = 0). The foam
+    // forgets its start at least as about 2.35·e^{−t/τ_R} (τ_R = 15 s, see the guide's
+    // "Render farms"), so after 200 s it is within 4e-6 of the periodic steady state; at
+    // t = 200 s and 200.3 s it must match frames 0 and 3.
     let sidecar: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("storm.json")).unwrap()).unwrap();
     let spectrum: Spectrum = serde_json::from_value(sidecar["spectrum"].clone()).unwrap();
     let config: OceanConfig = serde_json::from_value(sidecar["config"].clone()).unwrap();
     let mut ocean = OceanState::new(spectrum, config).unwrap();
     let mut foam_seen = 0.0f32;
-    for (index, frame) in [(400, 0), (403, 3)] {
+    for (index, frame) in [(2000, 0), (2003, 3)] {
         while ocean.time() < index as f64 / 10.0 - 1e-9 {
             let next = (ocean.time() * 10.0).round() + 1.0;
             ocean.step_to(next / 10.0).unwrap();
         }
         for c in 0..3 {
             let file = read_exr(&dir.join(format!("storm_c{c}_{frame:04}.exr")));
-            let foam = ocean.foam(c).unwrap();
-            // f16 rounding (≤ 2⁻¹² on [0, 1]) plus the stop rule's ε = 1e-4 plus f32 drift
-            // of a 400-step history.
+            let zeros = vec![0.0; 32 * 32];
+            let foam = if c == 0 { ocean.foam() } else { &zeros[..] };
+            // f16 rounding (≤ 2⁻¹² on [0, 1]) plus the stop rule's ε = 1e-3 (the default)
+            // plus the start's remainder (4e-6) and f32 drift of a 2000-step history.
             for (i, (&got, &want)) in file["A"].iter().zip(foam).enumerate() {
                 assert!(
-                    (got - want).abs() <= 2f32.powi(-12) + 1e-4 + 1e-5,
+                    (got - want).abs() <= 2f32.powi(-12) + 1e-3 + 2e-5,
                     "cascade {c} frame {frame} texel {i}: baked foam {got}, continuous {want}"
                 );
                 foam_seen = foam_seen.max(want);
@@ -568,7 +576,7 @@ fn the_sidecar_loads_back_as_the_same_sea_and_is_readable() {
     // Bit for bit (PartialEq on f32 fields), though the f32s are written short.
     assert_eq!(spectrum, sea.spectrum);
     assert_eq!(config, sea.config);
-    assert!(text.contains("\"bias\": 0.8,"), "{text}");
+    assert!(text.contains("\"residual_decay\": 15.0,"), "{text}");
     assert_eq!(sidecar["seed"], 0);
     assert_eq!(sidecar["loop"]["frames"], 20);
     assert!(

@@ -26,9 +26,10 @@ use crate::spectrum::{SlopeVariance, Spectrum};
 pub(crate) use config::check_band;
 pub use config::CascadeConfig;
 pub use field::Field;
+pub(crate) use inspect::GradientMoments;
 
 use evolve::{column_blocks, evolve_row_pair, fract_turns, packed_pair, zero_blocks};
-use outputs::write_outputs;
+use outputs::{write_gradient, write_outputs};
 pub use tables::LoopError;
 use tables::{check_amplitude, Amplitudes, EvolutionTable};
 
@@ -98,6 +99,10 @@ pub struct Cascade {
     slope: Vec<[f32; 2]>,
     normal: Vec<[f32; 3]>,
     jacobian: Vec<f32>,
+    /// The displacement gradient `[D_xx, D_zz, D_xz]` at unit choppiness of every grid point,
+    /// kept only where [`Cascade::keep_gradient`] asked for it (cascade 0 of an ocean, whose
+    /// foam reads it); empty otherwise.
+    gradient: Vec<[f32; 3]>,
 }
 
 impl std::fmt::Debug for Cascade {
@@ -353,6 +358,7 @@ impl Cascade {
             slope: error::try_vec(points, [0.0; 2])?,
             normal: error::try_vec(points, [0.0, 1.0, 0.0])?,
             jacobian: error::try_vec(points, 1.0)?,
+            gradient: Vec::new(),
         };
         cascade.update(0.0)?;
         Ok(cascade)
@@ -500,6 +506,12 @@ impl Cascade {
         let simd = self.simd;
         let rows_per_task = self.tasks.blocks_per_task * ROWS_PER_TASK;
         let out = rows_per_task * n;
+        // Each task's share of the kept gradient, or an empty slice for every task where it is
+        // not kept (on the stack: the update allocates nothing).
+        let mut gradient: [&mut [[f32; 3]]; MAX_TASKS] = Default::default();
+        for (slot, chunk) in gradient.iter_mut().zip(self.gradient.chunks_mut(out)) {
+            *slot = chunk;
+        }
         (
             self.blocks.par_chunks_mut(ROWS_PER_TASK * stride),
             self.scratch.par_chunks_mut(s),
@@ -508,11 +520,15 @@ impl Cascade {
             self.slope.par_chunks_mut(out),
             self.normal.par_chunks_mut(out),
             self.jacobian.par_chunks_mut(out),
+            gradient.par_iter_mut(),
         )
             .into_par_iter()
             .enumerate()
             .for_each(
-                |(task, (block, scratch, height, displacement, slope, normal, jacobian))| {
+                |(
+                    task,
+                    (block, scratch, height, displacement, slope, normal, jacobian, gradient),
+                )| {
                     let task_rows = height.len() / n;
                     for r0 in (0..task_rows).step_by(ROWS_PER_TASK) {
                         let count = ROWS_PER_TASK.min(task_rows - r0);
@@ -536,14 +552,30 @@ impl Cascade {
                                         &mut displacement[out.clone()],
                                         &mut slope[out.clone()],
                                         &mut normal[out.clone()],
-                                        &mut jacobian[out],
+                                        &mut jacobian[out.clone()],
                                     );
+                                    if !gradient.is_empty() {
+                                        write_gradient(row, n, &mut gradient[out]);
+                                    }
                                 }
                             },
                         );
                     }
                 },
             );
+    }
+
+    /// Keeps the displacement gradient at unit choppiness of every grid point from now on
+    /// (12 bytes a point; see [`Cascade::gradient_row`]), computed at once for the current
+    /// time and by every update after.
+    pub(crate) fn keep_gradient(&mut self) -> Result<(), Error> {
+        if self.gradient.is_empty() {
+            self.gradient = error::try_vec(self.n * self.n, [0.0; 3])?;
+            // The pass-1 buffer still holds the current time's transforms: pass 2 alone
+            // recomputes the outputs (the same bits) and fills the gradient.
+            rayon::scope(|_| self.spatial_pass());
+        }
+        Ok(())
     }
 
     /// Runs the element loops at `simd` from now on (the tests force every level).

@@ -116,3 +116,15 @@ fn output_block(
         };
     }
 }
+
+/// The displacement gradient `[D_xx, D_zz, D_xz]` at unit choppiness of one grid row, from
+/// its four packed, transformed rows (transform 2 holds D_xx in its imaginary part,
+/// transform 3 D_zz and D_xz: see `Field::packing`).
+#[inline(always)]
+pub(super) fn write_gradient(row: &[Complex32], n: usize, gradient: &mut [[f32; 3]]) {
+    let t2 = &row[2 * n..3 * n];
+    let t3 = &row[3 * n..4 * n];
+    for (g, (a, b)) in gradient.iter_mut().zip(t2.iter().zip(t3)) {
+        *g = [a.im, b.re, b.im];
+    }
+}

@@ -66,7 +66,7 @@ pub struct OceanConfig {
         )
     )]
     pub band_split: f32,
-    /// Foam injection and decay.
+    /// Foam: whitecap coverage, lifetimes, drift and streaks.
     pub foam: FoamConfig,
     /// Repeat period in seconds for looping (see [`CascadeConfig::repeat_period`])
     /// (default: `None`).
@@ -289,21 +289,21 @@ impl OceanConfig {
         grid::check_memory(self.memory_bytes(), self.memory_limit)
     }
 
-    /// Bytes the ocean holds: every cascade ([`CascadeConfig::memory_bytes`]), its foam and,
-    /// with [`Interpolation::CubicBSpline`], the spline coefficients of the world queries:
-    /// about 151·N² per cascade (131·N² with bilinear queries). Any config gives an answer,
-    /// even one [`validate`](Self::validate) refuses.
+    /// Bytes the ocean holds: every cascade ([`CascadeConfig::memory_bytes`]), the foam on
+    /// cascade 0's grid (about 44·N² and its transform's scratch) and, with
+    /// [`Interpolation::CubicBSpline`], the spline coefficients of the world queries (20·N² per
+    /// cascade). Any config gives an answer, even one [`validate`](Self::validate) refuses.
     pub fn memory_bytes(&self) -> usize {
         let cascade = crate::cascade::memory_bytes(self.size, self.determinism);
-        let foam = self.size.saturating_mul(self.size).saturating_mul(4);
+        let foam = super::foam::memory_bytes(self.size, self.lengths.len(), self.determinism);
         let spline = match self.query.interpolation {
             Interpolation::CubicBSpline => super::spline::Spline::memory_bytes(self.size),
             Interpolation::Bilinear => 0,
         };
         cascade
-            .saturating_add(foam)
             .saturating_add(spline)
             .saturating_mul(self.lengths.len())
+            .saturating_add(foam)
     }
 
     /// The config of cascade `index` (its length, band, seed and determinism mode).

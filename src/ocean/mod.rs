@@ -17,7 +17,7 @@ use crate::spectrum::{SlopeVariance, Spectrum};
 use spline::{QuerySplines, Spline};
 
 pub use config::{Interpolation, OceanConfig, QueryConfig};
-pub use foam::FoamConfig;
+pub use foam::{FoamCalibration, FoamConfig, FoamCoverage};
 pub use query::{Location, SurfaceSample};
 pub use snapshot::OceanSnapshot;
 
@@ -42,7 +42,7 @@ pub struct OceanState {
     pub(crate) spectrum: Spectrum,
     pub(crate) config: OceanConfig,
     pub(crate) cascades: Vec<Cascade>,
-    pub(crate) foam: Vec<Vec<f32>>,
+    pub(crate) foam: foam::Foam,
     /// Cubic B-spline coefficients of each cascade's fields for the world queries, computed
     /// on the first query after an update (none with [`Interpolation::Bilinear`]).
     pub(crate) splines: QuerySplines,
@@ -57,10 +57,12 @@ impl OceanState {
     pub const MAX_STEP: f64 = 3600.0;
 
     /// Builds the cascades (h0 of each drawn once) on the bands of
-    /// [`OceanConfig::bands`], at t = 0 with no foam.
+    /// [`OceanConfig::bands`], at t = 0 with no foam, and calibrates the whitecaps (the
+    /// breaking threshold, [`foam_calibration`](Self::foam_calibration)).
     ///
     /// # Errors
-    /// Those of [`OceanConfig::validate`] and of [`Cascade::new`] for each cascade.
+    /// Those of [`OceanConfig::validate`] and of [`Cascade::new`] for each cascade;
+    /// [`Error::OutOfMemory`] if the system refuses the foam's buffers.
     pub fn new(spectrum: Spectrum, config: OceanConfig) -> Result<OceanState, Error> {
         let bands = config.bands()?;
         let cascades = bands
@@ -68,10 +70,10 @@ impl OceanState {
             .enumerate()
             .map(|(index, &band)| Cascade::new(&spectrum, config.cascade_config(index, band)))
             .collect::<Result<Vec<_>, _>>()?;
-        let foam = cascades
-            .iter()
-            .map(|c| error::try_vec(c.size() * c.size(), 0.0))
-            .collect::<Result<Vec<_>, _>>()?;
+        let mut cascades = cascades;
+        // The foam reads cascade 0's displacement gradient after every update.
+        cascades[0].keep_gradient()?;
+        let foam = foam::Foam::new(&cascades, &config.foam, &spectrum)?;
         let cubic = config.query.interpolation == Interpolation::CubicBSpline;
         let splines = QuerySplines::new(
             cascades
@@ -143,7 +145,7 @@ impl OceanState {
         rayon::scope(|_| {
             self.update_cascades(t);
             self.time = t;
-            self.advance_foam(dt as f32);
+            self.foam.advance(&self.cascades, dt);
         });
     }
 
@@ -158,16 +160,18 @@ impl OceanState {
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `t`. Nothing changes then.
     pub fn set_time(&mut self, t: f64) -> Result<(), Error> {
         let t = check_time("t", t)?;
-        rayon::scope(|_| self.update_cascades(t));
+        rayon::scope(|_| {
+            self.update_cascades(t);
+            self.foam.refresh(&self.cascades);
+        });
         self.time = t;
         Ok(())
     }
 
-    /// Removes all foam (coverage 0 everywhere).
+    /// Removes all foam (coverage 0 everywhere; the breaking intensity, a function of the
+    /// time, stays).
     pub fn clear_foam(&mut self) {
-        for foam in &mut self.foam {
-            foam.fill(0.0);
-        }
+        self.foam.clear();
     }
 
     /// Updates every cascade to a time already checked (so none can fail); the spline
@@ -201,16 +205,6 @@ impl OceanState {
     /// The cascades, largest first.
     pub fn cascades(&self) -> &[Cascade] {
         &self.cascades
-    }
-
-    /// Foam coverage in [0, 1] of cascade `index` (0 the largest) on that cascade's grid
-    /// (index j·N + i).
-    ///
-    /// # Errors
-    /// [`Error::IndexOutOfRange`] unless `index` is below the number of cascades.
-    pub fn foam(&self, index: usize) -> Result<&[f32], Error> {
-        error::index("index", index, self.foam.len())?;
-        Ok(&self.foam[index])
     }
 
     /// Sets the choppiness λ ≥ 0 of every cascade (takes effect at the next step).

@@ -32,7 +32,9 @@ pub struct SurfaceSample {
     pub slope: [f32; 2],
     /// Unit normal `[x, y, z]` of the displaced surface (y up), from the summed slope.
     pub normal: [f32; 3],
-    /// Foam coverage in [0, 1]: 1 − Π(1 − f_c) over the cascades' foam f_c.
+    /// Foam coverage in [0, 1]: the ocean's one foam field ([`OceanState::foam`], on
+    /// cascade 0's grid) interpolated bilinearly; 0 from a range of cascades without
+    /// cascade 0 ([`OceanState::sample_cascades`]), as cascade 0's textures carry the foam.
     pub foam: f32,
 }
 
@@ -202,15 +204,17 @@ impl OceanState {
         splines: &[Spline],
     ) -> SurfaceSample {
         let (mut height, mut displacement, mut slope) = (0.0f32, Vec2::ZERO, Vec2::ZERO);
-        let mut clear = 1.0f32;
+        let foam = if range.contains(&0) {
+            self.foam.foam_at(x, z)
+        } else {
+            0.0
+        };
         let cascades = &self.cascades[range.clone()];
         // Empty with bilinear queries.
-        let splines = splines.get(range.clone()).unwrap_or_default();
-        let foams = &self.foam[range];
-        for (c, (cascade, foam)) in cascades.iter().zip(foams).enumerate() {
+        let splines = splines.get(range).unwrap_or_default();
+        for (c, cascade) in cascades.iter().enumerate() {
             let n = cascade.size();
             let at = cell_of(cascade, x, z);
-            let bilinear = Stencil::new(at, n);
             if let Some(spline) = splines.get(c) {
                 let s = spline_of(at, n);
                 let [eta, sx, sz] = s.apply(&spline.surface);
@@ -218,18 +222,18 @@ impl OceanState {
                 displacement += Vec2::from_array(s.apply(&spline.displacement));
                 slope += Vec2::new(sx, sz);
             } else {
+                let bilinear = Stencil::new(at, n);
                 height += bilinear.scalar(cascade.height());
                 displacement += bilinear.vector(cascade.displacement());
                 slope += bilinear.vector(cascade.slope());
             }
-            clear *= 1.0 - bilinear.scalar(foam);
         }
         SurfaceSample {
             height,
             displacement: displacement.to_array(),
             slope: slope.to_array(),
             normal: normal_from_slope(slope).to_array(),
-            foam: (1.0 - clear).clamp(0.0, 1.0),
+            foam,
         }
     }
 

@@ -9,11 +9,12 @@ use super::OceanState;
 
 /// Everything about an [`OceanState`] that cannot be recomputed from its spectrum and config:
 /// the time, the choppiness (the one the buffers were computed with, and the one last set if
-/// it has not been applied yet), and the foam. Everything else (the cascades' buffers)
+/// it has not been applied yet), and the foam's state (active and residual foam). Everything
+/// else (the cascades' buffers, the breaking intensity, the total foam and its coverage)
 /// follows from these, so [`OceanState::restore`] brings an ocean back to exactly the bits it
 /// had when the snapshot was taken, and it then steps to the same bits as the original did.
 ///
-/// A snapshot holds 4 bytes per grid point of every cascade (the foam). Take one with
+/// A snapshot holds 8 bytes per point of the foam grid (cascade 0's N×N). Take one with
 /// [`OceanState::snapshot`], or refill one without allocating with
 /// [`OceanState::snapshot_into`]. With the `serde` feature it can be saved and loaded; a
 /// loaded snapshot is checked when it is restored. For a restore that is bit-exact, the format
@@ -43,8 +44,10 @@ pub struct OceanSnapshot {
     choppiness: f32,
     /// The choppiness the buffers were computed with.
     applied_choppiness: f32,
-    /// Every cascade's foam, one after another.
-    foam: Vec<f32>,
+    /// Active whitecap foam on the foam grid.
+    active: Vec<f32>,
+    /// Residual foam on the foam grid.
+    residual: Vec<f32>,
 }
 
 impl OceanSnapshot {
@@ -62,7 +65,8 @@ impl OceanState {
             time: 0.0,
             choppiness: 0.0,
             applied_choppiness: 0.0,
-            foam: Vec::new(),
+            active: Vec::new(),
+            residual: Vec::new(),
         };
         self.snapshot_into(&mut snapshot);
         snapshot
@@ -75,10 +79,10 @@ impl OceanState {
         snapshot.time = self.time;
         snapshot.choppiness = self.config.choppiness;
         snapshot.applied_choppiness = self.applied_choppiness;
-        snapshot.foam.clear();
-        for foam in &self.foam {
-            snapshot.foam.extend_from_slice(foam);
-        }
+        snapshot.active.clear();
+        snapshot.active.extend_from_slice(&self.foam.active);
+        snapshot.residual.clear();
+        snapshot.residual.extend_from_slice(&self.foam.residual);
     }
 
     /// Brings the ocean back to the state `snapshot` holds: its time, choppiness and foam, and
@@ -87,30 +91,35 @@ impl OceanState {
     /// pool.
     ///
     /// # Errors
-    /// [`Error::LengthMismatch`] (naming `snapshot.foam`) if the snapshot comes from an ocean
-    /// with other grids; for a snapshot loaded from a file, [`Error::NonFinite`] or
-    /// [`Error::OutOfRange`] for a time beyond [`Cascade::MAX_TIME`](crate::Cascade::MAX_TIME)
-    /// or a foam value outside [0, 1], and the errors of
-    /// [`set_choppiness`](Self::set_choppiness). Nothing changes then.
+    /// [`Error::LengthMismatch`] (naming `snapshot.active` or `snapshot.residual`) if the
+    /// snapshot comes from an ocean with another foam grid; for a snapshot loaded from a file,
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] for a time beyond
+    /// [`Cascade::MAX_TIME`](crate::Cascade::MAX_TIME) or a foam value outside [0, 1], and the
+    /// errors of [`set_choppiness`](Self::set_choppiness). Nothing changes then.
     pub fn restore(&mut self, snapshot: &OceanSnapshot) -> Result<(), Error> {
-        let points: usize = self.foam.iter().map(Vec::len).sum();
-        error::length("snapshot.foam", snapshot.foam.len(), points)?;
+        let points = self.foam.points();
+        error::length("snapshot.active", snapshot.active.len(), points)?;
+        error::length("snapshot.residual", snapshot.residual.len(), points)?;
         let t = check_time("snapshot.time", snapshot.time)?;
-        for &value in &snapshot.foam {
-            error::in_range("snapshot.foam", value, Included(0.0), Included(1.0))?;
+        for (name, values) in [
+            ("snapshot.active", &snapshot.active),
+            ("snapshot.residual", &snapshot.residual),
+        ] {
+            for &value in values {
+                error::in_range(name, value, Included(0.0), Included(1.0))?;
+            }
         }
         self.check_choppiness(snapshot.applied_choppiness)?;
         self.check_choppiness(snapshot.choppiness)?;
-        let mut rest = snapshot.foam.as_slice();
-        for foam in &mut self.foam {
-            let (mine, tail) = rest.split_at(foam.len());
-            foam.copy_from_slice(mine);
-            rest = tail;
-        }
+        self.foam.active.copy_from_slice(&snapshot.active);
+        self.foam.residual.copy_from_slice(&snapshot.residual);
         // The buffers as they were (with the choppiness they were computed with), then the
         // choppiness set since, for the next update.
         self.set_choppiness_checked(snapshot.applied_choppiness);
-        rayon::scope(|_| self.update_cascades(t));
+        rayon::scope(|_| {
+            self.update_cascades(t);
+            self.foam.refresh(&self.cascades);
+        });
         self.set_choppiness_checked(snapshot.choppiness);
         self.time = t;
         Ok(())

@@ -41,8 +41,10 @@ mod engines {
         texels.step_and_pack(&mut ocean, 0.1).unwrap();
         assert_eq!(ocean.time(), time + 0.1);
         for (c, cascade) in ocean.cascades().iter().enumerate() {
-            let foam = ocean.foam(c).unwrap();
             let n2 = cascade.size() * cascade.size();
+            // The ocean's one foam field rides in cascade 0's texels; the others carry 0.
+            let zeros = vec![0.0; n2];
+            let foam = if c == 0 { ocean.foam() } else { &zeros[..] };
             // Each channel is the f16 nearest to the buffer it comes from, after this step.
             let near = |texel: f16, value: f32| texel == f16::from_f32(value);
             assert_eq!(

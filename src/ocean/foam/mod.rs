@@ -1,0 +1,885 @@
+//! Foam: one field for the whole ocean on the largest cascade's grid, injected where the
+//! summed surface breaks (its Jacobian below a threshold calibrated against the whitecap
+//! fraction of Monahan & O'Muircheartaigh 1980), aging from active whitecaps into residual
+//! foam, drifting downwind and spreading into streaks (docs/theory.md, §15).
+
+mod calibration;
+mod config;
+mod transport;
+
+use std::ops::Bound::{Excluded, Included};
+
+use num_complex::Complex32;
+use rayon::prelude::*;
+
+use crate::cascade::{check_time, Cascade, GradientMoments};
+use crate::determinism::Determinism;
+use crate::error::{self, Error};
+use crate::fft2d::Fft2d;
+
+use super::OceanState;
+
+pub use calibration::FoamCalibration;
+pub use config::FoamConfig;
+
+use calibration::{calibrate, Settings};
+use transport::Transport;
+
+/// Rows of the foam grid one parallel task handles (the split depends only on N, never on the
+/// number of threads).
+const ROWS: usize = 8;
+
+/// Residual foam below this after a transport step is set to zero: the rounding of the two
+/// FFTs (about 1e-7 of the largest value) would otherwise leave a faint haze everywhere.
+const FLUSH: f32 = 1e-6;
+
+/// How much of the surface is covered by foam: area fractions in [0, 1], each grid point
+/// counted with the fraction of it that is covered (the foam value there), summed in a fixed
+/// order (so the numbers do not depend on the number of threads).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FoamCoverage {
+    /// Active whitecaps: foam of waves breaking now or within about the active lifetime τ_A
+    /// ([`FoamConfig::active_decay`]) — the mean of [`OceanState::active_foam`]. The
+    /// whitecap fraction the calibration aims at.
+    pub active: f32,
+    /// Residual foam not under active foam: the mean of r·(1 − a), older foam and streaks
+    /// that photographs of whitecaps leave out.
+    pub residual: f32,
+    /// All foam: the mean of [`OceanState::foam`], `active + residual`.
+    pub total: f32,
+}
+
+/// The per-point constants of the foam update.
+#[derive(Debug, Clone, Copy)]
+struct Params {
+    /// The breaking threshold J_b (−∞: nothing breaks).
+    threshold: f32,
+    /// Covariance of the unresolved gradient (cascades 1 and up) as (AA, BB, CC, AB, AC, BC).
+    unresolved: [f32; 6],
+    /// Covariance of the rate of the whole gradient, the same way, in 1/s².
+    rate: [f32; 6],
+    /// Variance added to the unresolved part everywhere, (0.05 σ_T)²: keeps a one-cascade
+    /// ocean's intensity a smooth function of J.
+    floor: f32,
+    inv_active: f32,
+    inv_residual: f32,
+    /// Whose exponential the foam steps use.
+    determinism: Determinism,
+}
+
+/// gᵀ M g for a symmetric M stored as (AA, BB, CC, AB, AC, BC).
+#[inline(always)]
+fn quadratic_form(m: &[f32; 6], g: [f32; 3]) -> f32 {
+    m[0] * g[0] * g[0]
+        + m[1] * g[1] * g[1]
+        + m[2] * g[2] * g[2]
+        + 2.0 * (m[3] * g[0] * g[1] + m[4] * g[0] * g[2] + m[5] * g[1] * g[2])
+}
+
+/// The symmetric 3×3 `m` as (AA, BB, CC, AB, AC, BC), in f32.
+fn packed(m: &[[f64; 3]; 3]) -> [f32; 6] {
+    [m[0][0], m[1][1], m[2][2], m[0][1], m[0][2], m[1][2]].map(|v| v as f32)
+}
+
+/// 1/√(2π).
+const INV_SQRT_TAU: f32 = 0.398_942_3;
+
+/// Q(x) = 1 − Φ(x) for x ≥ 0 from φ(x) = e^{−x²/2}/√(2π), by the approximation of
+/// Börjesson & Sundberg (1979): Q ≈ φ(x)/((1 − a)x + a√(x² + b)), a = 0.339, b = 5.510,
+/// relative error below 0.3 % for every x ≥ 0.
+#[inline(always)]
+fn upper_tail(x: f32, density: f32) -> f32 {
+    density / (0.661 * x + 0.339 * (x * x + 5.51).sqrt())
+}
+
+/// Φ(x) and φ(x) of the standard normal at a crossing x, from one exponential (Φ in the lower
+/// tail with full relative accuracy); beyond |x| = 12 (φ < 1e-31) exactly 0 or 1 and 0.
+#[inline(always)]
+fn normal_at(d: Determinism, x: f32) -> (f32, f32) {
+    if x.abs() > 12.0 {
+        return (if x > 0.0 { 1.0 } else { 0.0 }, 0.0);
+    }
+    let density = d.expf(-0.5 * x * x) * INV_SQRT_TAU;
+    let cdf = if x <= 0.0 {
+        upper_tail(-x, density)
+    } else {
+        1.0 - upper_tail(x, density)
+    };
+    (cdf, density)
+}
+
+/// For x standard normal and q(x) = a2·x² + a1·x + c: the roots of q (up to two, in increasing
+/// order) and |q'| there, found stably in f32; `None` where q does not change sign, with
+/// P(q < 0) then 0 or 1.
+#[inline(always)]
+fn crossings(a2: f32, a1: f32, c: f32) -> Result<([f32; 2], usize, f32), f32> {
+    if a2 == 0.0 {
+        if a1 == 0.0 {
+            return Err(if c < 0.0 { 1.0 } else { 0.0 });
+        }
+        return Ok(([-c / a1, 0.0], 1, a1.abs()));
+    }
+    let disc = a1 * a1 - 4.0 * a2 * c;
+    if disc.is_nan() || disc <= 0.0 {
+        return Err(if a2 < 0.0 { 1.0 } else { 0.0 });
+    }
+    let sq = disc.sqrt();
+    let q = -0.5 * (a1 + sq.copysign(a1));
+    let (r1, r2) = (q / a2, c / q);
+    Ok(([r1.min(r2), r1.max(r2)], 2, sq))
+}
+
+impl Params {
+    /// The breaking intensity s in 1/s at a point where cascade 0's gradient is `g`
+    /// (D_xx, D_zz, D_xz), from its Jacobian J_R and the unresolved cascades' gradient U
+    /// (Gaussian, covariance Σ_u): J ≈ J_R + w + κ(w² − σ²) with w = ∇J_R·U (standard deviation
+    /// σ, σ² = ∇Jᵀ Σ_u ∇J) and κ w² the mean of U's own quadratic term given w. With
+    /// f = P(J < J_b) and Rice's rate ν of new breaking there, s = ν + f/τ_A (docs/theory.md
+    /// §15).
+    #[inline(always)]
+    fn intensity(&self, g: [f32; 3]) -> f32 {
+        if self.threshold == f32::NEG_INFINITY {
+            return 0.0;
+        }
+        let [xx, zz, xz] = g;
+        let jacobian = (1.0 + xx) * (1.0 + zz) - xz * xz;
+        let gradient = [1.0 + zz, 1.0 + xx, -2.0 * xz];
+        let u = &self.unresolved;
+        // Σ_u ∇J, then σ² and the regression β = Σ_u ∇J/σ² of U on w.
+        let su = [
+            u[0] * gradient[0] + u[3] * gradient[1] + u[4] * gradient[2],
+            u[3] * gradient[0] + u[1] * gradient[1] + u[5] * gradient[2],
+            u[4] * gradient[0] + u[5] * gradient[1] + u[2] * gradient[2],
+        ];
+        let variance =
+            (su[0] * gradient[0] + su[1] * gradient[1] + su[2] * gradient[2]).max(0.0) + self.floor;
+        let beta = su.map(|v| v / variance);
+        let kappa = beta[0] * beta[1] - beta[2] * beta[2];
+        let a2 = kappa * variance;
+        let sigma = variance.sqrt();
+        let (roots, count, slope) = match crossings(a2, sigma, jacobian - a2 - self.threshold) {
+            Ok(found) => found,
+            Err(fraction) => return fraction * self.inv_active,
+        };
+        // P(J < J_b): below the one root of a linear J (a1 = σ > 0), between the roots where
+        // J opens upward, outside them where it opens downward.
+        let (mut cdf, mut episodes) = ([0.0f32; 2], 0.0f32);
+        for (k, &x) in roots[..count].iter().enumerate() {
+            let (below, density) = normal_at(self.determinism, x);
+            cdf[k] = below;
+            if density > 0.0 {
+                // J̇ = ∇J·ġ with ∇J where the surface crosses J_b: U at its mean given w = σx.
+                let w = sigma * x;
+                let at = [
+                    gradient[0] + beta[1] * w,
+                    gradient[1] + beta[0] * w,
+                    gradient[2] - 2.0 * beta[2] * w,
+                ];
+                episodes += density * quadratic_form(&self.rate, at).max(0.0).sqrt();
+            }
+        }
+        let fraction = match (count, a2 > 0.0) {
+            (1, _) => cdf[0],
+            (_, true) => (cdf[1] - cdf[0]).max(0.0),
+            _ => (cdf[0] + 1.0 - cdf[1]).min(1.0),
+        };
+        episodes * INV_SQRT_TAU / slope + fraction * self.inv_active
+    }
+
+    /// The constants of a step of `dt` seconds.
+    fn step(&self, dt: f32) -> Step {
+        let x = dt * self.inv_active;
+        let e_active = self.determinism.expf(-x);
+        Step {
+            dt,
+            e_active,
+            mean_active: mean_factor(x, e_active),
+            e_residual: self.determinism.expf(-dt * self.inv_residual),
+        }
+    }
+
+    /// Active and residual foam after a step with the intensity going from `old` to `new`
+    /// (trapezoidal mean held over the step, the linear equations solved exactly). Where
+    /// nothing breaks (the intensity 0 at both ends, most of the sea) the exponentials are the
+    /// step's constants.
+    #[inline(always)]
+    fn react(&self, step: &Step, active: f32, residual: f32, old: f32, new: f32) -> (f32, f32) {
+        let dt = step.dt;
+        let s = 0.5 * (old + new);
+        let (a1, a_mean) = if s == 0.0 {
+            (active * step.e_active, active * step.mean_active)
+        } else {
+            let kappa = s + self.inv_active;
+            let x = kappa * dt;
+            let e = self.determinism.expf(-x);
+            let a_star = s / kappa;
+            (
+                a_star + (active - a_star) * e,
+                a_star + (active - a_star) * mean_factor(x, e),
+            )
+        };
+        let g = a_mean * self.inv_active;
+        let r1 = if g == 0.0 {
+            residual * step.e_residual
+        } else {
+            let rho = g + self.inv_residual;
+            let r_star = g / rho;
+            // e^{−ρΔt} = e^{−Δt/τ_R}·e^{−gΔt}, the second by its series where gΔt is small
+            // (error below 5e-10 for gΔt < 0.01).
+            let y = g * dt;
+            let e_g = if y < 0.01 {
+                1.0 - y * (1.0 - y * (0.5 - y / 6.0))
+            } else {
+                self.determinism.expf(-y)
+            };
+            r_star + (residual - r_star) * (step.e_residual * e_g)
+        };
+        (a1.clamp(0.0, 1.0), r1.clamp(0.0, 1.0))
+    }
+}
+
+/// (1 − e^{−x})/x from x and e = e^{−x}, by its series for small x: the mean of an
+/// exponential relaxation over a step, as a fraction of its start.
+#[inline(always)]
+fn mean_factor(x: f32, e: f32) -> f32 {
+    if x > 1e-3 {
+        (1.0 - e) / x
+    } else {
+        1.0 - x * (0.5 - x / 6.0)
+    }
+}
+
+/// What every point's update over one step shares.
+#[derive(Debug, Clone, Copy)]
+struct Step {
+    dt: f32,
+    /// e^{−Δt/τ_A}.
+    e_active: f32,
+    /// (1 − e^{−Δt/τ_A})/(Δt/τ_A).
+    mean_active: f32,
+    /// e^{−Δt/τ_R}.
+    e_residual: f32,
+}
+
+/// The foam of an ocean: its state (active and residual foam), the breaking intensity at the
+/// current time, the total foam and the coverage, the calibration, and the buffers of the
+/// transport step (all allocated once).
+#[derive(Debug)]
+pub(crate) struct Foam {
+    n: usize,
+    /// Side of the foam grid's tile, L of cascade 0, in metres.
+    length: f32,
+    pub(super) active: Vec<f32>,
+    pub(super) residual: Vec<f32>,
+    total: Vec<f32>,
+    breaking: Vec<f32>,
+    coverage: FoamCoverage,
+    calibration: FoamCalibration,
+    params: Params,
+    transport: Transport,
+    tables: Vec<Complex32>,
+    work: Vec<Complex32>,
+    fft: Fft2d,
+    row_sums: Vec<[f64; 3]>,
+}
+
+impl Clone for Foam {
+    fn clone(&self) -> Self {
+        Foam {
+            n: self.n,
+            length: self.length,
+            active: self.active.clone(),
+            residual: self.residual.clone(),
+            total: self.total.clone(),
+            breaking: self.breaking.clone(),
+            coverage: self.coverage,
+            calibration: self.calibration,
+            params: self.params,
+            transport: self.transport.clone(),
+            tables: self.tables.clone(),
+            work: self.work.clone(),
+            // A plan of the same size: the transform's scratch and buffers hold nothing
+            // between steps.
+            fft: Fft2d::with_determinism(self.n, 1, self.params.determinism)
+                .expect("an FFT of a size that was planned before"),
+            row_sums: self.row_sums.clone(),
+        }
+    }
+}
+
+/// Bytes the foam of an ocean of `cascades` cascades of size `n` holds: active, residual,
+/// total and breaking (4 bytes each per point), the transform's work buffer and intermediate
+/// (8 each) and its scratch, small tables, and the displacement gradient cascade 0 keeps for
+/// it (12 bytes per point, see `Cascade::keep_gradient`).
+pub(crate) fn memory_bytes(n: usize, cascades: usize, determinism: Determinism) -> usize {
+    let points = n.saturating_mul(n);
+    let scratch = if n <= crate::grid::MAX_SIZE {
+        crate::fft2d::RowFft::new(n, determinism).scratch_len()
+    } else {
+        n
+    };
+    let tasks = n.div_ceil(crate::fft2d::ROWS_PER_TASK);
+    let _ = cascades;
+    let tables = n.saturating_mul(2 * 8 + 24);
+    points
+        .saturating_mul(4 * 4 + 2 * 8 + 12)
+        .saturating_add(tasks.saturating_mul(scratch).saturating_mul(8))
+        .saturating_add(tables)
+}
+
+impl Foam {
+    /// The foam of an ocean with these (updated) cascades: no foam, the breaking intensity
+    /// of the cascades' time, the threshold calibrated for their amplitudes.
+    pub(crate) fn new(
+        cascades: &[Cascade],
+        config: &FoamConfig,
+        spectrum: &crate::spectrum::Spectrum,
+    ) -> Result<Foam, Error> {
+        let wind_speed = config.wind_speed_for(spectrum);
+        let first = &cascades[0];
+        let determinism = first.config().determinism;
+        let n = first.size();
+        let length = first.length();
+        let resolved = first.gradient_moments();
+        let mut unresolved = GradientMoments::default();
+        for cascade in &cascades[1..] {
+            unresolved.add(&cascade.gradient_moments());
+        }
+        let mut total = resolved;
+        total.add(&unresolved);
+        let calibration = calibrate(
+            &total,
+            Settings {
+                wind_speed,
+                coverage: config.coverage,
+                active_decay: config.active_decay,
+                determinism,
+            },
+        );
+        let floor = 0.05 * calibration.compression_std;
+        let params = Params {
+            threshold: calibration.threshold,
+            unresolved: packed(&unresolved.value),
+            rate: packed(&total.rate),
+            floor: (floor * floor).max(f32::MIN_POSITIVE),
+            inv_active: 1.0 / config.active_decay,
+            inv_residual: 1.0 / config.residual_decay,
+            determinism,
+        };
+        // Spreads over a residual lifetime, √(2Kτ_R) = streak·λ_p, give the diffusivities.
+        let peak = spectrum
+            .dispersion()
+            .k_from_omega_with_mode(f64::from(spectrum.peak_omega()), determinism);
+        let wavelength = std::f64::consts::TAU / peak;
+        let diffusivity = |streak: f32| {
+            let spread = f64::from(streak) * wavelength;
+            spread * spread / (2.0 * f64::from(config.residual_decay))
+        };
+        let transport = Transport::new(
+            f64::from(spectrum.wind_direction()),
+            f64::from(config.drift) * f64::from(wind_speed),
+            diffusivity(config.streak_length),
+            diffusivity(config.streak_width),
+            f64::from(length),
+            determinism,
+        );
+        let points = n * n;
+        let mut foam = Foam {
+            n,
+            length,
+            active: error::try_vec(points, 0.0)?,
+            residual: error::try_vec(points, 0.0)?,
+            total: error::try_vec(points, 0.0)?,
+            breaking: error::try_vec(points, 0.0)?,
+            coverage: FoamCoverage::default(),
+            calibration,
+            params,
+            transport,
+            tables: error::try_vec(2 * n, Complex32::default())?,
+            work: error::try_vec(points, Complex32::default())?,
+            fft: Fft2d::with_determinism(n, 1, determinism)?,
+            row_sums: error::try_vec(n, [0.0; 3])?,
+        };
+        foam.refresh(cascades);
+        Ok(foam)
+    }
+
+    /// Recomputes the breaking intensity from the cascades as they are now (after a jump in
+    /// time or a restore), and the total foam and coverage from the state.
+    pub(crate) fn refresh(&mut self, cascades: &[Cascade]) {
+        let n = self.n;
+        let params = self.params;
+        let first = &cascades[0];
+        self.breaking
+            .par_chunks_mut(ROWS * n)
+            .enumerate()
+            .for_each(|(b, block)| {
+                for (r, row) in block.chunks_mut(n).enumerate() {
+                    let gradient = first.gradient_row(b * ROWS + r);
+                    for (i, s) in row.iter_mut().enumerate() {
+                        *s = params.intensity(gradient.get(i));
+                    }
+                }
+            });
+        self.finish();
+    }
+
+    /// Integrates the foam over `dt` seconds up to the cascades' (new) time.
+    pub(crate) fn advance(&mut self, cascades: &[Cascade], dt: f64) {
+        if dt <= 0.0 {
+            // The same time: the intensity is recomputed (bit for bit the same), nothing
+            // else changes.
+            self.refresh(cascades);
+            return;
+        }
+        self.react(cascades, dt as f32);
+        if self.transport.is_active() {
+            self.transport(dt);
+        }
+        self.finish();
+    }
+
+    /// Injection, aging and decay at every point, with the breaking intensity of the new
+    /// time; fills the transform's input with the residual foam.
+    fn react(&mut self, cascades: &[Cascade], dt: f32) {
+        let n = self.n;
+        let params = self.params;
+        let step = params.step(dt);
+        let first = &cascades[0];
+        let block = ROWS * n;
+        (
+            self.active.par_chunks_mut(block),
+            self.residual.par_chunks_mut(block),
+            self.breaking.par_chunks_mut(block),
+            self.work.par_chunks_mut(block),
+        )
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(b, (active, residual, breaking, work))| {
+                let rows = active
+                    .chunks_mut(n)
+                    .zip(residual.chunks_mut(n))
+                    .zip(breaking.chunks_mut(n))
+                    .zip(work.chunks_mut(n));
+                for (r, (((a, rr), s), w)) in rows.enumerate() {
+                    let gradient = first.gradient_row(b * ROWS + r);
+                    for i in 0..n {
+                        let new = params.intensity(gradient.get(i));
+                        let (a1, r1) = params.react(&step, a[i], rr[i], s[i], new);
+                        s[i] = new;
+                        a[i] = a1;
+                        rr[i] = r1;
+                        w[i] = Complex32::new(r1, 0.0);
+                    }
+                }
+            });
+    }
+
+    /// Moves the residual foam r by the exact solution of the transport over `dt`: forward
+    /// transform of r (as the conjugate of the inverse transform of the real r), multiplication
+    /// by M(k) (see `transport.rs`), inverse transform, clamped to [0, 1] (the Gaussian cut at
+    /// the grid's Nyquist frequency can ring slightly below 0 near sharp edges). Active foam stays where its wave broke (the
+    /// grid already follows the water's orbital motion; the drift moves it less than a metre
+    /// in its lifetime).
+    fn transport(&mut self, dt: f64) {
+        let n = self.n;
+        self.transport.fill_tables(dt, n, &mut self.tables);
+        let determinism = self.params.determinism;
+        let Foam {
+            fft,
+            work,
+            tables,
+            transport,
+            residual,
+            ..
+        } = self;
+        let [a, b, c] = transport.exponent(dt);
+        let tables = &*tables;
+        let spectrum = fft
+            .process(work)
+            .expect("the foam's work buffer holds N² values");
+        // The transform leaves its result transposed: index m_x·N + m_z.
+        work.par_chunks_mut(ROWS * n)
+            .enumerate()
+            .for_each(|(block, rows)| {
+                for (r, row) in rows.chunks_mut(n).enumerate() {
+                    let ix = block * ROWS + r;
+                    let mx = crate::grid::wave_index(ix, n) as f32;
+                    let source = &spectrum[ix * n..(ix + 1) * n];
+                    let shift_x = tables[ix];
+                    let (ax, bx) = (a * mx * mx, 2.0 * b * mx);
+                    for (iz, (out, g)) in row.iter_mut().zip(source).enumerate() {
+                        let mz = crate::grid::wave_index(iz, n) as f32;
+                        let decay = determinism.expf(-(ax + mz * (bx + c * mz)));
+                        *out = g.conj() * (shift_x * tables[n + iz]) * decay;
+                    }
+                }
+            });
+        let moved = fft
+            .process(work)
+            .expect("the foam's work buffer holds N² values");
+        let scale = 1.0 / (n * n) as f32;
+        let flush = |v: f32| if v < FLUSH { 0.0 } else { v.min(1.0) };
+        residual
+            .par_chunks_mut(ROWS * n)
+            .enumerate()
+            .for_each(|(b, r)| {
+                let source = &moved[b * ROWS * n..][..r.len()];
+                for (r, v) in r.iter_mut().zip(source) {
+                    *r = flush(v.re * scale);
+                }
+            });
+    }
+
+    /// The total foam a + r(1 − a) and the coverage, by rows summed in f64 and the rows added
+    /// in order.
+    fn finish(&mut self) {
+        let n = self.n;
+        (
+            self.active.par_chunks(ROWS * n),
+            self.residual.par_chunks(ROWS * n),
+            self.total.par_chunks_mut(ROWS * n),
+            self.row_sums.par_chunks_mut(ROWS),
+        )
+            .into_par_iter()
+            .for_each(|(active, residual, total, sums)| {
+                let rows = active
+                    .chunks(n)
+                    .zip(residual.chunks(n))
+                    .zip(total.chunks_mut(n));
+                for (((a, r), f), sum) in rows.zip(sums.iter_mut()) {
+                    let mut s = [0.0f64; 3];
+                    for ((&a, &r), f) in a.iter().zip(r).zip(f.iter_mut()) {
+                        let rest = r * (1.0 - a);
+                        *f = a + rest;
+                        s[0] += f64::from(a);
+                        s[1] += f64::from(rest);
+                        s[2] += f64::from(*f);
+                    }
+                    *sum = s;
+                }
+            });
+        let mut sum = [0.0f64; 3];
+        for row in &self.row_sums {
+            for k in 0..3 {
+                sum[k] += row[k];
+            }
+        }
+        let points = (n * n) as f64;
+        self.coverage = FoamCoverage {
+            active: (sum[0] / points) as f32,
+            residual: (sum[1] / points) as f32,
+            total: (sum[2] / points) as f32,
+        };
+    }
+
+    /// Removes all foam (the breaking intensity, a function of the time, stays).
+    pub(crate) fn clear(&mut self) {
+        self.active.fill(0.0);
+        self.residual.fill(0.0);
+        self.finish();
+    }
+
+    /// Number of grid points.
+    pub(crate) fn points(&self) -> usize {
+        self.n * self.n
+    }
+
+    /// Periodic bilinear interpolation of `values` (a foam-grid buffer) at world (x, z); the
+    /// wrap in f64.
+    fn interpolate(&self, values: &[f32], x: f64, z: f64) -> f32 {
+        let n = self.n;
+        let length = f64::from(self.length);
+        let cells = n as f64 / length;
+        let split = |v: f64| {
+            let g = v.rem_euclid(length) * cells;
+            let cell = g.floor();
+            ((cell as usize) % n, (g - cell) as f32)
+        };
+        let (ix, fx) = split(x);
+        let (iz, fz) = split(z);
+        let (ix1, iz1) = ((ix + 1) % n, (iz + 1) % n);
+        let v = |i: usize, j: usize| values[j * n + i];
+        let value = (1.0 - fz) * ((1.0 - fx) * v(ix, iz) + fx * v(ix1, iz))
+            + fz * ((1.0 - fx) * v(ix, iz1) + fx * v(ix1, iz1));
+        value.max(0.0)
+    }
+
+    /// The total foam at undisplaced world (x, z), in [0, 1].
+    pub(crate) fn foam_at(&self, x: f64, z: f64) -> f32 {
+        self.interpolate(&self.total, x, z).min(1.0)
+    }
+}
+
+impl OceanState {
+    /// Most steps [`pre_roll`](Self::pre_roll) takes.
+    pub const MAX_PRE_ROLL_STEPS: usize = 1_000_000;
+
+    /// The foam of the whole ocean in [0, 1] — active whitecaps and residual foam together,
+    /// a + r(1 − a) — on the grid of cascade 0 (the largest): index j·N + i is its grid point
+    /// (i·L/N, j·L/N), and the field tiles the plane with that cascade's period L. Only
+    /// cascade 0's textures carry foam ([`OceanState::pack_texels`]).
+    pub fn foam(&self) -> &[f32] {
+        &self.foam.total
+    }
+
+    /// Active whitecap foam a in [0, 1] on the foam grid (see [`foam`](Self::foam)): foam of
+    /// waves breaking now or within about [`FoamConfig::active_decay`].
+    pub fn active_foam(&self) -> &[f32] {
+        &self.foam.active
+    }
+
+    /// Residual foam r in [0, 1] on the foam grid (see [`foam`](Self::foam)): older foam that
+    /// has aged out of the active whitecaps, drifting and stretched into streaks.
+    pub fn residual_foam(&self) -> &[f32] {
+        &self.foam.residual
+    }
+
+    /// The breaking intensity s ≥ 0 in 1/s at the current time on the foam grid (see
+    /// [`foam`](Self::foam)): how fast the surface around each point starts to break — new
+    /// breaking per second, as a fraction of the area, plus the area breaking now over τ_A —
+    /// and so how fast active foam is injected there (it grows at s·(1 − a)). Large on the
+    /// compressed crests of the largest waves, where the smaller ones break on top of them;
+    /// near zero elsewhere. For spray particles and the sound of breaking waves.
+    pub fn breaking(&self) -> &[f32] {
+        &self.foam.breaking
+    }
+
+    /// The breaking intensity in 1/s at the undisplaced world point (`x`, `z`) (any finite
+    /// coordinates: the foam grid wraps with cascade 0's period), interpolated bilinearly
+    /// from [`breaking`](Self::breaking). For a point of the displaced surface, find its
+    /// undisplaced point with [`locate`](Self::locate) first.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
+    pub fn breaking_at(&self, x: f64, z: f64) -> Result<f32, Error> {
+        for (name, value) in [("x", x), ("z", z)] {
+            if !value.is_finite() {
+                return Err(Error::NonFinite { name });
+            }
+        }
+        Ok(self.foam.interpolate(&self.foam.breaking, x, z))
+    }
+
+    /// The area fractions covered by active whitecaps, residual foam and all foam (summed in
+    /// a fixed order over the foam grid when the foam last changed; costs nothing here).
+    pub fn foam_coverage(&self) -> FoamCoverage {
+        self.foam.coverage
+    }
+
+    /// The whitecap calibration of this ocean: the breaking threshold, the target coverage and
+    /// what the statistics of the sea predict.
+    pub fn foam_calibration(&self) -> FoamCalibration {
+        self.foam.calibration
+    }
+
+    /// Pre-rolls the foam: clears it, goes back `seconds` before the current time and steps
+    /// forward to it again in steps of `dt` (the last one shorter if `dt` does not divide
+    /// `seconds`), so that the foam is spun up as if the sea had been running. The result
+    /// depends only on the current time, `seconds`, `dt` and the ocean's spectrum and config,
+    /// not on any earlier history: every client of a networked game, or every frame range of
+    /// a bake, gets the same bits. Whitecaps reach their steady coverage within about five
+    /// [`FoamConfig::active_decay`] (20 s by default), residual foam within about five
+    /// [`FoamConfig::residual_decay`]. Allocates nothing inside a rayon pool.
+    ///
+    /// ```
+    /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
+    /// let spectrum = Spectrum::jonswap(15.0, 200_000.0)?;
+    /// let config = OceanConfig { size: 32, ..OceanConfig::default() };
+    /// let mut ocean = OceanState::new(spectrum.clone(), config.clone())?;
+    /// ocean.set_time(100.0)?;
+    /// ocean.pre_roll(20.0, 0.05)?;               // s: 400 steps back from t = 80 s
+    /// assert_eq!(ocean.time(), 100.0);
+    ///
+    /// // Another ocean with another history gets the same foam.
+    /// let mut other = OceanState::new(spectrum, config)?;
+    /// other.step(3.0)?;
+    /// other.set_time(100.0)?;
+    /// other.pre_roll(20.0, 0.05)?;
+    /// assert_eq!(ocean.foam(), other.foam());
+    /// # Ok::<(), ocean_fft::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `dt` outside
+    /// (0, [`MAX_STEP`](Self::MAX_STEP)], for `seconds` below 0 or above
+    /// [`MAX_PRE_ROLL_STEPS`](Self::MAX_PRE_ROLL_STEPS)·`dt`, or (naming `time - seconds`) for
+    /// a start before −[`Cascade::MAX_TIME`]. Nothing changes then.
+    pub fn pre_roll(&mut self, seconds: f64, dt: f64) -> Result<(), Error> {
+        error::in_range_f64("dt", dt, Excluded(0.0), Included(Self::MAX_STEP))?;
+        let longest = dt * Self::MAX_PRE_ROLL_STEPS as f64;
+        error::in_range_f64("seconds", seconds, Included(0.0), Included(longest))?;
+        let end = self.time;
+        let start = check_time("time - seconds", end - seconds)?;
+        let steps = ((end - start) / dt).ceil() as usize;
+        // The foam reads only cascade 0 (its breaking intensity is cascade 0's Jacobian with
+        // the other cascades' statistics), so the roll updates cascade 0 alone and the others
+        // once at the end: the same bits as updating all of them at every step, at a third of
+        // the cost for the default three cascades.
+        rayon::scope(|_| {
+            self.cascades[0].update_checked(start);
+            self.time = start;
+            self.foam.clear();
+            self.foam.refresh(&self.cascades);
+            let mut previous = start;
+            for k in 1..=steps {
+                let t = if k == steps {
+                    end
+                } else {
+                    (start + k as f64 * dt).min(end)
+                };
+                self.cascades[0].update_checked(t);
+                self.time = t;
+                self.foam.advance(&self.cascades, t - previous);
+                previous = t;
+            }
+            self.update_cascades(end);
+        });
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{OceanConfig, Spectrum};
+
+    /// An ocean that never breaks (coverage 0) with a Gaussian blob of residual foam, σ₀ = 3
+    /// grid points, in the middle of its 64² foam grid.
+    fn blob_ocean(wind_direction: f32) -> (OceanState, [f64; 2], f64) {
+        let spectrum = Spectrum::pierson_moskowitz(20.0)
+            .and_then(|s| s.with_wind_direction(wind_direction))
+            .unwrap();
+        let config = OceanConfig {
+            size: 64,
+            lengths: vec![200.0, 46.0],
+            foam: FoamConfig {
+                coverage: 0.0,
+                streak_length: 0.05,
+                streak_width: 0.02,
+                residual_decay: 30.0,
+                ..FoamConfig::default()
+            },
+            ..OceanConfig::default()
+        };
+        let mut ocean = OceanState::new(spectrum, config).unwrap();
+        let h = 200.0 / 64.0;
+        let (centre, sigma) = ([100.0, 90.0], 3.0 * h);
+        for j in 0..64 {
+            for i in 0..64 {
+                let (dx, dz) = (i as f64 * h - centre[0], j as f64 * h - centre[1]);
+                let r = 0.5 * (-(dx * dx + dz * dz) / (2.0 * sigma * sigma)).exp();
+                ocean.foam.residual[j * 64 + i] = r as f32;
+            }
+        }
+        ocean.foam.finish();
+        (ocean, centre, sigma)
+    }
+
+    /// Mass, centroid and covariance (m²) of the residual foam.
+    fn moments(ocean: &OceanState) -> (f64, [f64; 2], [[f64; 2]; 2]) {
+        let h = 200.0 / 64.0;
+        let r = &ocean.foam.residual;
+        let mass: f64 = r.iter().map(|&v| f64::from(v)).sum();
+        let mut mean = [0.0; 2];
+        let mut second = [[0.0; 2]; 2];
+        for j in 0..64 {
+            for i in 0..64 {
+                let w = f64::from(r[j * 64 + i]) / mass;
+                let p = [i as f64 * h, j as f64 * h];
+                for a in 0..2 {
+                    mean[a] += w * p[a];
+                    for b in 0..2 {
+                        second[a][b] += w * p[a] * p[b];
+                    }
+                }
+            }
+        }
+        let cov = [0, 1].map(|a| [0, 1].map(|b| second[a][b] - mean[a] * mean[b]));
+        (mass, mean, cov)
+    }
+
+    /// The transport against the closed form of advection-diffusion with constant
+    /// coefficients: the blob's mass decays as e^{−t/τ_R} (nothing else acts on it), its
+    /// centroid moves by u·t downwind and its covariance grows by 2K·t, with K∥ along the wind
+    /// and K⊥ across (from the streak settings: (streak·λ_p)²/(2τ_R)).
+    #[test]
+    fn residual_blob_drifts_and_spreads_as_the_closed_form_says() {
+        let wind = 0.6f32;
+        let (mut ocean, centre, sigma) = blob_ocean(wind);
+        let (mass0, _, _) = moments(&ocean);
+        let t = 10.0;
+        for _ in 0..20 {
+            ocean.step(t / 20.0).unwrap();
+        }
+        let (mass, mean, cov) = moments(&ocean);
+        let spectrum = ocean.spectrum();
+        let k = spectrum
+            .dispersion()
+            .k_from_omega_f64(f64::from(spectrum.peak_omega()));
+        let wavelength = std::f64::consts::TAU / k;
+        let diffusivity = |streak: f64| (streak * wavelength).powi(2) / 60.0;
+        let (along, across) = (diffusivity(0.05), diffusivity(0.02));
+        let drift = 0.03 * 20.0;
+        let (w, n) = (
+            [f64::from(wind).cos(), f64::from(wind).sin()],
+            [-f64::from(wind).sin(), f64::from(wind).cos()],
+        );
+        // f32 buffers and transforms, and the flush of foam below 1e-6 (the blob's far tails)
+        // at every step: a relative error of a few 1e-5 on the mass.
+        assert!(
+            (mass / mass0 - (-t / 30.0f64).exp()).abs() < 2e-4,
+            "{mass} {mass0}"
+        );
+        for a in 0..2 {
+            let expected = centre[a] + drift * t * w[a];
+            assert!((mean[a] - expected).abs() < 1e-3, "mean {mean:?}");
+        }
+        let form = |u: [f64; 2], v: [f64; 2]| {
+            (0..2)
+                .map(|a| (0..2).map(|b| u[a] * cov[a][b] * v[b]).sum::<f64>())
+                .sum::<f64>()
+        };
+        let s2 = sigma * sigma;
+        // The blob is 3 grid points wide and grows to 4–6: its tails beyond the tile and the
+        // grid's Nyquist cut are far below 1e-3 of its variance.
+        assert!(
+            (form(w, w) - (s2 + 2.0 * along * t)).abs() < 1e-3 * s2,
+            "{cov:?}"
+        );
+        assert!(
+            (form(n, n) - (s2 + 2.0 * across * t)).abs() < 1e-3 * s2,
+            "{cov:?}"
+        );
+        assert!(form(w, n).abs() < 1e-3 * s2, "{cov:?}");
+        assert!(
+            along > 2.0 * across && along * t > s2 / 4.0,
+            "{along} {across}"
+        );
+    }
+
+    /// Steps compose exactly: twenty steps of 0.5 s move the blob as ten of 1 s and one of
+    /// 10 s, to the rounding of the transforms (1e-7 of the peak per step) and the flush of
+    /// values below 1e-6 at each step.
+    #[test]
+    fn transport_steps_compose() {
+        let runs: Vec<Vec<f32>> = [(20, 0.5), (10, 1.0), (1, 10.0)]
+            .iter()
+            .map(|&(steps, dt)| {
+                let (mut ocean, _, _) = blob_ocean(2.2);
+                for _ in 0..steps {
+                    ocean.step(dt).unwrap();
+                }
+                ocean.foam.residual.clone()
+            })
+            .collect();
+        for other in &runs[1..] {
+            let worst = runs[0]
+                .iter()
+                .zip(other)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0f32, f32::max);
+            assert!(worst < 1e-5, "{worst}");
+        }
+    }
+}
