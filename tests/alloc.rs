@@ -18,59 +18,13 @@
 //!   rayon's queue, not the crate, and no net growth. Inside `ThreadPool::install` every call
 //!   is made from a worker and nothing is injected: there the count is exactly zero.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicBool, AtomicIsize, AtomicUsize, Ordering};
+mod counting;
 
+use counting::{count, live, start_recording, stop_recording};
 use ocean_fft::{Cascade, CascadeConfig, Spectrum};
 
-struct Counting;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-/// Bytes currently allocated (allocations minus deallocations).
-static LIVE: AtomicIsize = AtomicIsize::new(0);
-/// While set, the smallest and largest allocation sizes are recorded.
-static RECORD: AtomicBool = AtomicBool::new(false);
-static MIN_SIZE: AtomicUsize = AtomicUsize::new(usize::MAX);
-static MAX_SIZE: AtomicUsize = AtomicUsize::new(0);
-
-fn note(size: usize) {
-    ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-    LIVE.fetch_add(size as isize, Ordering::SeqCst);
-    if RECORD.load(Ordering::SeqCst) {
-        MIN_SIZE.fetch_min(size, Ordering::SeqCst);
-        MAX_SIZE.fetch_max(size, Ordering::SeqCst);
-    }
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        note(layout.size());
-        System.alloc(layout)
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        note(layout.size());
-        System.alloc_zeroed(layout)
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        note(new_size);
-        LIVE.fetch_sub(layout.size() as isize, Ordering::SeqCst);
-        System.realloc(ptr, layout, new_size)
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        LIVE.fetch_sub(layout.size() as isize, Ordering::SeqCst);
-        System.dealloc(ptr, layout)
-    }
-}
-
 #[global_allocator]
-static GLOBAL: Counting = Counting;
-
-fn count() -> usize {
-    ALLOCATIONS.load(Ordering::SeqCst)
-}
+static GLOBAL: counting::Counting = counting::Counting;
 
 /// Allocations made by `updates` updates of `cascade` after a few warm-up updates.
 fn allocations_during_updates(cascade: &mut Cascade, updates: usize) -> usize {
@@ -97,23 +51,10 @@ fn update_allocates_nothing_after_warm_up() {
     // allocate while doing so (crossbeam-epoch flushes its thread-local garbage; seen as a
     // 2072-byte allocation), which this process-wide counter would see during a later
     // measurement.
-    let pools: Vec<rayon::ThreadPool> = [1, 2, 3]
-        .into_iter()
-        .map(|threads| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            // Make every worker start and steal once (its one-time thread-local set-up).
-            pool.broadcast(|_| ());
-            pool
-        })
-        .collect();
-    // The same for the global pool; then give every worker time to finish its first search
-    // for work and fall asleep, so that all one-time thread set-up is over (without this, the
-    // set-up of a late-starting worker occasionally landed in a measurement: 2 allocations).
-    rayon::broadcast(|_| ());
-    std::thread::sleep(std::time::Duration::from_millis(200));
+    // Every worker of these pools and of the global one runs once and settles before
+    // anything is counted (without that, the set-up of a late-starting worker occasionally
+    // landed in a measurement: 2 allocations).
+    let pools = counting::warm_pools(&[1, 2, 3]);
 
     for n in [64, 256] {
         let config = CascadeConfig {
@@ -138,17 +79,11 @@ fn update_allocates_nothing_after_warm_up() {
         // would: 20 updates, then 320 for the amortised behaviour described above.
         let global = allocations_during_updates(&mut cascade, 20);
         println!("N={n}: {global} allocations in 20 updates on the global pool");
-        let live_before = LIVE.load(Ordering::SeqCst);
-        MIN_SIZE.store(usize::MAX, Ordering::SeqCst);
-        MAX_SIZE.store(0, Ordering::SeqCst);
-        RECORD.store(true, Ordering::SeqCst);
+        let live_before = live();
+        start_recording();
         let many = allocations_during_updates(&mut cascade, 320);
-        RECORD.store(false, Ordering::SeqCst);
-        let growth = LIVE.load(Ordering::SeqCst) - live_before;
-        let (lo, hi) = (
-            MIN_SIZE.load(Ordering::SeqCst),
-            MAX_SIZE.load(Ordering::SeqCst),
-        );
+        let (lo, hi) = stop_recording();
+        let growth = live() - live_before;
         println!(
             "N={n}: {many} allocations in 323 updates on the global pool (sizes {lo}..={hi} B), \
              net live bytes {growth}"
@@ -178,9 +113,9 @@ fn update_allocates_nothing_after_warm_up() {
             ..CascadeConfig::default()
         };
         let expected = config.memory_bytes();
-        let before = LIVE.load(Ordering::SeqCst);
+        let before = live();
         let cascade = pools[0].install(|| Cascade::new(&spectrum, config).unwrap());
-        let live = (LIVE.load(Ordering::SeqCst) - before) as usize;
+        let live = (live() - before) as usize;
         drop(cascade);
         println!("N={n}: memory_bytes {expected}, live after Cascade::new {live}");
         // Twiddles of a length-N plan are a few N complex values: 64 N bytes is ample.

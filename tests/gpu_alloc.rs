@@ -6,42 +6,13 @@
 //! read. The warm-up follows tests/alloc.rs: every worker of every pool runs once and the
 //! pools settle before anything is counted.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+mod counting;
 
+use counting::count;
 use ocean_fft::{NormalMapGreen, OceanConfig, OceanState, Spectrum, TexelLayout, Vertex};
 
-struct Counting;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.alloc_zeroed(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
 #[global_allocator]
-static GLOBAL: Counting = Counting;
-
-fn count() -> usize {
-    ALLOCATIONS.load(Ordering::SeqCst)
-}
+static GLOBAL: counting::Counting = counting::Counting;
 
 /// The caller's buffers, allocated once.
 struct Buffers {
@@ -94,19 +65,7 @@ fn packing_allocates_nothing_inside_a_pool() {
     assert_eq!(count() - before, 1);
     drop(v);
 
-    let pools: Vec<rayon::ThreadPool> = [1, 2, 3]
-        .into_iter()
-        .map(|threads| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.broadcast(|_| ());
-            pool
-        })
-        .collect();
-    rayon::broadcast(|_| ());
-    std::thread::sleep(std::time::Duration::from_millis(200));
+    let pools = counting::warm_pools(&[1, 2, 3]);
 
     for size in [64, 256] {
         let config = OceanConfig {

@@ -6,45 +6,20 @@
 //! injector queue, which allocates one 1.5 KiB block per 63 jobs it receives — rayon's
 //! allocation, amortised to a few bytes a frame, not the crate's.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+mod counting;
 
+use counting::count;
 use ocean_fft::{OceanConfig, OceanState, Spectrum};
 
-struct Counting;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
 #[global_allocator]
-static GLOBAL: Counting = Counting;
+static GLOBAL: counting::Counting = counting::Counting;
 
 #[test]
 fn stepping_and_querying_allocate_nothing() {
     let spectrum = Spectrum::jonswap(12.0, 200_000.0).unwrap();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .unwrap();
-    // Every worker's one-time thread set-up happens when it first runs, asynchronously: make
-    // each run once and let them settle before anything is counted (as in tests/alloc.rs).
-    pool.broadcast(|_| ());
-    std::thread::sleep(std::time::Duration::from_millis(200));
+    // Every worker runs once and settles before anything is counted (as in tests/alloc.rs).
+    let pools = counting::warm_pools(&[2]);
+    let pool = &pools[0];
     for parallel_cascades in [false, true] {
         let config = OceanConfig {
             size: 128,
@@ -62,7 +37,7 @@ fn stepping_and_querying_allocate_nothing() {
                 ocean.step(1.0 / 60.0).unwrap();
                 ocean.heights_at(&points, &mut heights).unwrap();
             }
-            let before = ALLOCATIONS.load(Ordering::SeqCst);
+            let before = count();
             for frame in 0..200 {
                 ocean.step(1.0 / 60.0).unwrap();
                 ocean.heights_at(&points, &mut heights).unwrap();
@@ -82,7 +57,7 @@ fn stepping_and_querying_allocate_nothing() {
                     ocean.pre_roll(0.5, 0.1).unwrap();
                 }
             }
-            (before, ALLOCATIONS.load(Ordering::SeqCst))
+            (before, count())
         });
         assert_eq!(
             after - before,
