@@ -1,15 +1,21 @@
 //! `OceanState::step` of the default ocean (three cascades of 1000, 230 and 51 m) beside the
 //! bare floor of its FFTs (the three cascades' twelve packed complex 2D inverse FFTs done by
-//! one `Fft2d`), in one process, and the world queries.
+//! one `Fft2d`), in one process, and the world queries with cubic B-spline and bilinear
+//! interpolation.
 //!
 //! Groups (throughput in grid points of one cascade, N² per iteration):
 //! - `ocean_step`: `step_1t`, `twelve_ffts_1t`, `step_2t`, `twelve_ffts_2t` at
 //!   N = 64 … 1024, each inside a rayon pool of that many threads; the project's target is
 //!   step ≤ 1.2 × twelve_ffts.
 //! - `ocean_parallel_cascades`: at N = 256 in a pool of 2 threads, `sequential` and
-//!   `parallel` (`OceanConfig::parallel_cascades` off and on).
-//! - `ocean_queries`: `sample`, `height_at`, `heights_at` and `sample_many` of 10 000 points
-//!   and `sample_grid` of 100×100 on the default ocean at 256², with cubic B-spline and
+//!   `parallel` (`OceanConfig::parallel_cascades` off and on), and `parallel_bilinear_queries`
+//!   (parallel, with bilinear queries: no spline prefilter on the first query).
+//! - `ocean_determinism`: the default ocean's step with `Determinism::SameMachine` and
+//!   `Determinism::CrossPlatform` (`step_same_machine`, `step_cross_platform`) at
+//!   N = 64 … 512 in a pool of 2 threads, one after the other for each N; and building the
+//!   default ocean at 256² in both modes (`new_same_machine`, `new_cross_platform`).
+//! - `ocean_queries`: one `sample`, one `height_at`, `heights_at` and `sample_many` of 10 000
+//!   points and a 100×100 `sample_grid` on the default ocean at 256², with cubic B-spline and
 //!   bilinear interpolation.
 //!
 //! `cargo bench -p ocean-fft-benches --bench ocean [-- GROUP]`; the first line printed names
@@ -22,7 +28,7 @@ use std::time::Duration;
 
 use criterion::{BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput};
 use ocean_fft::{
-    Complex32, Fft2d, Interpolation, OceanConfig, OceanState, Spectrum, SurfaceSample,
+    Complex32, Determinism, Fft2d, Interpolation, OceanConfig, OceanState, Spectrum, SurfaceSample,
 };
 
 const SIZES: [usize; 5] = [64, 128, 256, 512, 1024];
@@ -129,6 +135,64 @@ fn parallel_cascades(c: &mut Criterion) {
             pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step")))
         });
     }
+    // The same parallel step without the cubic B-spline prefilter of the queries.
+    let mut state = ocean_with(size, true, Interpolation::Bilinear);
+    group.bench_with_input(
+        BenchmarkId::new("parallel_bilinear_queries", size),
+        &size,
+        |b, _| pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step"))),
+    );
+    group.finish();
+}
+
+/// The default ocean at N in a determinism mode.
+fn ocean_in(size: usize, determinism: Determinism) -> OceanState {
+    let spectrum = Spectrum::jonswap(10.0, 100_000.0).expect("valid spectrum");
+    let config = OceanConfig {
+        size,
+        determinism,
+        ..OceanConfig::default()
+    };
+    OceanState::new(spectrum, config).expect("valid ocean")
+}
+
+fn determinism(c: &mut Criterion) {
+    let pool = common::pool(2);
+    let mut group = c.benchmark_group("ocean_determinism");
+    group
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    let modes = [
+        ("same_machine", Determinism::SameMachine),
+        ("cross_platform", Determinism::CrossPlatform),
+    ];
+    for size in [64, 128, 256, 512] {
+        group
+            .sample_size(samples(size).min(60))
+            .throughput(Throughput::Elements((size * size) as u64));
+        for (name, mode) in modes {
+            let mut state: Option<OceanState> = None;
+            group.bench_with_input(
+                BenchmarkId::new(format!("step_{name}"), size),
+                &size,
+                |b, _| {
+                    let state = state.get_or_insert_with(|| ocean_in(size, mode));
+                    pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step")))
+                },
+            );
+        }
+    }
+    group
+        .sample_size(10)
+        .throughput(Throughput::Elements(256 * 256));
+    for (name, mode) in modes {
+        group.bench_with_input(
+            BenchmarkId::new(format!("new_{name}"), 256),
+            &256,
+            |b, &n| pool.install(|| b.iter(|| black_box(ocean_in(n, mode)))),
+        );
+    }
     group.finish();
 }
 
@@ -190,6 +254,7 @@ fn main() {
     let mut criterion = Criterion::default().configure_from_args();
     step(&mut criterion);
     parallel_cascades(&mut criterion);
+    determinism(&mut criterion);
     queries(&mut criterion);
     criterion.final_summary();
 }

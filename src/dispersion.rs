@@ -1,6 +1,7 @@
 //! Dispersion relations ω(k) of surface gravity(-capillary) waves, their group-velocity
 //! derivative dω/dk, and the inverse k(ω).
 
+use crate::determinism::{Determinism, Math, Std};
 use crate::error::{self, saturate, Error};
 
 /// Gravitational acceleration g, in m/s².
@@ -138,14 +139,24 @@ impl Dispersion {
 
     /// [`omega`](Self::omega) in f64.
     pub(crate) fn omega_f64(&self, k: f64) -> f64 {
+        self.omega_with::<Std>(k)
+    }
+
+    /// [`omega`](Self::omega) in f64 with the functions of `M`.
+    pub(crate) fn omega_with<M: Math>(&self, k: f64) -> f64 {
         if k.is_nan() || k <= 0.0 {
             return 0.0;
         }
-        self.omega_squared(k).sqrt()
+        self.omega_squared::<M>(k).sqrt()
     }
 
     /// [`d_omega_dk`](Self::d_omega_dk) in f64.
     pub(crate) fn d_omega_dk_f64(&self, k: f64) -> f64 {
+        self.d_omega_dk_with::<Std>(k)
+    }
+
+    /// [`d_omega_dk`](Self::d_omega_dk) in f64 with the functions of `M`.
+    pub(crate) fn d_omega_dk_with<M: Math>(&self, k: f64) -> f64 {
         let h = self.depth_f64();
         if k.is_nan() || k <= 0.0 {
             return match h {
@@ -160,12 +171,25 @@ impl Dispersion {
                 _ => 0.0,
             };
         }
-        let omega = self.omega_squared(k).sqrt();
-        self.d_omega_squared(k) / (2.0 * omega)
+        let omega = self.omega_squared::<M>(k).sqrt();
+        self.d_omega_squared::<M>(k) / (2.0 * omega)
     }
 
     /// [`k_from_omega`](Self::k_from_omega) in f64.
     pub(crate) fn k_from_omega_f64(&self, omega: f64) -> f64 {
+        self.k_from_omega_with::<Std>(omega)
+    }
+
+    /// [`k_from_omega`](Self::k_from_omega) in f64 with the functions of a mode.
+    pub(crate) fn k_from_omega_with_mode(&self, omega: f64, determinism: Determinism) -> f64 {
+        match determinism {
+            Determinism::SameMachine => self.k_from_omega_with::<Std>(omega),
+            Determinism::CrossPlatform => self.k_from_omega_with::<crate::determinism::Libm>(omega),
+        }
+    }
+
+    /// [`k_from_omega`](Self::k_from_omega) in f64 with the functions of `M`.
+    pub(crate) fn k_from_omega_with<M: Math>(&self, omega: f64) -> f64 {
         if omega.is_nan() || omega <= 0.0 {
             return 0.0;
         }
@@ -181,10 +205,10 @@ impl Dispersion {
         // Start from Fenton & McKee's (1990) explicit approximation for gravity waves,
         // k h ≈ y coth(y^{3/4})^{2/3} with y = ω² h / g, accurate to ~1.5 %.
         let y = deep_k * h;
-        let guess = y * (1.0 / y.powf(0.75).tanh()).powf(2.0 / 3.0) / h;
+        let guess = y * M::powf(1.0 / M::tanh(M::powf(y, 0.75)), 2.0 / 3.0) / h;
         // Bracket the root of f(k) = ω²(k) − ω², increasing in k, then polish with Newton
         // steps kept inside the bracket (bisection when a step leaves it).
-        let f = |k: f64| self.omega_squared(k) - target;
+        let f = |k: f64| self.omega_squared::<M>(k) - target;
         let (mut lo, mut hi) = (guess, guess);
         while f(lo) > 0.0 {
             lo *= 0.5;
@@ -203,7 +227,7 @@ impl Dispersion {
             } else {
                 hi = k;
             }
-            let step = fk / self.d_omega_squared(k);
+            let step = fk / self.d_omega_squared::<M>(k);
             let mut next = k - step;
             if !(next > lo && next < hi) {
                 next = 0.5 * (lo + hi);
@@ -227,8 +251,8 @@ impl Dispersion {
 
     /// ω²(k) for k > 0.
     #[inline]
-    fn omega_squared(&self, k: f64) -> f64 {
-        let depth_term = self.depth_f64().map_or(1.0, |h| (k * h).tanh());
+    fn omega_squared<M: Math>(&self, k: f64) -> f64 {
+        let depth_term = self.depth_f64().map_or(1.0, |h| M::tanh(k * h));
         match self {
             Dispersion::Capillary { .. } => (G * k + TENSION * k * k * k) * depth_term,
             _ => G * k * depth_term,
@@ -237,7 +261,7 @@ impl Dispersion {
 
     /// d(ω²)/dk for k > 0.
     #[inline]
-    fn d_omega_squared(&self, k: f64) -> f64 {
+    fn d_omega_squared<M: Math>(&self, k: f64) -> f64 {
         let (force, d_force) = match self {
             Dispersion::Capillary { .. } => {
                 (G * k + TENSION * k * k * k, G + 3.0 * TENSION * k * k)
@@ -248,8 +272,8 @@ impl Dispersion {
             None => d_force,
             Some(h) => {
                 let kh = k * h;
-                let sech = 1.0 / kh.cosh();
-                d_force * kh.tanh() + force * h * sech * sech
+                let sech = 1.0 / M::cosh(kh);
+                d_force * M::tanh(kh) + force * h * sech * sech
             }
         }
     }

@@ -9,8 +9,9 @@ use std::sync::Arc;
 
 use num_complex::Complex32;
 use rayon::prelude::*;
-use rustfft::{Fft, FftPlanner};
+use rustfft::{Fft, FftPlanner, FftPlannerScalar};
 
+use crate::determinism::Determinism;
 use crate::error::{self, Error};
 use crate::grid;
 
@@ -30,8 +31,14 @@ pub(crate) struct RowFft {
 }
 
 impl RowFft {
-    pub(crate) fn new(n: usize) -> Self {
-        let fft = FftPlanner::<f32>::new().plan_fft_inverse(n);
+    /// The inverse FFT of length `n`: rustfft's fastest kernels for this CPU
+    /// ([`Determinism::SameMachine`]) or its scalar planner's, the same code on every CPU
+    /// ([`Determinism::CrossPlatform`]; see [`Determinism`] for why that is enough).
+    pub(crate) fn new(n: usize, determinism: Determinism) -> Self {
+        let fft = match determinism {
+            Determinism::SameMachine => FftPlanner::<f32>::new().plan_fft_inverse(n),
+            Determinism::CrossPlatform => FftPlannerScalar::<f32>::new().plan_fft_inverse(n),
+        };
         // `par_chunks_mut` needs a non-zero chunk length.
         let scratch_len = fft.get_inplace_scratch_len().max(1);
         RowFft { fft, scratch_len }
@@ -149,6 +156,20 @@ impl Fft2d {
     /// more than [`MEMORY_LIMIT`](Self::MEMORY_LIMIT) bytes; [`Error::OutOfMemory`] if the
     /// system refuses an allocation.
     pub fn new(size: usize, count: usize) -> Result<Self, Error> {
+        Self::with_determinism(size, count, Determinism::SameMachine)
+    }
+
+    /// [`Fft2d::new`] with the FFT code path of a [`Determinism`] mode:
+    /// [`Determinism::CrossPlatform`] runs the same scalar kernels on every CPU, so the
+    /// results are the same bits everywhere (and slower where the CPU has SIMD).
+    ///
+    /// # Errors
+    /// Those of [`Fft2d::new`].
+    pub fn with_determinism(
+        size: usize,
+        count: usize,
+        determinism: Determinism,
+    ) -> Result<Self, Error> {
         grid::check_size("size", size)?;
         if !(1..=Self::MAX_COUNT).contains(&count) {
             return Err(Error::CountOutOfRange {
@@ -158,7 +179,7 @@ impl Fft2d {
                 max: Self::MAX_COUNT,
             });
         }
-        let rows = RowFft::new(size);
+        let rows = RowFft::new(size, determinism);
         // The first pass runs (count·N)/ROWS_PER_TASK tasks, the second count·⌈N/ROWS_PER_TASK⌉.
         let tasks = count * size.div_ceil(ROWS_PER_TASK);
         let scratch_len = tasks * rows.scratch_len();
@@ -235,12 +256,16 @@ mod tests {
 
     #[test]
     fn fft2d_matches_a_naive_inverse_dft() {
-        for n in [4, 6, 8, 34] {
+        let modes = [Determinism::SameMachine, Determinism::CrossPlatform];
+        for (n, determinism) in [4, 6, 8, 34, 62]
+            .into_iter()
+            .flat_map(|n| modes.map(|d| (n, d)))
+        {
             let count = 2;
             let input: Vec<Complex32> = (0..count * n * n)
                 .map(|v| Complex32::new(((v * 7) % 11) as f32 - 5.0, ((v * 3) % 5) as f32))
                 .collect();
-            let mut fft = Fft2d::new(n, count).unwrap();
+            let mut fft = Fft2d::with_determinism(n, count, determinism).unwrap();
             let mut data = input.clone();
             let out = fft.process(&mut data).unwrap().to_vec();
             let tau = std::f64::consts::TAU;
@@ -260,8 +285,15 @@ mod tests {
                         }
                         let got = out[a * n * n + x * n + z];
                         let scale = (n * n) as f64 * 8.0;
-                        assert!((f64::from(got.re) - re).abs() < 1e-5 * scale, "n {n}");
-                        assert!((f64::from(got.im) - im).abs() < 1e-5 * scale, "n {n}");
+                        let tolerance = 1e-5 * scale;
+                        assert!(
+                            (f64::from(got.re) - re).abs() < tolerance,
+                            "{determinism:?} {n}"
+                        );
+                        assert!(
+                            (f64::from(got.im) - im).abs() < tolerance,
+                            "{determinism:?} {n}"
+                        );
                     }
                 }
             }

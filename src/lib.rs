@@ -68,7 +68,9 @@
 //! Every constructor, setter and query checks its input and returns [`Error`] rather than
 //! panicking; no NaN reaches an output buffer. The FFT rows, h0 generation and batch queries
 //! run on rayon's pool (or the pool you `install`); results are bit-identical whatever the
-//! number of threads. [`Cascade::update`] and [`OceanState::step`] allocate nothing inside a
+//! number of threads and SIMD level. By default that holds on one machine and build; with
+//! [`Determinism::CrossPlatform`] in the config, every buffer, h0 and query result is the
+//! same bits on every CPU and operating system (see [`Determinism`]). [`Cascade::update`] and [`OceanState::step`] allocate nothing inside a
 //! rayon pool; called from a thread outside every pool, rayon's own job queue allocates one
 //! 1.5 KiB block per 63 calls.
 //!
@@ -158,10 +160,13 @@
 #![warn(clippy::missing_errors_doc)]
 
 mod cascade;
+mod determinism;
 mod dispersion;
 mod engine;
 mod error;
 mod fft2d;
+#[cfg(test)]
+mod golden;
 mod gpu;
 mod grid;
 mod ocean;
@@ -173,6 +178,7 @@ mod simd;
 mod spectrum;
 
 pub use cascade::{Cascade, CascadeConfig, Field, LoopError};
+pub use determinism::Determinism;
 pub use dispersion::{Dispersion, GRAVITY, SURFACE_TENSION, WATER_DENSITY};
 pub use engine::Engine;
 pub use error::Error;

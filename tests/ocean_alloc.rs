@@ -9,7 +9,7 @@
 mod counting;
 
 use counting::count;
-use ocean_fft::{OceanConfig, OceanState, Spectrum};
+use ocean_fft::{Determinism, OceanConfig, OceanState, Spectrum};
 
 #[global_allocator]
 static GLOBAL: counting::Counting = counting::Counting;
@@ -20,10 +20,13 @@ fn stepping_and_querying_allocate_nothing() {
     // Every worker runs once and settles before anything is counted (as in tests/alloc.rs).
     let pools = counting::warm_pools(&[2]);
     let pool = &pools[0];
-    for parallel_cascades in [false, true] {
+    let modes = [Determinism::SameMachine, Determinism::CrossPlatform];
+    for (parallel_cascades, determinism) in [(false, modes[0]), (true, modes[0]), (true, modes[1])]
+    {
         let config = OceanConfig {
             size: 128,
             parallel_cascades,
+            determinism,
             ..OceanConfig::default()
         };
         let mut ocean = OceanState::new(spectrum.clone(), config).unwrap();

@@ -16,7 +16,7 @@
 use std::ops::Bound;
 
 use ocean_fft::{
-    Cascade, CascadeConfig, DepthFactor, Dispersion, Error, Fft2d, Field, FoamConfig,
+    Cascade, CascadeConfig, DepthFactor, Determinism, Dispersion, Error, Fft2d, Field, FoamConfig,
     Interpolation, OceanConfig, OceanState, QueryConfig, SeaState, Spectrum, Spreading,
     SurfaceSample,
 };
@@ -568,9 +568,20 @@ fn any_cascade_config() -> impl Strategy<Value = CascadeConfig> {
         any::<u64>(),
         mostly(Just(None), any_f32().prop_map(Some)),
         any_memory_limit(),
+        any_determinism(),
     )
         .prop_map(
-            |(size, length, k_min, k_max, choppiness, seed, repeat_period, memory_limit)| {
+            |(
+                size,
+                length,
+                k_min,
+                k_max,
+                choppiness,
+                seed,
+                repeat_period,
+                memory_limit,
+                determinism,
+            )| {
                 // A valid large grid would allocate gigabytes: bound what these tests build.
                 let memory_limit = if size > 32 {
                     memory_limit.min(TEST_MEMORY_LIMIT)
@@ -586,9 +597,15 @@ fn any_cascade_config() -> impl Strategy<Value = CascadeConfig> {
                     seed,
                     repeat_period,
                     memory_limit,
+                    determinism,
                 }
             },
         )
+}
+
+/// Either mode, half the time each.
+fn any_determinism() -> impl Strategy<Value = Determinism> {
+    prop::sample::select(vec![Determinism::SameMachine, Determinism::CrossPlatform])
 }
 
 #[derive(Debug, Clone)]
@@ -760,7 +777,7 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
             any::<bool>(),
         ),
         any_memory_limit(),
-        any::<bool>(),
+        (any::<bool>(), any_determinism()),
     )
         .prop_map(
             |(
@@ -774,7 +791,7 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
                 repeat_period,
                 (max_iterations, tolerance, bilinear),
                 memory_limit,
-                parallel_cascades,
+                (parallel_cascades, determinism),
             )| {
                 let memory_limit = if size > 16 {
                     memory_limit.min(TEST_MEMORY_LIMIT)
@@ -802,6 +819,7 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
                         },
                     },
                     memory_limit,
+                    determinism,
                 }
             },
         )
@@ -1166,5 +1184,93 @@ mod serde_round_trips {
                 prop_assert_eq!(back, ocean.foam);
             }
         }
+    }
+}
+
+// ----------------------------------------------------------------------------------------
+// Determinism modes
+// ----------------------------------------------------------------------------------------
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// The two modes evaluate the same spectrum and dispersion, one with std's functions and
+    /// one with libm's: where both build a cascade, the expected variance Σ S(k)Δk² and every
+    /// tabulated ω agree to 1e-10 relative. (The functions agree to an ulp or two; a density
+    /// chains a few dozen of them, and exponents up to 700 amplify a relative error of an
+    /// argument by 700: about 1e-13, so 1e-10 leaves room and still catches a wrong formula.)
+    /// The amplitudes differ (other Gaussian draws), so errors that depend on them
+    /// (`AmplitudeTooLarge`) may differ; every other error is the same.
+    #[test]
+    fn both_modes_evaluate_the_same_spectrum(
+        spectrum in valid_spectrum(),
+        size in prop::sample::select(vec![4usize, 8, 16, 34]),
+        length in 1f32..5000.0,
+        seed in any::<u64>(),
+    ) {
+        let config = |determinism| CascadeConfig {
+            size,
+            length,
+            seed,
+            determinism,
+            memory_limit: TEST_MEMORY_LIMIT,
+            ..CascadeConfig::default()
+        };
+        let fast = Cascade::new(&spectrum, config(Determinism::SameMachine));
+        let portable = Cascade::new(&spectrum, config(Determinism::CrossPlatform));
+        match (fast, portable) {
+            (Ok(fast), Ok(portable)) => {
+                let (a, b) = (fast.expected_variance(), portable.expected_variance());
+                prop_assert!((a - b).abs() <= 1e-10 * a.abs().max(b.abs()), "{} vs {}", a, b);
+                for j in 0..size {
+                    for i in 0..size {
+                        let (a, b) = (fast.omega_at(i, j).unwrap(), portable.omega_at(i, j).unwrap());
+                        prop_assert!((a - b).abs() <= 1e-10 * a.abs().max(b.abs()), "ω({}, {})", i, j);
+                    }
+                }
+                prop_assert!(cascade_finite(&portable));
+            }
+            (Err(Error::AmplitudeTooLarge { .. }), _) | (_, Err(Error::AmplitudeTooLarge { .. })) => {}
+            (fast, portable) => prop_assert_eq!(fast.err(), portable.err()),
+        }
+    }
+
+    /// An ocean in the cross-platform mode gives the same bits in pools of 1 and 2 threads,
+    /// with any spectrum, through steps, queries included.
+    #[test]
+    fn cross_platform_oceans_are_the_same_at_any_thread_count(
+        spectrum in valid_spectrum(),
+        size in prop::sample::select(vec![8usize, 16, 34]),
+        choppiness in 0f32..2.0,
+        steps in prop::collection::vec(0f64..2.0, 1..4),
+    ) {
+        let config = OceanConfig {
+            size,
+            choppiness,
+            determinism: Determinism::CrossPlatform,
+            memory_limit: TEST_MEMORY_LIMIT,
+            ..OceanConfig::default()
+        };
+        let run = |threads: usize| {
+            pool(threads).install(|| {
+                let mut ocean = OceanState::new(spectrum.clone(), config.clone()).ok()?;
+                let mut bits = Vec::new();
+                for &dt in &steps {
+                    ocean.step(dt).unwrap();
+                    bits.extend(ocean_bits(&ocean));
+                    let s = ocean.surface_at(31.7, -250.2).unwrap();
+                    bits.extend([s.height, s.foam].iter().chain(&s.normal).map(|v| u64::from(v.to_bits())));
+                }
+                Some(bits)
+            })
+        };
+        prop_assert_eq!(run(1), run(2));
     }
 }

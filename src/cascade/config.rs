@@ -2,6 +2,7 @@
 
 use std::ops::Bound::Included;
 
+use crate::determinism::Determinism;
 use crate::error::{self, Error};
 use crate::grid;
 
@@ -64,6 +65,12 @@ pub struct CascadeConfig {
         serde(default = "crate::serde_impls::default_memory_limit")
     )]
     pub memory_limit: usize,
+    /// How far the same config gives the same bits: [`Determinism::SameMachine`] (the
+    /// default, fastest) or [`Determinism::CrossPlatform`] (the same bits on every CPU and
+    /// operating system; slower). The two modes draw different (equally calibrated) waves.
+    /// Configs saved without it read back with the default.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub determinism: Determinism,
 }
 
 impl Default for CascadeConfig {
@@ -77,6 +84,7 @@ impl Default for CascadeConfig {
             seed: 0,
             repeat_period: None,
             memory_limit: Self::DEFAULT_MEMORY_LIMIT,
+            determinism: Determinism::SameMachine,
         }
     }
 }
@@ -122,7 +130,7 @@ impl CascadeConfig {
                 Included(Self::MAX_REPEAT_PERIOD),
             )?;
         }
-        grid::check_memory(super::memory_bytes(self.size), self.memory_limit)
+        grid::check_memory(self.memory_bytes(), self.memory_limit)
     }
 
     /// Bytes a cascade of this size holds (buffers, tables and FFT scratch; the FFT plans'
@@ -131,7 +139,7 @@ impl CascadeConfig {
     /// 94·N² at 4096²). Any size gives an answer, even one [`validate`](Self::validate)
     /// refuses.
     pub fn memory_bytes(&self) -> usize {
-        super::memory_bytes(self.size)
+        super::memory_bytes(self.size, self.determinism)
     }
 }
 

@@ -30,7 +30,7 @@ impl Cascade {
             for i in 0..n {
                 let (entry, conjugate) = self.evolution_entry(i, j);
                 let phase = (entry.freq * t).fract() * TAU;
-                let (sin, cos) = phase.sin_cos();
+                let (sin, cos) = self.config.determinism.sin_cos(phase);
                 let p = (f64::from(entry.p.re), f64::from(entry.p.im));
                 let q = (f64::from(entry.q.re), f64::from(entry.q.im));
                 let value = Complex32::new(

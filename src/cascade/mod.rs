@@ -16,6 +16,7 @@ use std::ops::Bound::Included;
 use num_complex::Complex32;
 use rayon::prelude::*;
 
+use crate::determinism::{Determinism, Libm, Math, Std};
 use crate::error::{self, Error};
 use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK, TILE};
 use crate::grid::{self, wave_index};
@@ -137,11 +138,11 @@ pub(crate) fn check_time(name: &'static str, t: f64) -> Result<f64, Error> {
 
 /// Bytes a cascade of size `n` holds: its buffers, tables, FFT plan and scratch (planned
 /// for a valid size; for larger ones the scratch is estimated at N per task).
-pub(crate) fn memory_bytes(n: usize) -> usize {
+pub(crate) fn memory_bytes(n: usize, determinism: Determinism) -> usize {
     let points = n.saturating_mul(n);
     let complex = std::mem::size_of::<Complex32>();
     let scratch_len = if n <= grid::MAX_SIZE {
-        RowFft::new(n).scratch_len()
+        RowFft::new(n, determinism).scratch_len()
     } else {
         n
     };
@@ -168,25 +169,6 @@ pub(crate) fn memory_bytes(n: usize) -> usize {
             .saturating_add(spectral),
         |sum, &bytes| sum.saturating_add(points.saturating_mul(bytes)),
     )
-}
-
-/// 2 Σ_k |k| |h0(k)|² in m over the grid's wave vectors (h0 in FFT order, index j·N + i at
-/// k = Δk·(m(i), m(j))): the time-averaged Σ_k |k| |h̃(k, t)|², since |h̃(k)|² averages to
-/// |h0(k)|² + |h0(−k)|².
-fn mean_level_per_choppiness(h0: &[Complex32], n: usize, dk: f64) -> f64 {
-    let mut sum = 0.0;
-    for j in 0..n {
-        let kz = f64::from(wave_index(j, n)) * dk;
-        for i in 0..n {
-            let kx = f64::from(wave_index(i, n)) * dk;
-            let h = h0[j * n + i];
-            // In f64: |h0|² of an extreme (but accepted) spectrum can overflow f32, while
-            // λ Σ|k||h0|² stays below the square of the amplitude bound (≤ 1e30).
-            let (re, im) = (f64::from(h.re), f64::from(h.im));
-            sum += kx.hypot(kz) * (re * re + im * im);
-        }
-    }
-    2.0 * sum
 }
 
 /// Most parallel tasks of each pass. Every task owns an FFT scratch slot (and in pass 2 a
@@ -273,6 +255,25 @@ impl RowPruning {
     }
 }
 
+/// 2 Σ_k |k| |h0(k)|² in m over the grid's wave vectors (h0 in FFT order, index j·N + i at
+/// k = Δk·(m(i), m(j))): the time-averaged Σ_k |k| |h̃(k, t)|², since |h̃(k)|² averages to
+/// |h0(k)|² + |h0(−k)|².
+fn mean_level_per_choppiness<M: Math>(h0: &[Complex32], n: usize, dk: f64) -> f64 {
+    let mut sum = 0.0;
+    for j in 0..n {
+        let kz = f64::from(wave_index(j, n)) * dk;
+        for i in 0..n {
+            let kx = f64::from(wave_index(i, n)) * dk;
+            let h = h0[j * n + i];
+            // In f64: |h0|² of an extreme (but accepted) spectrum can overflow f32, while
+            // λ Σ|k||h0|² stays below the square of the amplitude bound (≤ 1e30).
+            let (re, im) = (f64::from(h.re), f64::from(h.im));
+            sum += M::hypot(kx, kz) * (re * re + im * im);
+        }
+    }
+    2.0 * sum
+}
+
 impl Cascade {
     /// Largest |t| accepted by [`Cascade::update`], in seconds (about 31.7 years). Up to here
     /// the f64 phase ω·t keeps an error below 1e-5 rad.
@@ -295,6 +296,14 @@ impl Cascade {
     /// system refuses an allocation.
     pub fn new(spectrum: &Spectrum, config: CascadeConfig) -> Result<Cascade, Error> {
         config.validate()?;
+        match config.determinism {
+            Determinism::SameMachine => Self::new_with::<Std>(spectrum, config),
+            Determinism::CrossPlatform => Self::new_with::<Libm>(spectrum, config),
+        }
+    }
+
+    /// [`Cascade::new`] for a checked config, with the functions of its determinism mode.
+    fn new_with<M: Math>(spectrum: &Spectrum, config: CascadeConfig) -> Result<Cascade, Error> {
         let n = config.size;
         let dk64 = TAU / f64::from(config.length);
         let dk = dk64 as f32;
@@ -302,19 +311,19 @@ impl Cascade {
             h0,
             expected_variance,
             amplitude_bound,
-        } = Amplitudes::draw(spectrum, &config)?;
+        } = Amplitudes::draw::<M>(spectrum, &config)?;
         check_amplitude(amplitude_bound, config.choppiness)?;
         let looping = config.repeat_period.map(f64::from);
-        let evolution = EvolutionTable::new(&h0, n, dk64, spectrum.dispersion(), looping);
+        let evolution = EvolutionTable::new::<M>(&h0, n, dk64, spectrum.dispersion(), looping);
         let loop_error =
-            looping.map(|period| LoopError::new(&h0, n, dk64, spectrum.dispersion(), period));
+            looping.map(|period| LoopError::new::<M>(&h0, n, dk64, spectrum.dispersion(), period));
         let kz = (0..n).map(|j| wave_index(j, n) as f32 * dk).collect();
-        let mean_level = mean_level_per_choppiness(&h0, n, dk64);
+        let mean_level = mean_level_per_choppiness::<M>(&h0, n, dk64);
         let nyquist = std::f64::consts::PI * n as f64 / f64::from(config.length);
         let band_top = f64::from(config.k_max).min(nyquist);
         let subgrid_slope =
-            spectrum.slope_variance_f64(band_top, f64::from(SlopeVariance::DEFAULT_CUTOFF));
-        let rows = RowFft::new(n);
+            spectrum.slope_variance_with::<M>(band_top, f64::from(SlopeVariance::DEFAULT_CUTOFF));
+        let rows = RowFft::new(n, config.determinism);
         let tasks = Tasks::new(n);
         let pruning = RowPruning::of(&evolution, n);
         let live_pairs = (1..n / 2).rev().find(|&i| !pruning[i].empty).unwrap_or(0);

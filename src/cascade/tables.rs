@@ -7,6 +7,7 @@ use num_complex::Complex32;
 use rayon::prelude::*;
 
 use super::CascadeConfig;
+use crate::determinism::Math;
 use crate::dispersion::Dispersion;
 use crate::error::{self, Error};
 use crate::grid::wave_index;
@@ -126,7 +127,10 @@ impl Amplitudes {
     /// `k_min` ≤ |k| < `k_max` (zero elsewhere, and on k = 0 and the Nyquist row and column),
     /// ξ standard normals drawn from (seed, m_x, m_z). Errors with [`Error::EmptyBand`] when
     /// the band holds no wave vector of the grid.
-    pub(super) fn draw(spectrum: &Spectrum, config: &CascadeConfig) -> Result<Self, Error> {
+    pub(super) fn draw<M: Math>(
+        spectrum: &Spectrum,
+        config: &CascadeConfig,
+    ) -> Result<Self, Error> {
         let n = config.size;
         let dk64 = TAU / f64::from(config.length);
         let k_min = f64::from(config.k_min);
@@ -137,7 +141,7 @@ impl Amplitudes {
             }
             let kx = f64::from(wave_index(i, n)) * dk64;
             let kz = f64::from(wave_index(j, n)) * dk64;
-            let k = kx.hypot(kz);
+            let k = M::hypot(kx, kz);
             (k > 0.0 && k >= k_min && k < k_max).then_some((kx, kz))
         };
         let band_has_vectors = (0..n).any(|j| (0..n).any(|i| in_band(i, j).is_some()));
@@ -157,20 +161,23 @@ impl Amplitudes {
                     let Some((kx, kz)) = in_band(i, j) else {
                         continue;
                     };
-                    let s = spectrum.density_f64(kx, kz, &params);
+                    let s = spectrum.density_with::<M>(kx, kz, &params);
                     if s <= 0.0 {
                         continue;
                     }
                     *variance += s * dk64 * dk64;
                     let (xr, xi) =
-                        rng::gaussian_pair(config.seed, wave_index(i, n), wave_index(j, n));
+                        rng::gaussian_pair::<M>(config.seed, wave_index(i, n), wave_index(j, n));
                     let amplitude = 0.5 * s.sqrt() * dk64;
                     *value = Complex32::new((xr * amplitude) as f32, (xi * amplitude) as f32);
                 }
             });
         // Summed in a fixed order: the same result whatever the thread count.
         let expected_variance: f64 = variance_rows.iter().sum();
-        let abs_sum: f64 = h0.iter().map(|c| f64::from(c.norm())).sum();
+        let abs_sum: f64 = h0
+            .iter()
+            .map(|c| M::hypot(f64::from(c.re), f64::from(c.im)))
+            .sum();
         let k_grid_max = dk64 * (n as f64 / 2.0) * std::f64::consts::SQRT_2;
         let amplitude_bound = 2.0 * abs_sum * k_grid_max.max(1.0);
         Ok(Amplitudes {
@@ -186,7 +193,7 @@ impl EvolutionTable {
     /// of every wave vector with k_x index i in 0..N/2, ω(k)/2π from `dispersion` (rounded
     /// to the nearest multiple of 1/T, at least 1/T, when `looping` gives a period T in
     /// seconds: see [`frequency`]), and 1/|k|.
-    pub(super) fn new(
+    pub(super) fn new<M: Math>(
         h0: &[Complex32],
         n: usize,
         dk: f64,
@@ -206,8 +213,8 @@ impl EvolutionTable {
                     let b = h0[((n - j) % n) * n + (n - i) % n].conj();
                     let kx = f64::from(wave_index(i, n)) * dk;
                     let kz = f64::from(wave_index(j, n)) * dk;
-                    let k = kx.hypot(kz);
-                    let omega = dispersion.omega_f64(k);
+                    let k = M::hypot(kx, kz);
+                    let omega = dispersion.omega_with::<M>(k);
                     let freq = frequency(omega, looping);
                     let inv_k = if k > 0.0 { (1.0 / k) as f32 } else { 0.0 };
                     *entry = (
@@ -252,7 +259,7 @@ pub struct LoopError {
 impl LoopError {
     /// The loop error of the wave vectors with amplitudes `h0` on an N×N grid of spacing `dk`
     /// (rad/m) under `dispersion`, looping with period `period` in seconds.
-    pub(super) fn new(
+    pub(super) fn new<M: Math>(
         h0: &[Complex32],
         n: usize,
         dk: f64,
@@ -272,7 +279,7 @@ impl LoopError {
                 }
                 let kx = f64::from(wave_index(i, n)) * dk;
                 let kz = f64::from(wave_index(j, n)) * dk;
-                let omega = dispersion.omega_f64(kx.hypot(kz));
+                let omega = dispersion.omega_with::<M>(M::hypot(kx, kz));
                 let looped = frequency(omega, Some(period)) * TAU;
                 let relative = (looped - omega).abs() / omega;
                 out.max_relative = out.max_relative.max(relative);

@@ -3,6 +3,7 @@
 use std::ops::Bound::{Excluded, Included};
 
 use crate::cascade::{check_band, CascadeConfig};
+use crate::determinism::Determinism;
 use crate::error::{self, Error};
 use crate::grid;
 
@@ -91,6 +92,14 @@ pub struct OceanConfig {
         serde(default = "crate::serde_impls::default_memory_limit")
     )]
     pub memory_limit: usize,
+    /// How far the same config gives the same bits, for every cascade, the foam and the
+    /// world queries: [`Determinism::SameMachine`] (the default, fastest) or
+    /// [`Determinism::CrossPlatform`] (the same bits on every CPU and operating system, for
+    /// lockstep or server-authoritative networking and replays shared between machines;
+    /// slower, see the guide's section on determinism). The two modes draw different,
+    /// equally calibrated waves. Configs saved without it read back with the default.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub determinism: Determinism,
 }
 
 impl Default for OceanConfig {
@@ -108,6 +117,7 @@ impl Default for OceanConfig {
             parallel_cascades: true,
             query: QueryConfig::default(),
             memory_limit: CascadeConfig::DEFAULT_MEMORY_LIMIT,
+            determinism: Determinism::SameMachine,
         }
     }
 }
@@ -284,8 +294,8 @@ impl OceanConfig {
     /// [`Interpolation::CubicBSpline`], the spline coefficients of the world queries (20·N² per
     /// cascade). Any config gives an answer, even one [`validate`](Self::validate) refuses.
     pub fn memory_bytes(&self) -> usize {
-        let cascade = crate::cascade::memory_bytes(self.size);
-        let foam = super::foam::memory_bytes(self.size, self.lengths.len());
+        let cascade = crate::cascade::memory_bytes(self.size, self.determinism);
+        let foam = super::foam::memory_bytes(self.size, self.lengths.len(), self.determinism);
         let spline = match self.query.interpolation {
             Interpolation::CubicBSpline => super::spline::Spline::memory_bytes(self.size),
             Interpolation::Bilinear => 0,
@@ -296,7 +306,7 @@ impl OceanConfig {
             .saturating_add(foam)
     }
 
-    /// The config of cascade `index` (its length, band and seed).
+    /// The config of cascade `index` (its length, band, seed and determinism mode).
     pub(super) fn cascade_config(&self, index: usize, (k_min, k_max): (f32, f32)) -> CascadeConfig {
         CascadeConfig {
             size: self.size,
@@ -307,6 +317,7 @@ impl OceanConfig {
             seed: self.seed.wrapping_add(index as u64),
             repeat_period: self.repeat_period,
             memory_limit: self.memory_limit,
+            determinism: self.determinism,
         }
     }
 }

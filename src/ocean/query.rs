@@ -308,7 +308,7 @@ impl OceanState {
             d = self.displacement_at(x0[0], x0[1], splines);
             let landed = [x0[0] + f64::from(d.x), x0[1] + f64::from(d.y)];
             let residual = [x - landed[0], z - landed[1]];
-            let miss = residual[0].hypot(residual[1]) as f32;
+            let miss = self.config.determinism.hypot(residual[0], residual[1]) as f32;
             if miss < best.miss {
                 best = Location {
                     undisplaced: x0,

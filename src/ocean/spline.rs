@@ -128,7 +128,7 @@ const INTERLEAVE: usize = 8;
 /// 1/(1 − z^N), the correction of the periodic initial sums (1 to f32 precision for large
 /// N, exact for small ones, whose sums run over the whole period).
 fn periodic_factor(n: usize) -> f32 {
-    1.0 / (1.0 - POLE.powi(n.min(64) as i32))
+    1.0 / (1.0 - crate::determinism::powi_f32(POLE, n.min(64) as i32))
 }
 
 /// The interpolation filter along each of the R periodic rows of N values in `group`, in

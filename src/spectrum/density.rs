@@ -4,6 +4,7 @@ use super::elfouhaily;
 use super::omega;
 use super::spreading::SpreadingParams;
 use super::{wrap_angle, DepthFactor, Model, Spectrum};
+use crate::determinism::{Math, Std};
 use crate::dispersion::Dispersion;
 use crate::error::saturate;
 
@@ -12,30 +13,32 @@ impl Spectrum {
     /// including the depth factor. 0 for ω ≤ 0 and for non-finite ω (outside the domain);
     /// values beyond `f32::MAX` saturate there.
     pub fn omega_spectrum(&self, omega: f32) -> f32 {
-        saturate(self.omega_spectrum_f64(f64::from(omega)))
+        saturate(self.omega_spectrum_f64::<Std>(f64::from(omega)))
     }
 
-    fn omega_spectrum_f64(&self, omega: f64) -> f64 {
+    fn omega_spectrum_f64<M: Math>(&self, omega: f64) -> f64 {
         if !omega.is_finite() || omega <= 0.0 {
             return 0.0;
         }
         match self.model {
-            Model::Jonswap { .. } => self.jonswap_shape(omega) * self.depth_factor_at(omega, None),
+            Model::Jonswap { .. } => {
+                self.jonswap_shape::<M>(omega) * self.depth_factor_at::<M>(omega, None)
+            }
             Model::Phillips { .. } | Model::Elfouhaily { .. } => {
                 // S(ω) = S(k) dk/dω with k = k(ω) of this spectrum's dispersion.
-                let k = self.dispersion.k_from_omega_f64(omega);
-                let group = self.dispersion.d_omega_dk_f64(k);
+                let k = self.dispersion.k_from_omega_with::<M>(omega);
+                let group = self.dispersion.d_omega_dk_with::<M>(k);
                 if !(group > 0.0 && group.is_finite()) {
                     return 0.0;
                 }
-                self.k_model_omni(k) / group
+                self.k_model_omni::<M>(k) / group
             }
         }
     }
 
     /// The depth factor Φ at `omega`; `k`, when given, is ω's wave number under this
     /// spectrum's dispersion.
-    fn depth_factor_at(&self, omega: f64, k: Option<f64>) -> f64 {
+    fn depth_factor_at<M: Math>(&self, omega: f64, k: Option<f64>) -> f64 {
         let Some(h) = self.dispersion.depth().map(f64::from) else {
             return 1.0;
         };
@@ -46,19 +49,19 @@ impl Spectrum {
             // factor needs no Newton solve. With capillary dispersion the gravity k is solved
             // for: the capillary correction matters only where Φ = 1 already.
             DepthFactor::Kitaigorodskii => match (k, self.dispersion) {
-                (Some(k), Dispersion::FiniteDepth { .. }) => omega::kitaigorodskii_kh(k * h),
-                _ => omega::kitaigorodskii(omega, h),
+                (Some(k), Dispersion::FiniteDepth { .. }) => omega::kitaigorodskii_kh::<M>(k * h),
+                _ => omega::kitaigorodskii::<M>(omega, h),
             },
         }
     }
 
-    fn jonswap_shape(&self, omega: f64) -> f64 {
+    fn jonswap_shape<M: Math>(&self, omega: f64) -> f64 {
         match self.model {
             Model::Jonswap {
                 alpha,
                 peak_omega,
                 gamma,
-            } => omega::jonswap(
+            } => omega::jonswap::<M>(
                 omega,
                 f64::from(alpha),
                 f64::from(peak_omega),
@@ -69,13 +72,13 @@ impl Spectrum {
     }
 
     /// The omnidirectional S(k) of the models defined on k (0 for JONSWAP).
-    fn k_model_omni(&self, k: f64) -> f64 {
+    fn k_model_omni<M: Math>(&self, k: f64) -> f64 {
         match self.model {
             Model::Phillips { amplitude } => {
-                omega::phillips_omni(k, f64::from(amplitude), self.wind_length())
+                omega::phillips_omni::<M>(k, f64::from(amplitude), self.wind_length())
             }
             Model::Elfouhaily { inverse_wave_age } => {
-                elfouhaily::omni(k, f64::from(self.wind_speed), f64::from(inverse_wave_age))
+                elfouhaily::omni::<M>(k, f64::from(self.wind_speed), f64::from(inverse_wave_age))
             }
             Model::Jonswap { .. } => 0.0,
         }
@@ -91,7 +94,7 @@ impl Spectrum {
         }
         saturate(
             self.spreading_params()
-                .evaluate(f64::from(omega), wrap_angle(f64::from(theta))),
+                .evaluate::<Std>(f64::from(omega), wrap_angle(f64::from(theta))),
         )
     }
 
@@ -107,28 +110,34 @@ impl Spectrum {
     /// saturate there.
     pub fn density(&self, k: [f32; 2]) -> f32 {
         let (kx, kz) = (f64::from(k[0]), f64::from(k[1]));
-        saturate(self.density_f64(kx, kz, &self.spreading_params()))
+        saturate(self.density_with::<Std>(kx, kz, &self.spreading_params()))
     }
 
-    pub(crate) fn density_f64(&self, kx: f64, kz: f64, spreading: &SpreadingParams) -> f64 {
-        let k = kx.hypot(kz);
+    /// [`density`](Self::density) in f64 with the functions of `M`.
+    pub(crate) fn density_with<M: Math>(
+        &self,
+        kx: f64,
+        kz: f64,
+        spreading: &SpreadingParams,
+    ) -> f64 {
+        let k = M::hypot(kx, kz);
         if !(k > 0.0 && k.is_finite()) {
             return 0.0;
         }
-        let omni = self.omni_k(k);
+        let omni = self.omni_k::<M>(k);
         if omni == 0.0 {
             return 0.0;
         }
-        let omega = self.dispersion.omega_f64(k);
-        let theta = wrap_angle(kz.atan2(kx) - f64::from(self.wind_direction));
-        omni * spreading.evaluate_at(omega, Some(k), theta) / k
+        let omega = self.dispersion.omega_with::<M>(k);
+        let theta = wrap_angle(M::atan2(kz, kx) - f64::from(self.wind_direction));
+        omni * spreading.evaluate_at::<M>(omega, Some(k), theta) / k
     }
 
     /// Omnidirectional wave-number spectrum ∫ S(k) k dθ in m³ at |k| = `k`, with the fade.
-    pub(super) fn omni_k(&self, k: f64) -> f64 {
+    pub(super) fn omni_k<M: Math>(&self, k: f64) -> f64 {
         let fade = if self.short_wave_length > 0.0 {
             let l = f64::from(self.short_wave_length);
-            (-(k * l) * (k * l)).exp()
+            M::exp(-(k * l) * (k * l))
         } else {
             1.0
         };
@@ -137,11 +146,11 @@ impl Spectrum {
         }
         let value = match self.model {
             Model::Jonswap { .. } => {
-                let omega = self.dispersion.omega_f64(k);
-                let group = self.dispersion.d_omega_dk_f64(k);
-                self.jonswap_shape(omega) * self.depth_factor_at(omega, Some(k)) * group
+                let omega = self.dispersion.omega_with::<M>(k);
+                let group = self.dispersion.d_omega_dk_with::<M>(k);
+                self.jonswap_shape::<M>(omega) * self.depth_factor_at::<M>(omega, Some(k)) * group
             }
-            Model::Phillips { .. } | Model::Elfouhaily { .. } => self.k_model_omni(k),
+            Model::Phillips { .. } | Model::Elfouhaily { .. } => self.k_model_omni::<M>(k),
         };
         value * fade
     }

@@ -26,6 +26,7 @@
 //! the peak (without it k⁻³ B_h ∝ k^−2.5 would not be integrable at k → 0).
 
 use super::omega::G;
+use crate::determinism::Math;
 
 /// Wave number of the gravity–capillary phase-speed minimum, rad/m.
 pub(crate) const K_M: f64 = 370.0;
@@ -41,12 +42,12 @@ pub(crate) fn phase_speed(k: f64) -> f64 {
 /// The wave number k of angular frequency ω under ω² = g k (1 + (k/k_m)²): Newton from the
 /// smaller of the gravity and capillary asymptotes (f is convex and increasing, so the
 /// iteration decreases monotonically onto the root from above).
-pub(crate) fn wave_number(omega: f64) -> f64 {
+pub(crate) fn wave_number<M: Math>(omega: f64) -> f64 {
     if omega.is_nan() || omega <= 0.0 {
         return 0.0;
     }
     let target = omega * omega / G;
-    let mut k = target.min((target * K_M * K_M).cbrt()) * 1.0000001;
+    let mut k = target.min(M::cbrt(target * K_M * K_M)) * 1.0000001;
     // Start at or above the root: both asymptotes over-estimate k.
     for _ in 0..60 {
         let r2 = (k / K_M) * (k / K_M);
@@ -72,7 +73,7 @@ pub(crate) fn peak_wave_number(wind_speed: f64, inverse_wave_age: f64) -> f64 {
 }
 
 /// Omnidirectional wave-number spectrum S(k) = k⁻³ (B_l + B_h) in m³.
-pub(crate) fn omni(k: f64, wind_speed: f64, inverse_wave_age: f64) -> f64 {
+pub(crate) fn omni<M: Math>(k: f64, wind_speed: f64, inverse_wave_age: f64) -> f64 {
     if k.is_nan() || k <= 0.0 {
         return 0.0;
     }
@@ -89,24 +90,24 @@ pub(crate) fn omni(k: f64, wind_speed: f64, inverse_wave_age: f64) -> f64 {
     let gamma = if omega_c < 1.0 {
         1.7
     } else {
-        1.7 + 6.0 * omega_c.log10()
+        1.7 + 6.0 * M::log10(omega_c)
     };
     let root = (k / k_p).sqrt() - 1.0;
-    let big_gamma = (-root * root / (2.0 * sigma * sigma)).exp();
-    let long = lpm_exponent.exp() * gamma.powf(big_gamma);
+    let big_gamma = M::exp(-root * root / (2.0 * sigma * sigma));
+    let long = M::exp(lpm_exponent) * M::powf(gamma, big_gamma);
     let alpha_p = 6e-3 * omega_c.sqrt();
-    let f_p = long * (-omega_c / 10f64.sqrt() * root).exp();
+    let f_p = long * M::exp(-omega_c / 10f64.sqrt() * root);
     let b_l = 0.5 * alpha_p * (c_p / c) * f_p;
-    let alpha_m = short_wave_alpha(friction_velocity(wind_speed));
+    let alpha_m = short_wave_alpha::<M>(friction_velocity(wind_speed));
     let m = k / K_M - 1.0;
-    let f_m = long * (-0.25 * m * m).exp();
+    let f_m = long * M::exp(-0.25 * m * m);
     let b_h = 0.5 * alpha_m * (C_M / c) * f_m;
     (b_l + b_h) / (k * k * k)
 }
 
 /// α_m of the short waves, kept ≥ 0.
-fn short_wave_alpha(u_star: f64) -> f64 {
-    let log = (u_star / C_M).ln();
+fn short_wave_alpha<M: Math>(u_star: f64) -> f64 {
+    let log = M::ln(u_star / C_M);
     let alpha = if u_star <= C_M {
         1e-2 * (1.0 + log)
     } else {
@@ -117,7 +118,7 @@ fn short_wave_alpha(u_star: f64) -> f64 {
 
 /// The spreading's Δ(k) ∈ [0, 1) at wave number `k`, for a peak at `k_p` and wind speed
 /// U10 (m/s).
-pub(crate) fn delta(k: f64, k_p: f64, wind_speed: f64) -> f64 {
+pub(crate) fn delta<M: Math>(k: f64, k_p: f64, wind_speed: f64) -> f64 {
     if !(k > 0.0 && k_p > 0.0) {
         return 0.0;
     }
@@ -125,18 +126,19 @@ pub(crate) fn delta(k: f64, k_p: f64, wind_speed: f64) -> f64 {
     let c_p = phase_speed(k_p);
     let a_m = 0.13 * friction_velocity(wind_speed) / C_M;
     let a_0 = std::f64::consts::LN_2 / 4.0;
-    (a_0 + 4.0 * (c / c_p).powf(2.5) + a_m * (C_M / c).powf(2.5)).tanh()
+    M::tanh(a_0 + 4.0 * M::powf(c / c_p, 2.5) + a_m * M::powf(C_M / c, 2.5))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::determinism::Std;
 
     #[test]
     fn wave_number_inverts_the_dispersion() {
         for k in [1e-4, 0.01, 1.0, 50.0, 370.0, 5e3, 1e5] {
             let omega = k * phase_speed(k);
-            let back = wave_number(omega);
+            let back = wave_number::<Std>(omega);
             assert!((back / k - 1.0).abs() < 1e-12, "k = {k}: {back}");
         }
     }

@@ -10,6 +10,7 @@ mod variance;
 use std::f64::consts::PI;
 use std::ops::Bound::{Excluded, Included};
 
+use crate::determinism::{Libm, Math, Std};
 use crate::dispersion::Dispersion;
 use crate::error::{self, Error};
 
@@ -156,8 +157,10 @@ impl Spectrum {
         let full = Self::FULLY_DEVELOPED_FETCH * u * u / G as f32;
         let f = f.min(full);
         let (u64, f64_) = (f64::from(u), f64::from(f));
-        let alpha = omega::jonswap_alpha(u64, f64_) as f32;
-        let peak_omega = omega::jonswap_peak_omega(u64, f64_) as f32;
+        // With libm's functions whatever the mode: the parameters a spectrum stores are then
+        // the same bits on every platform (Determinism::CrossPlatform needs that).
+        let alpha = omega::jonswap_alpha::<Libm>(u64, f64_) as f32;
+        let peak_omega = omega::jonswap_peak_omega::<Libm>(u64, f64_) as f32;
         Self::check_model(alpha, peak_omega)?;
         Ok(Self::with_model(
             Model::Jonswap {
@@ -553,10 +556,15 @@ impl Spectrum {
     /// for the spectra defined on ω; for Phillips, defined on k, the wave number of its
     /// deep-water peak whatever the dispersion (see [`Spectrum::peak_omega`]).
     pub(crate) fn peak_wave_number_f64(&self) -> f64 {
+        self.peak_wave_number_with::<Std>()
+    }
+
+    /// [`peak_wave_number_f64`](Self::peak_wave_number_f64) with the functions of `M`.
+    pub(crate) fn peak_wave_number_with<M: Math>(&self) -> f64 {
         match self.model {
-            Model::Jonswap { peak_omega, .. } => {
-                self.dispersion.k_from_omega_f64(f64::from(peak_omega))
-            }
+            Model::Jonswap { peak_omega, .. } => self
+                .dispersion
+                .k_from_omega_with::<M>(f64::from(peak_omega)),
             Model::Phillips { .. } => self.phillips_peak_wave_number(),
             Model::Elfouhaily { .. } => self.elfouhaily_peak_wave_number(),
         }

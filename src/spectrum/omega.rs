@@ -3,6 +3,7 @@
 //! Every function here is pure, takes SI units and returns 0 where its formula is undefined
 //! (ω ≤ 0), so callers never see NaN.
 
+use crate::determinism::Math;
 use crate::dispersion::Dispersion;
 
 /// g in f64, m/s².
@@ -21,7 +22,7 @@ pub(crate) const PIERSON_MOSKOWITZ_PEAK: f64 = 0.877;
 /// ```
 ///
 /// With γ = 1 this is the Pierson–Moskowitz shape.
-pub(crate) fn jonswap(omega: f64, alpha: f64, peak_omega: f64, gamma: f64) -> f64 {
+pub(crate) fn jonswap<M: Math>(omega: f64, alpha: f64, peak_omega: f64, gamma: f64) -> f64 {
     if omega.is_nan() || omega <= 0.0 {
         return 0.0;
     }
@@ -34,21 +35,21 @@ pub(crate) fn jonswap(omega: f64, alpha: f64, peak_omega: f64, gamma: f64) -> f6
     }
     let sigma = if omega <= peak_omega { 0.07 } else { 0.09 };
     let d = (omega - peak_omega) / (sigma * peak_omega);
-    let r = (-0.5 * d * d).exp();
+    let r = M::exp(-0.5 * d * d);
     let omega2 = omega * omega;
-    alpha * G * G / (omega2 * omega2 * omega) * exponent.exp() * gamma.powf(r)
+    alpha * G * G / (omega2 * omega2 * omega) * M::exp(exponent) * M::powf(gamma, r)
 }
 
 /// JONSWAP α from wind speed U (m/s at 10 m) and fetch F (m): α = 0.076 (U²/(F g))^0.22
 /// (Hasselmann et al. 1973, as used by Horvath 2015).
-pub(crate) fn jonswap_alpha(wind_speed: f64, fetch: f64) -> f64 {
-    0.076 * (wind_speed * wind_speed / (fetch * G)).powf(0.22)
+pub(crate) fn jonswap_alpha<M: Math>(wind_speed: f64, fetch: f64) -> f64 {
+    0.076 * M::powf(wind_speed * wind_speed / (fetch * G), 0.22)
 }
 
 /// JONSWAP peak angular frequency ω_p in rad/s from wind speed U (m/s) and fetch F (m):
 /// ω_p = 22 (g² / (U F))^(1/3) (Hasselmann et al. 1973).
-pub(crate) fn jonswap_peak_omega(wind_speed: f64, fetch: f64) -> f64 {
-    22.0 * (G * G / (wind_speed * fetch)).cbrt()
+pub(crate) fn jonswap_peak_omega<M: Math>(wind_speed: f64, fetch: f64) -> f64 {
+    22.0 * M::cbrt(G * G / (wind_speed * fetch))
 }
 
 /// Kitaigorodskii's exact depth factor Φ as a function of the dimensionless depth k h:
@@ -60,7 +61,7 @@ pub(crate) fn jonswap_peak_omega(wind_speed: f64, fetch: f64) -> f64 {
 /// (Kitaigorodskii, Krasitskii & Zaslavskii 1975; Hughes 1984), with k = k(ω, h) from the
 /// gravity-wave dispersion ω² = g k tanh(k h). Tends to 1 in deep water and to ½(k h)² in
 /// shallow water.
-pub(crate) fn kitaigorodskii_kh(kh: f64) -> f64 {
+pub(crate) fn kitaigorodskii_kh<M: Math>(kh: f64) -> f64 {
     if kh.is_nan() || kh <= 0.0 {
         return 0.0;
     }
@@ -68,25 +69,25 @@ pub(crate) fn kitaigorodskii_kh(kh: f64) -> f64 {
         // tanh²(20) = 1 − 2e-17 and 40/sinh(40) ~ 1e-16: 1 to f64 precision.
         return 1.0;
     }
-    let t = kh.tanh();
+    let t = M::tanh(kh);
     // 2kh / sinh(2kh) underflows gracefully to 0 for large kh (sinh → ∞).
     let x = 2.0 * kh;
     let ratio = if x < 1e-4 {
         1.0 - x * x / 6.0
     } else {
-        x / x.sinh()
+        x / M::sinh(x)
     };
     t * t / (1.0 + ratio)
 }
 
 /// Kitaigorodskii's Φ(ω, h): solves k from ω² = g k tanh(k h) by Newton, then
 /// [`kitaigorodskii_kh`].
-pub(crate) fn kitaigorodskii(omega: f64, depth: f64) -> f64 {
+pub(crate) fn kitaigorodskii<M: Math>(omega: f64, depth: f64) -> f64 {
     let k = Dispersion::FiniteDepth {
         depth: depth as f32,
     }
-    .k_from_omega_f64(omega);
-    kitaigorodskii_kh(k * depth)
+    .k_from_omega_with::<M>(omega);
+    kitaigorodskii_kh::<M>(k * depth)
 }
 
 /// Thompson & Vincent's (1983) piecewise approximation of Φ with ω_h = ω √(h/g):
@@ -119,7 +120,7 @@ pub(crate) fn thompson_vincent(omega: f64, depth: f64) -> f64 {
 /// ```
 ///
 /// so that S(k)/k · cos²θ/π is Tessendorf's A exp(−1/(kL)²)/k⁴ |k̂·ŵ|².
-pub(crate) fn phillips_omni(k: f64, amplitude: f64, wind_length: f64) -> f64 {
+pub(crate) fn phillips_omni<M: Math>(k: f64, amplitude: f64, wind_length: f64) -> f64 {
     if k.is_nan() || k <= 0.0 {
         return 0.0;
     }
@@ -128,27 +129,28 @@ pub(crate) fn phillips_omni(k: f64, amplitude: f64, wind_length: f64) -> f64 {
     if exponent < -700.0 {
         return 0.0;
     }
-    std::f64::consts::PI * amplitude * exponent.exp() / (k * k * k)
+    std::f64::consts::PI * amplitude * M::exp(exponent) / (k * k * k)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::determinism::Std;
 
     #[test]
     fn jonswap_is_zero_and_finite_at_the_ends() {
-        assert_eq!(jonswap(0.0, 0.01, 1.0, 3.3), 0.0);
-        assert_eq!(jonswap(-1.0, 0.01, 1.0, 3.3), 0.0);
-        assert_eq!(jonswap(1e-3, 0.01, 1.0, 3.3), 0.0);
-        let far = jonswap(1e6, 0.01, 1.0, 3.3);
+        assert_eq!(jonswap::<Std>(0.0, 0.01, 1.0, 3.3), 0.0);
+        assert_eq!(jonswap::<Std>(-1.0, 0.01, 1.0, 3.3), 0.0);
+        assert_eq!(jonswap::<Std>(1e-3, 0.01, 1.0, 3.3), 0.0);
+        let far = jonswap::<Std>(1e6, 0.01, 1.0, 3.3);
         assert!(far.is_finite() && far > 0.0);
     }
 
     #[test]
     fn kitaigorodskii_small_kh_branch_is_continuous() {
-        let below = kitaigorodskii_kh(0.49999e-4);
-        let above = kitaigorodskii_kh(0.50001e-4);
+        let below = kitaigorodskii_kh::<Std>(0.49999e-4);
+        let above = kitaigorodskii_kh::<Std>(0.50001e-4);
         assert!((below / above - 1.0).abs() < 1e-3);
-        assert_eq!(kitaigorodskii_kh(1e4), 1.0);
+        assert_eq!(kitaigorodskii_kh::<Std>(1e4), 1.0);
     }
 }

@@ -2,6 +2,7 @@
 //! wind, by quadrature.
 
 use super::Spectrum;
+use crate::determinism::{Math, Std};
 use crate::error::saturate;
 
 /// Variance of the surface slope along and across the wind, dimensionless: ⟨(∂η/∂x')²⟩ and
@@ -47,21 +48,22 @@ impl Spectrum {
     /// band, is what [`Cascade::subgrid_slope_variance`](crate::Cascade::subgrid_slope_variance)
     /// reports.
     pub fn slope_variance(&self, k_min: f32, k_max: f32) -> SlopeVariance {
-        self.slope_variance_f64(f64::from(k_min), f64::from(k_max))
+        self.slope_variance_with::<Std>(f64::from(k_min), f64::from(k_max))
     }
 
-    pub(crate) fn slope_variance_f64(&self, k_min: f64, k_max: f64) -> SlopeVariance {
+    /// [`slope_variance`](Self::slope_variance) in f64 with the functions of `M`.
+    pub(crate) fn slope_variance_with<M: Math>(&self, k_min: f64, k_max: f64) -> SlopeVariance {
         let zero = SlopeVariance::default();
         if k_min.is_nan() || k_max.is_nan() || k_max <= k_min {
             return zero;
         }
-        let k_peak = self.peak_wave_number_f64();
+        let k_peak = self.peak_wave_number_with::<M>();
         let lo = k_min.max(1e-3 * k_peak);
         let hi = k_max.min(1e6 * k_peak);
         if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
             return zero;
         }
-        let (a, b) = (lo.ln(), hi.ln());
+        let (a, b) = (M::ln(lo), M::ln(hi));
         let decades = (b - a) / std::f64::consts::LN_10;
         let intervals = ((decades * 100.0).ceil() as usize)
             .max(2)
@@ -77,13 +79,13 @@ impl Spectrum {
             } else {
                 2.0
             };
-            let k = (a + i as f64 * h).exp();
+            let k = M::exp(a + i as f64 * h);
             // ∫ k² S(k) dk = ∫ k³ S(k) d(ln k).
-            let value = self.omni_k(k) * k * k * k;
+            let value = self.omni_k::<M>(k) * k * k * k;
             if value == 0.0 {
                 continue;
             }
-            let m = spreading.cos2_moment(self.dispersion.omega_f64(k), Some(k));
+            let m = spreading.cos2_moment::<M>(self.dispersion.omega_with::<M>(k), Some(k));
             along += weight * value * m;
             across += weight * value * (1.0 - m);
         }

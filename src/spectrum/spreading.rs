@@ -3,6 +3,7 @@
 use std::f64::consts::{LN_2, PI};
 use std::ops::Bound::{Excluded, Included};
 
+use crate::determinism::Math;
 use crate::error::{self, Error};
 
 use super::elfouhaily;
@@ -95,7 +96,7 @@ impl Spreading {
 
     /// The cos-2s exponent s at `omega` for the cos-2s family, `None` for the other variants.
     /// `peak_omega` in rad/s, `wind_speed` in m/s.
-    pub(crate) fn cos_2s_exponent(
+    pub(crate) fn cos_2s_exponent<M: Math>(
         self,
         omega: f64,
         peak_omega: f64,
@@ -104,18 +105,18 @@ impl Spreading {
         let r = omega / peak_omega;
         match self {
             Spreading::Mitsuyasu => {
-                let s_p = 11.5 * (peak_omega * wind_speed / G).powf(-2.5);
+                let s_p = 11.5 * M::powf(peak_omega * wind_speed / G, -2.5);
                 Some(if r <= 1.0 {
-                    s_p * r.powi(5)
+                    s_p * M::powi(r, 5)
                 } else {
-                    s_p * r.powf(-2.5)
+                    s_p * M::powf(r, -2.5)
                 })
             }
             Spreading::Hasselmann => Some(if r <= 1.0 {
-                6.97 * r.powf(4.06)
+                6.97 * M::powf(r, 4.06)
             } else {
                 let exponent = -2.33 - 1.45 * (wind_speed * peak_omega / G - 1.17);
-                9.77 * r.powf(exponent)
+                9.77 * M::powf(r, exponent)
             }),
             Spreading::Cos2s { s } => Some(f64::from(s)),
             _ => None,
@@ -137,50 +138,50 @@ pub(crate) struct SpreadingParams {
 
 impl SpreadingParams {
     /// D(ω, θ) in 1/rad, θ relative to the wind and already wrapped to [−π, π].
-    pub(crate) fn evaluate(&self, omega: f64, theta: f64) -> f64 {
-        self.evaluate_at(omega, None, theta)
+    pub(crate) fn evaluate<M: Math>(&self, omega: f64, theta: f64) -> f64 {
+        self.evaluate_at::<M>(omega, None, theta)
     }
 
     /// D at ω and, when known, the wave number `k` of ω (the Elfouhaily spreading is a
     /// function of k; without it k is solved from ω under its own dispersion).
-    pub(crate) fn evaluate_at(&self, omega: f64, k: Option<f64>, theta: f64) -> f64 {
+    pub(crate) fn evaluate_at<M: Math>(&self, omega: f64, k: Option<f64>, theta: f64) -> f64 {
         let flat = 1.0 / (2.0 * PI);
         if self.spread_blend == 0.0 {
             return flat;
         }
-        let d = self.shaped(omega, k, theta);
+        let d = self.shaped::<M>(omega, k, theta);
         flat + self.spread_blend * (d - flat)
     }
 
     /// The Elfouhaily Δ at ω (or at `k` when given).
-    fn elfouhaily_delta(&self, omega: f64, k: Option<f64>) -> f64 {
-        let k = k.unwrap_or_else(|| elfouhaily::wave_number(omega));
-        let k_p = elfouhaily::wave_number(self.peak_omega);
-        elfouhaily::delta(k, k_p, self.wind_speed)
+    fn elfouhaily_delta<M: Math>(&self, omega: f64, k: Option<f64>) -> f64 {
+        let k = k.unwrap_or_else(|| elfouhaily::wave_number::<M>(omega));
+        let k_p = elfouhaily::wave_number::<M>(self.peak_omega);
+        elfouhaily::delta::<M>(k, k_p, self.wind_speed)
     }
 
     /// ∫_{−π}^{π} cos²θ D(ω, θ) dθ: the share of a frequency's slope variance that lies
     /// along the wind (the rest, 1 − this, lies across it). Closed forms where they exist
     /// (cos-2s: E[cos 2θ] = s(s − 1)/((s + 1)(s + 2)); |cos θ|^p: (p + 1)/(p + 2) on either
     /// lobe; Elfouhaily: ½ + Δ/4; flat: ½), composite Simpson over θ for Donelan–Banner.
-    pub(crate) fn cos2_moment(&self, omega: f64, k: Option<f64>) -> f64 {
+    pub(crate) fn cos2_moment<M: Math>(&self, omega: f64, k: Option<f64>) -> f64 {
         let flat = 0.5;
         if self.spread_blend == 0.0 {
             return flat;
         }
-        let shaped = self.shaped_cos2_moment(omega, k);
+        let shaped = self.shaped_cos2_moment::<M>(omega, k);
         flat + self.spread_blend * (shaped - flat)
     }
 
-    fn shaped_cos2_moment(&self, omega: f64, k: Option<f64>) -> f64 {
+    fn shaped_cos2_moment<M: Math>(&self, omega: f64, k: Option<f64>) -> f64 {
         if omega.is_nan() || omega <= 0.0 {
             return 0.5;
         }
-        if let Some(s) = self
-            .spreading
-            .cos_2s_exponent(omega, self.peak_omega, self.wind_speed)
+        if let Some(s) =
+            self.spreading
+                .cos_2s_exponent::<M>(omega, self.peak_omega, self.wind_speed)
         {
-            let s = s + 16.0 * (self.peak_omega / omega).tanh() * self.swell * self.swell;
+            let s = s + 16.0 * M::tanh(self.peak_omega / omega) * self.swell * self.swell;
             // E[cos 2θ] = Γ(s+1)² / (Γ(s−1)Γ(s+3)) = s(s − 1)/((s + 1)(s + 2)).
             let cos_2theta = s * (s - 1.0) / ((s + 1.0) * (s + 2.0));
             return 0.5 * (1.0 + cos_2theta);
@@ -192,8 +193,8 @@ impl SpreadingParams {
                 // below ~10³, so the error h⁴/180·π·max|f⁗| is below 1e-4).
                 let r = omega / self.peak_omega;
                 simpson(0.0, PI, 64, |theta| {
-                    let c = theta.cos();
-                    2.0 * c * c * donelan_banner(r, theta)
+                    let c = M::cos(theta);
+                    2.0 * c * c * donelan_banner::<M>(r, theta)
                 })
             }
             Spreading::Cos2 => 0.75,
@@ -201,38 +202,38 @@ impl SpreadingParams {
                 let p = f64::from(exponent);
                 (p + 1.0) / (p + 2.0)
             }
-            Spreading::Elfouhaily => 0.5 + 0.25 * self.elfouhaily_delta(omega, k),
+            Spreading::Elfouhaily => 0.5 + 0.25 * self.elfouhaily_delta::<M>(omega, k),
             _ => 0.5,
         }
     }
 
-    fn shaped(&self, omega: f64, k: Option<f64>, theta: f64) -> f64 {
+    fn shaped<M: Math>(&self, omega: f64, k: Option<f64>, theta: f64) -> f64 {
         if omega.is_nan() || omega <= 0.0 {
             return 1.0 / (2.0 * PI);
         }
-        if let Some(s) = self
-            .spreading
-            .cos_2s_exponent(omega, self.peak_omega, self.wind_speed)
+        if let Some(s) =
+            self.spreading
+                .cos_2s_exponent::<M>(omega, self.peak_omega, self.wind_speed)
         {
             // Horvath (2015) §5.2: swell narrows the spreading, s += 16 tanh(ω_p/ω) ξ².
-            let s = s + 16.0 * (self.peak_omega / omega).tanh() * self.swell * self.swell;
-            return cos_2s(s, theta);
+            let s = s + 16.0 * M::tanh(self.peak_omega / omega) * self.swell * self.swell;
+            return cos_2s::<M>(s, theta);
         }
         match self.spreading {
-            Spreading::DonelanBanner => donelan_banner(omega / self.peak_omega, theta),
+            Spreading::DonelanBanner => donelan_banner::<M>(omega / self.peak_omega, theta),
             Spreading::Cos2 => {
                 if theta.abs() < 0.5 * PI {
-                    let c = theta.cos();
+                    let c = M::cos(theta);
                     2.0 / PI * c * c
                 } else {
                     0.0
                 }
             }
             Spreading::Cosine { exponent, upwind } => {
-                cosine_power(f64::from(exponent), f64::from(upwind), theta)
+                cosine_power::<M>(f64::from(exponent), f64::from(upwind), theta)
             }
             Spreading::Elfouhaily => {
-                (1.0 + self.elfouhaily_delta(omega, k) * (2.0 * theta).cos()) / (2.0 * PI)
+                (1.0 + self.elfouhaily_delta::<M>(omega, k) * M::cos(2.0 * theta)) / (2.0 * PI)
             }
             _ => 1.0 / (2.0 * PI),
         }
@@ -257,13 +258,17 @@ pub(crate) fn simpson(a: f64, b: f64, intervals: usize, f: impl Fn(f64) -> f64) 
 /// ```
 ///
 /// (Longuet-Higgins, Cartwright & Smith 1963; Mitsuyasu et al. 1975.)
-pub(crate) fn cos_2s_norm(s: f64) -> f64 {
-    ((2.0 * s - 1.0) * LN_2 + 2.0 * ln_gamma(s + 1.0) - PI.ln() - ln_gamma(2.0 * s + 1.0)).exp()
+pub(crate) fn cos_2s_norm<M: Math>(s: f64) -> f64 {
+    M::exp(
+        (2.0 * s - 1.0) * LN_2 + 2.0 * ln_gamma::<M>(s + 1.0)
+            - M::ln(PI)
+            - ln_gamma::<M>(2.0 * s + 1.0),
+    )
 }
 
 /// Q(s) |cos(θ/2)|^{2s}, θ in [−π, π].
-pub(crate) fn cos_2s(s: f64, theta: f64) -> f64 {
-    cos_2s_norm(s) * (0.5 * theta).cos().abs().powf(2.0 * s)
+pub(crate) fn cos_2s<M: Math>(s: f64, theta: f64) -> f64 {
+    cos_2s_norm::<M>(s) * M::powf(M::cos(0.5 * theta).abs(), 2.0 * s)
 }
 
 /// Donelan–Banner β as a function of r = ω/ω_p (Donelan, Hamilton & Hui 1985; Banner 1990):
@@ -273,45 +278,47 @@ pub(crate) fn cos_2s(s: f64, theta: f64) -> f64 {
 ///     2.28 r^−1.3                                 0.95 ≤ r < 1.6
 ///     10^(−0.4 + 0.8393 exp(−0.567 ln(r²)))       r ≥ 1.6
 /// ```
-pub(crate) fn donelan_banner_beta(r: f64) -> f64 {
+pub(crate) fn donelan_banner_beta<M: Math>(r: f64) -> f64 {
     if r < 0.95 {
-        2.61 * r.powf(1.3)
+        2.61 * M::powf(r, 1.3)
     } else if r < 1.6 {
-        2.28 * r.powf(-1.3)
+        2.28 * M::powf(r, -1.3)
     } else {
-        10f64.powf(-0.4 + 0.8393 * (-0.567 * (r * r).ln()).exp())
+        M::powf(10f64, -0.4 + 0.8393 * M::exp(-0.567 * M::ln(r * r)))
     }
 }
 
 /// β/(2 tanh(βπ)) sech²(βθ).
-pub(crate) fn donelan_banner(r: f64, theta: f64) -> f64 {
-    let beta = donelan_banner_beta(r);
+pub(crate) fn donelan_banner<M: Math>(r: f64, theta: f64) -> f64 {
+    let beta = donelan_banner_beta::<M>(r);
     // β → 0 (r → 0): the limit is flat, 1/(2π); avoid 0/0.
     let norm = if beta < 1e-8 {
         1.0 / (2.0 * PI)
     } else {
-        beta / (2.0 * (beta * PI).tanh())
+        beta / (2.0 * M::tanh(beta * PI))
     };
-    let sech = 1.0 / (beta * theta).cosh();
+    let sech = 1.0 / M::cosh(beta * theta);
     norm * sech * sech
 }
 
 /// |cos θ|^p, upwind half scaled by `upwind`, normalised over [−π, π].
-pub(crate) fn cosine_power(exponent: f64, upwind: f64, theta: f64) -> f64 {
+pub(crate) fn cosine_power<M: Math>(exponent: f64, upwind: f64, theta: f64) -> f64 {
     // ∫_{−π/2}^{π/2} cos^p θ dθ = √π Γ((p+1)/2) / Γ(p/2 + 1).
-    let half =
-        (0.5 * PI.ln() + ln_gamma(0.5 * (exponent + 1.0)) - ln_gamma(0.5 * exponent + 1.0)).exp();
-    let c = theta.cos();
+    let half = M::exp(
+        0.5 * M::ln(PI) + ln_gamma::<M>(0.5 * (exponent + 1.0))
+            - ln_gamma::<M>(0.5 * exponent + 1.0),
+    );
+    let c = M::cos(theta);
     let weight = if c >= 0.0 { 1.0 } else { upwind };
     if weight == 0.0 {
         return 0.0;
     }
-    weight * c.abs().powf(exponent) / ((1.0 + upwind) * half)
+    weight * M::powf(c.abs(), exponent) / ((1.0 + upwind) * half)
 }
 
 /// ln Γ(x) for x > 0 by the Lanczos approximation (Lanczos 1964) with g = 7 and nine
 /// coefficients, relative error below 1e-14 over the range used here (x ≥ 0.5).
-pub(crate) fn ln_gamma(x: f64) -> f64 {
+pub(crate) fn ln_gamma<M: Math>(x: f64) -> f64 {
     const COEFFICIENTS: [f64; 9] = [
         0.999_999_999_999_809_9,
         676.520_368_121_885_1,
@@ -325,7 +332,7 @@ pub(crate) fn ln_gamma(x: f64) -> f64 {
     ];
     if x < 0.5 {
         // Reflection: Γ(x) Γ(1 − x) = π / sin(πx).
-        return (PI / (PI * x).sin()).ln() - ln_gamma(1.0 - x);
+        return M::ln(PI / M::sin(PI * x)) - ln_gamma::<M>(1.0 - x);
     }
     let x = x - 1.0;
     let mut sum = COEFFICIENTS[0];
@@ -333,12 +340,13 @@ pub(crate) fn ln_gamma(x: f64) -> f64 {
         sum += c / (x + i as f64);
     }
     let t = x + 7.5;
-    0.5 * (2.0 * PI).ln() + (x + 0.5) * t.ln() - t + sum.ln()
+    0.5 * M::ln(2.0 * PI) + (x + 0.5) * M::ln(t) - t + M::ln(sum)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::determinism::Std;
 
     #[test]
     fn ln_gamma_matches_factorials_and_half_integers() {
@@ -347,7 +355,7 @@ mod tests {
             // Γ(n) = (n − 1)!
             let expected = factorial.ln();
             assert!(
-                (ln_gamma(n as f64) - expected).abs() <= 1e-13 * expected.abs().max(1.0),
+                (ln_gamma::<Std>(n as f64) - expected).abs() <= 1e-13 * expected.abs().max(1.0),
                 "n = {n}"
             );
             factorial *= n as f64;
@@ -355,18 +363,18 @@ mod tests {
         // Γ(1/2) = √π, Γ(3/2) = √π/2, Γ(5/2) = 3√π/4.
         let sqrt_pi = PI.sqrt();
         for (x, g) in [(0.5, sqrt_pi), (1.5, 0.5 * sqrt_pi), (2.5, 0.75 * sqrt_pi)] {
-            assert!((ln_gamma(x) - g.ln()).abs() < 1e-14, "x = {x}");
+            assert!((ln_gamma::<Std>(x) - g.ln()).abs() < 1e-14, "x = {x}");
         }
         // Reflection branch: Γ(0.25) = 3.625609908221908...
-        assert!((ln_gamma(0.25) - 3.625_609_908_221_908_f64.ln()).abs() < 1e-13);
+        assert!((ln_gamma::<Std>(0.25) - 3.625_609_908_221_908_f64.ln()).abs() < 1e-13);
     }
 
     #[test]
     fn cos_2s_norm_closed_forms() {
         // s = 1: Q = 2 Γ(2)² / (π Γ(3)) = 1/π; s = 2: 8·4/(π·24) = 4/(3π).
-        assert!((cos_2s_norm(1.0) - 1.0 / PI).abs() < 1e-14);
-        assert!((cos_2s_norm(2.0) - 4.0 / (3.0 * PI)).abs() < 1e-14);
+        assert!((cos_2s_norm::<Std>(1.0) - 1.0 / PI).abs() < 1e-14);
+        assert!((cos_2s_norm::<Std>(2.0) - 4.0 / (3.0 * PI)).abs() < 1e-14);
         // s → 0: flat 1/(2π).
-        assert!((cos_2s_norm(0.0) - 0.5 / PI).abs() < 1e-14);
+        assert!((cos_2s_norm::<Std>(0.0) - 0.5 / PI).abs() < 1e-14);
     }
 }

@@ -1,6 +1,7 @@
 //! The variance a [`Spectrum`] carries over a band of wave numbers, and H_s, by quadrature.
 
 use super::Spectrum;
+use crate::determinism::Std;
 use crate::error::saturate;
 
 impl Spectrum {
@@ -36,7 +37,7 @@ impl Spectrum {
         let h = (b - a) / intervals as f64;
         let f = |u: f64| {
             let k = u.exp();
-            self.omni_k(k) * k
+            self.omni_k::<Std>(k) * k
         };
         let mut sum = f(a) + f(b);
         for i in 1..intervals {

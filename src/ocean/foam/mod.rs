@@ -13,6 +13,7 @@ use num_complex::Complex32;
 use rayon::prelude::*;
 
 use crate::cascade::{check_time, Cascade, GradientMoments};
+use crate::determinism::Determinism;
 use crate::error::{self, Error};
 use crate::fft2d::Fft2d;
 
@@ -62,6 +63,8 @@ struct Params {
     floor: f32,
     inv_active: f32,
     inv_residual: f32,
+    /// Whose exponential the foam steps use.
+    determinism: Determinism,
 }
 
 /// gᵀ M g for a symmetric M stored as (AA, BB, CC, AB, AC, BC).
@@ -92,11 +95,11 @@ fn upper_tail(x: f32, density: f32) -> f32 {
 /// Φ(x) and φ(x) of the standard normal at a crossing x, from one exponential (Φ in the lower
 /// tail with full relative accuracy); beyond |x| = 12 (φ < 1e-31) exactly 0 or 1 and 0.
 #[inline(always)]
-fn normal_at(x: f32) -> (f32, f32) {
+fn normal_at(d: Determinism, x: f32) -> (f32, f32) {
     if x.abs() > 12.0 {
         return (if x > 0.0 { 1.0 } else { 0.0 }, 0.0);
     }
-    let density = (-0.5 * x * x).exp() * INV_SQRT_TAU;
+    let density = d.expf(-0.5 * x * x) * INV_SQRT_TAU;
     let cdf = if x <= 0.0 {
         upper_tail(-x, density)
     } else {
@@ -162,7 +165,7 @@ impl Params {
         // J opens upward, outside them where it opens downward.
         let (mut cdf, mut episodes) = ([0.0f32; 2], 0.0f32);
         for (k, &x) in roots[..count].iter().enumerate() {
-            let (below, density) = normal_at(x);
+            let (below, density) = normal_at(self.determinism, x);
             cdf[k] = below;
             if density > 0.0 {
                 // J̇ = ∇J·ġ with ∇J where the surface crosses J_b: U at its mean given w = σx.
@@ -186,12 +189,12 @@ impl Params {
     /// The constants of a step of `dt` seconds.
     fn step(&self, dt: f32) -> Step {
         let x = dt * self.inv_active;
-        let e_active = (-x).exp();
+        let e_active = self.determinism.expf(-x);
         Step {
             dt,
             e_active,
             mean_active: mean_factor(x, e_active),
-            e_residual: (-dt * self.inv_residual).exp(),
+            e_residual: self.determinism.expf(-dt * self.inv_residual),
         }
     }
 
@@ -208,7 +211,7 @@ impl Params {
         } else {
             let kappa = s + self.inv_active;
             let x = kappa * dt;
-            let e = (-x).exp();
+            let e = self.determinism.expf(-x);
             let a_star = s / kappa;
             (
                 a_star + (active - a_star) * e,
@@ -227,7 +230,7 @@ impl Params {
             let e_g = if y < 0.01 {
                 1.0 - y * (1.0 - y * (0.5 - y / 6.0))
             } else {
-                (-y).exp()
+                self.determinism.expf(-y)
             };
             r_star + (residual - r_star) * (step.e_residual * e_g)
         };
@@ -297,7 +300,8 @@ impl Clone for Foam {
             work: self.work.clone(),
             // A plan of the same size: the transform's scratch and buffers hold nothing
             // between steps.
-            fft: Fft2d::new(self.n, 1).expect("an FFT of a size that was planned before"),
+            fft: Fft2d::with_determinism(self.n, 1, self.params.determinism)
+                .expect("an FFT of a size that was planned before"),
             row_sums: self.row_sums.clone(),
         }
     }
@@ -307,10 +311,10 @@ impl Clone for Foam {
 /// total and breaking (4 bytes each per point), the transform's work buffer and intermediate
 /// (8 each) and its scratch, small tables, and the displacement gradient cascade 0 keeps for
 /// it (12 bytes per point, see `Cascade::keep_gradient`).
-pub(crate) fn memory_bytes(n: usize, cascades: usize) -> usize {
+pub(crate) fn memory_bytes(n: usize, cascades: usize, determinism: Determinism) -> usize {
     let points = n.saturating_mul(n);
     let scratch = if n <= crate::grid::MAX_SIZE {
-        crate::fft2d::RowFft::new(n).scratch_len()
+        crate::fft2d::RowFft::new(n, determinism).scratch_len()
     } else {
         n
     };
@@ -333,6 +337,7 @@ impl Foam {
     ) -> Result<Foam, Error> {
         let wind_speed = config.wind_speed_for(spectrum);
         let first = &cascades[0];
+        let determinism = first.config().determinism;
         let n = first.size();
         let length = first.length();
         let resolved = first.gradient_moments();
@@ -348,6 +353,7 @@ impl Foam {
                 wind_speed,
                 coverage: config.coverage,
                 active_decay: config.active_decay,
+                determinism,
             },
         );
         let floor = 0.05 * calibration.compression_std;
@@ -358,11 +364,12 @@ impl Foam {
             floor: (floor * floor).max(f32::MIN_POSITIVE),
             inv_active: 1.0 / config.active_decay,
             inv_residual: 1.0 / config.residual_decay,
+            determinism,
         };
         // Spreads over a residual lifetime, √(2Kτ_R) = streak·λ_p, give the diffusivities.
         let peak = spectrum
             .dispersion()
-            .k_from_omega_f64(f64::from(spectrum.peak_omega()));
+            .k_from_omega_with_mode(f64::from(spectrum.peak_omega()), determinism);
         let wavelength = std::f64::consts::TAU / peak;
         let diffusivity = |streak: f32| {
             let spread = f64::from(streak) * wavelength;
@@ -374,6 +381,7 @@ impl Foam {
             diffusivity(config.streak_length),
             diffusivity(config.streak_width),
             f64::from(length),
+            determinism,
         );
         let points = n * n;
         let mut foam = Foam {
@@ -389,7 +397,7 @@ impl Foam {
             transport,
             tables: error::try_vec(2 * n, Complex32::default())?,
             work: error::try_vec(points, Complex32::default())?,
-            fft: Fft2d::new(n, 1)?,
+            fft: Fft2d::with_determinism(n, 1, determinism)?,
             row_sums: error::try_vec(n, [0.0; 3])?,
         };
         foam.refresh(cascades);
@@ -476,6 +484,7 @@ impl Foam {
     fn transport(&mut self, dt: f64) {
         let n = self.n;
         self.transport.fill_tables(dt, n, &mut self.tables);
+        let determinism = self.params.determinism;
         let Foam {
             fft,
             work,
@@ -501,7 +510,7 @@ impl Foam {
                     let (ax, bx) = (a * mx * mx, 2.0 * b * mx);
                     for (iz, (out, g)) in row.iter_mut().zip(source).enumerate() {
                         let mz = crate::grid::wave_index(iz, n) as f32;
-                        let decay = (-(ax + mz * (bx + c * mz))).exp();
+                        let decay = determinism.expf(-(ax + mz * (bx + c * mz)));
                         *out = g.conj() * (shift_x * tables[n + iz]) * decay;
                     }
                 }

@@ -18,6 +18,8 @@ use std::f64::consts::TAU;
 
 use num_complex::Complex32;
 
+use crate::determinism::Determinism;
+
 /// The transport of an ocean's residual foam.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Transport {
@@ -27,13 +29,22 @@ pub(crate) struct Transport {
     pub(crate) tensor: [f64; 3],
     /// Δk = 2π/L of the grid, rad/m.
     dk: f64,
+    /// Whose sine and cosine the drift tables use.
+    determinism: Determinism,
 }
 
 impl Transport {
     /// The transport for a drift of `drift` m/s along the wind direction `wind` (rad) and
     /// diffusivities `along` and `across` the wind (m²/s), on a grid of side `length` m.
-    pub(crate) fn new(wind: f64, drift: f64, along: f64, across: f64, length: f64) -> Self {
-        let (sin, cos) = wind.sin_cos();
+    pub(crate) fn new(
+        wind: f64,
+        drift: f64,
+        along: f64,
+        across: f64,
+        length: f64,
+        determinism: Determinism,
+    ) -> Self {
+        let (sin, cos) = determinism.sin_cos(wind);
         Transport {
             drift: [drift * cos, drift * sin],
             tensor: [
@@ -42,6 +53,7 @@ impl Transport {
                 along * sin * sin + across * cos * cos,
             ],
             dk: TAU / length,
+            determinism,
         }
     }
 
@@ -58,7 +70,7 @@ impl Transport {
                 let k = self.dk * f64::from(crate::grid::wave_index(i, n));
                 // The phase reduced to whole turns first, so that long steps stay accurate.
                 let turns = (dt * self.drift[axis] * k / TAU).rem_euclid(1.0);
-                let (s, c) = (TAU * turns).sin_cos();
+                let (s, c) = self.determinism.sin_cos(TAU * turns);
                 *value = Complex32::new(c as f32, -s as f32);
             }
         }
@@ -82,7 +94,7 @@ mod tests {
     fn tensor_and_drift_follow_the_wind() {
         for degree in (-180..180).step_by(7) {
             let theta = f64::from(degree).to_radians();
-            let t = Transport::new(theta, 0.3, 4.0, 0.5, 100.0);
+            let t = Transport::new(theta, 0.3, 4.0, 0.5, 100.0, Determinism::SameMachine);
             let (w, n) = ([theta.cos(), theta.sin()], [-theta.sin(), theta.cos()]);
             let form = |a: [f64; 2], b: [f64; 2]| {
                 a[0] * t.tensor[0] * b[0]
