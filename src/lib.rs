@@ -161,6 +161,7 @@ mod cascade;
 mod dispersion;
 mod engine;
 mod error;
+mod exp;
 mod fft2d;
 mod gpu;
 mod grid;
