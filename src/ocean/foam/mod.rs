@@ -136,7 +136,8 @@ impl Params {
         ];
         let variance =
             (su[0] * gradient[0] + su[1] * gradient[1] + su[2] * gradient[2]).max(0.0) + self.floor;
-        let beta = su.map(|v| v / variance);
+        let inverse = 1.0 / variance;
+        let beta = su.map(|v| v * inverse);
         let kappa = beta[0] * beta[1] - beta[2] * beta[2];
         let a2 = kappa * variance;
         // σ ≥ √floor > 0.
@@ -498,9 +499,11 @@ impl Foam {
         }
         self.react(cascades, dt as f32);
         if self.transport.is_active() {
+            // Finishes as it goes.
             self.transport(dt);
+        } else {
+            self.finish();
         }
-        self.finish();
     }
 
     /// Injection, aging and decay at every point, with the breaking intensity of the new
@@ -552,6 +555,9 @@ impl Foam {
             transport,
             residual,
             simd,
+            active,
+            total,
+            row_sums,
             ..
         } = self;
         let [a, b, c] = transport.exponent(dt);
@@ -590,15 +596,36 @@ impl Foam {
             .expect("the foam's work buffer holds N² values");
         let scale = 1.0 / (n * n) as f32;
         let flush = |v: f32| if v < FLUSH { 0.0 } else { v.min(1.0) };
-        residual
-            .par_chunks_mut(ROWS * n)
+        // The residual foam back from the transform, and at once (while its rows are in
+        // cache) the total foam and the row sums of `finish`.
+        (
+            residual.par_chunks_mut(ROWS * n),
+            active.par_chunks(ROWS * n),
+            total.par_chunks_mut(ROWS * n),
+            row_sums.par_chunks_mut(ROWS),
+        )
+            .into_par_iter()
             .enumerate()
-            .for_each(|(b, r)| {
-                let source = &moved[b * ROWS * n..][..r.len()];
-                for (r, v) in r.iter_mut().zip(source) {
-                    *r = flush(v.re * scale);
+            .for_each(|(b, (residual, active, total, sums))| {
+                let source = &moved[b * ROWS * n..][..residual.len()];
+                let rows = residual
+                    .chunks_mut(n)
+                    .zip(source.chunks(n))
+                    .zip(active.chunks(n))
+                    .zip(total.chunks_mut(n));
+                for ((((r, source), a), f), sum) in rows.zip(sums.iter_mut()) {
+                    *sum = simd.run(
+                        #[inline(always)]
+                        || {
+                            for (r, v) in r.iter_mut().zip(source) {
+                                *r = flush(v.re * scale);
+                            }
+                            total_row(a, r, f)
+                        },
+                    );
                 }
             });
+        self.sum_rows();
     }
 
     /// The total foam a + r(1 − a) and the coverage: each row summed in f64 in [`LANES`]
@@ -627,6 +654,12 @@ impl Foam {
                     );
                 }
             });
+        self.sum_rows();
+    }
+
+    /// The coverage from the row sums of [`finish`](Self::finish), added in order.
+    fn sum_rows(&mut self) {
+        let n = self.n;
         let mut sum = [0.0f64; 3];
         for row in &self.row_sums {
             for k in 0..3 {
