@@ -70,9 +70,10 @@ mod tests {
         (f64::from(got) - want).abs() / ulp
     }
 
-    /// Against f64's `exp` (correctly rounded to far more bits than f32 holds) at every f32
-    /// in [−87, 0] and at a dense sample of (0, 88]: within 2 ulp, and the largest error is
-    /// printed. (f64's libm is off by under 1 ulp of f64, 2⁻²⁹ of an f32 ulp.)
+    /// Against f64's `exp` (accurate to far more bits than f32 holds) at every 13th f32 in
+    /// [−87, 0] (86 million arguments) and every 23rd in [0, 88]: within 2 ulp, and the
+    /// largest error is printed. (f64's libm is off by under 1 ulp of f64, 2⁻²⁹ of an f32
+    /// ulp.)
     #[test]
     fn matches_f64_exp_within_two_ulp() {
         let mut worst = (0.0f64, 0.0f32);
@@ -85,11 +86,11 @@ mod tests {
         };
         // Every f32 from −0 down to −87: their bits run from 0x8000_0000 upward.
         let last = EXP_MIN.to_bits();
-        for bits in (0x8000_0000u32..=last).step_by(7) {
+        for bits in (0x8000_0000u32..=last).step_by(13) {
             check(f32::from_bits(bits));
         }
         check(EXP_MIN);
-        for bits in (0u32..=EXP_MAX.to_bits()).step_by(11) {
+        for bits in (0u32..=EXP_MAX.to_bits()).step_by(23) {
             check(f32::from_bits(bits));
         }
         check(EXP_MAX);
