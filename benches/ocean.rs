@@ -7,6 +7,10 @@
 //! - `ocean_step`: `step_1t`, `twelve_ffts_1t`, `step_2t`, `twelve_ffts_2t` at
 //!   N = 64 … 1024, each inside a rayon pool of that many threads; the project's target is
 //!   step ≤ 1.2 × twelve_ffts.
+//! - `ocean_foam`: `step_1t`/`step_no_foam_1t`, `step_2t`/`step_no_foam_2t` at N = 64, 128
+//!   and 256: the default step beside the same ocean with its foam switched off
+//!   (`FoamConfig::coverage` 0, no drift, no streaks: nothing breaks, nothing moves, only the
+//!   aging and the totals run), so that the difference is what the foam costs.
 //! - `ocean_parallel_cascades`: at N = 256 in a pool of 2 threads, `sequential` and
 //!   `parallel` (`OceanConfig::parallel_cascades` off and on), and `parallel_bilinear_queries`
 //!   (parallel, with bilinear queries: no spline prefilter on the first query).
@@ -28,7 +32,8 @@ use std::time::Duration;
 
 use criterion::{BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput};
 use ocean_fft::{
-    Complex32, Determinism, Fft2d, Interpolation, OceanConfig, OceanState, Spectrum, SurfaceSample,
+    Complex32, Determinism, Fft2d, FoamConfig, Interpolation, OceanConfig, OceanState, Spectrum,
+    SurfaceSample,
 };
 
 const SIZES: [usize; 5] = [64, 128, 256, 512, 1024];
@@ -111,6 +116,50 @@ fn step(c: &mut Criterion) {
                     })
                 },
             );
+        }
+    }
+    group.finish();
+}
+
+fn foam(c: &mut Criterion) {
+    let pools: Vec<_> = THREADS.iter().map(|&t| (t, common::pool(t))).collect();
+    let mut group = c.benchmark_group("ocean_foam");
+    group
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    for size in [64, 128, 256] {
+        group
+            .sample_size(samples(size))
+            .throughput(Throughput::Elements((size * size) as u64));
+        for (threads, pool) in &pools {
+            for (name, foam) in [("step", true), ("step_no_foam", false)] {
+                let mut state: Option<OceanState> = None;
+                group.bench_with_input(
+                    BenchmarkId::new(format!("{name}_{threads}t"), size),
+                    &size,
+                    |b, _| {
+                        let state = state.get_or_insert_with(|| {
+                            let spectrum = Spectrum::jonswap(10.0, 100_000.0).expect("spectrum");
+                            let mut config = OceanConfig {
+                                size,
+                                ..OceanConfig::default()
+                            };
+                            if !foam {
+                                config.foam = FoamConfig {
+                                    coverage: 0.0,
+                                    drift: 0.0,
+                                    streak_length: 0.0,
+                                    streak_width: 0.0,
+                                    ..FoamConfig::default()
+                                };
+                            }
+                            OceanState::new(spectrum, config).expect("valid ocean")
+                        });
+                        pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step")))
+                    },
+                );
+            }
         }
     }
     group.finish();
@@ -253,6 +302,7 @@ fn main() {
     common::print_machine();
     let mut criterion = Criterion::default().configure_from_args();
     step(&mut criterion);
+    foam(&mut criterion);
     parallel_cascades(&mut criterion);
     determinism(&mut criterion);
     queries(&mut criterion);

@@ -86,15 +86,6 @@ impl Determinism {
         }
     }
 
-    /// eˣ (f32) with the functions of this mode.
-    #[inline]
-    pub(crate) fn expf(self, x: f32) -> f32 {
-        match self {
-            Determinism::SameMachine => Std::expf(x),
-            Determinism::CrossPlatform => Libm::expf(x),
-        }
-    }
-
     /// ln x with the functions of this mode.
     #[inline]
     pub(crate) fn ln(self, x: f64) -> f64 {
@@ -175,7 +166,6 @@ pub(crate) trait Math: Copy + Send + Sync + 'static {
     fn atan2(y: f64, x: f64) -> f64;
     fn hypot(x: f64, y: f64) -> f64;
     fn cbrt(x: f64) -> f64;
-    fn expf(x: f32) -> f32;
 }
 
 /// The standard library's functions: the platform's C library or LLVM's intrinsics.
@@ -244,10 +234,6 @@ impl Math for Std {
     fn cbrt(x: f64) -> f64 {
         x.cbrt()
     }
-    #[inline]
-    fn expf(x: f32) -> f32 {
-        x.exp()
-    }
 }
 
 impl Math for Libm {
@@ -310,10 +296,6 @@ impl Math for Libm {
     fn cbrt(x: f64) -> f64 {
         libm::cbrt(x)
     }
-    #[inline]
-    fn expf(x: f32) -> f32 {
-        libm::expf(x)
-    }
 }
 
 #[cfg(test)]
@@ -361,12 +343,6 @@ mod tests {
             assert!(close(Std::atan2(x, y), Libm::atan2(x, y)), "atan2 {x} {y}");
             assert!(close(Std::hypot(x, y), Libm::hypot(x, y)), "hypot {x} {y}");
             assert!(close(Std::cbrt(x), Libm::cbrt(x)), "cbrt {x}");
-            let xf = x as f32;
-            let (a, b) = (f64::from(Std::expf(xf)), f64::from(Libm::expf(xf)));
-            assert!(
-                (a - b).abs() <= 4.0 * f64::from(f32::EPSILON) * a,
-                "expf {xf}"
-            );
         }
     }
 }

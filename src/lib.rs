@@ -164,6 +164,7 @@ mod determinism;
 mod dispersion;
 mod engine;
 mod error;
+mod exp;
 mod fft2d;
 #[cfg(test)]
 mod golden;

@@ -122,11 +122,16 @@ pub(crate) struct GradientRow<'a> {
     row: &'a [[f32; 3]],
 }
 
-impl GradientRow<'_> {
+impl<'a> GradientRow<'a> {
     /// `[D_xx, D_zz, D_xz]` at column `i`, dimensionless.
-    #[inline(always)]
+    #[cfg(test)]
     pub(crate) fn get(&self, i: usize) -> [f32; 3] {
         self.row[i]
+    }
+
+    /// The whole row, `[D_xx, D_zz, D_xz]` per column.
+    pub(crate) fn values(self) -> &'a [[f32; 3]] {
+        self.row
     }
 }
 

@@ -15,7 +15,9 @@ use rayon::prelude::*;
 use crate::cascade::{check_time, Cascade, GradientMoments};
 use crate::determinism::Determinism;
 use crate::error::{self, Error};
+use crate::exp::exp;
 use crate::fft2d::Fft2d;
+use crate::simd::Simd;
 
 use super::OceanState;
 
@@ -24,6 +26,9 @@ pub use config::FoamConfig;
 
 use calibration::{calibrate, Settings};
 use transport::Transport;
+
+/// Points of a row the foam's element loops handle at once, through arrays on the stack.
+const BLOCK: usize = 64;
 
 /// Rows of the foam grid one parallel task handles (the split depends only on N, never on the
 /// number of threads).
@@ -93,40 +98,19 @@ fn upper_tail(x: f32, density: f32) -> f32 {
 }
 
 /// Φ(x) and φ(x) of the standard normal at a crossing x, from one exponential (Φ in the lower
-/// tail with full relative accuracy); beyond |x| = 12 (φ < 1e-31) exactly 0 or 1 and 0.
+/// tail with full relative accuracy); beyond |x| = 12 (φ < 1e-31) exactly 0 or 1 and 0, and so
+/// for x = ±∞. Branch-free.
 #[inline(always)]
-fn normal_at(d: Determinism, x: f32) -> (f32, f32) {
-    if x.abs() > 12.0 {
-        return (if x > 0.0 { 1.0 } else { 0.0 }, 0.0);
-    }
-    let density = d.expf(-0.5 * x * x) * INV_SQRT_TAU;
-    let cdf = if x <= 0.0 {
-        upper_tail(-x, density)
-    } else {
-        1.0 - upper_tail(x, density)
-    };
-    (cdf, density)
-}
-
-/// For x standard normal and q(x) = a2·x² + a1·x + c: the roots of q (up to two, in increasing
-/// order) and |q'| there, found stably in f32; `None` where q does not change sign, with
-/// P(q < 0) then 0 or 1.
-#[inline(always)]
-fn crossings(a2: f32, a1: f32, c: f32) -> Result<([f32; 2], usize, f32), f32> {
-    if a2 == 0.0 {
-        if a1 == 0.0 {
-            return Err(if c < 0.0 { 1.0 } else { 0.0 });
-        }
-        return Ok(([-c / a1, 0.0], 1, a1.abs()));
-    }
-    let disc = a1 * a1 - 4.0 * a2 * c;
-    if disc.is_nan() || disc <= 0.0 {
-        return Err(if a2 < 0.0 { 1.0 } else { 0.0 });
-    }
-    let sq = disc.sqrt();
-    let q = -0.5 * (a1 + sq.copysign(a1));
-    let (r1, r2) = (q / a2, c / q);
-    Ok(([r1.min(r2), r1.max(r2)], 2, sq))
+fn normal_at(x: f32) -> (f32, f32) {
+    let density = exp(-0.5 * x * x) * INV_SQRT_TAU;
+    let tail = upper_tail(x.abs(), density);
+    let cdf = if x <= 0.0 { tail } else { 1.0 - tail };
+    let far = x.abs() > 12.0;
+    let edge = if x > 0.0 { 1.0 } else { 0.0 };
+    (
+        if far { edge } else { cdf },
+        if far { 0.0 } else { density },
+    )
 }
 
 impl Params {
@@ -135,12 +119,14 @@ impl Params {
     /// (Gaussian, covariance Σ_u): J ≈ J_R + w + κ(w² − σ²) with w = ∇J_R·U (standard deviation
     /// σ, σ² = ∇Jᵀ Σ_u ∇J) and κ w² the mean of U's own quadratic term given w. With
     /// f = P(J < J_b) and Rice's rate ν of new breaking there, s = ν + f/τ_A (docs/theory.md
-    /// §15).
+    /// §15). For a finite threshold (the caller handles J_b = −∞).
+    ///
+    /// Branch-free, so that a loop over points vectorises: both roots are computed whatever
+    /// their number, and selects pick the result. J − J_b = a2·x² + σx + c in x; where a2 = 0
+    /// (J linear in x) the root the stable formula gives first is set to −∞, where φ = 0 and
+    /// Φ = 0, which leaves P(J < J_b) = Φ(x₁) and one crossing.
     #[inline(always)]
     fn intensity(&self, g: [f32; 3]) -> f32 {
-        if self.threshold == f32::NEG_INFINITY {
-            return 0.0;
-        }
         let [xx, zz, xz] = g;
         let jacobian = (1.0 + xx) * (1.0 + zz) - xz * xz;
         let gradient = [1.0 + zz, 1.0 + xx, -2.0 * xz];
@@ -153,112 +139,193 @@ impl Params {
         ];
         let variance =
             (su[0] * gradient[0] + su[1] * gradient[1] + su[2] * gradient[2]).max(0.0) + self.floor;
-        let beta = su.map(|v| v / variance);
+        let inverse = 1.0 / variance;
+        let beta = su.map(|v| v * inverse);
         let kappa = beta[0] * beta[1] - beta[2] * beta[2];
         let a2 = kappa * variance;
+        // σ ≥ √floor > 0.
         let sigma = variance.sqrt();
-        let (roots, count, slope) = match crossings(a2, sigma, jacobian - a2 - self.threshold) {
-            Ok(found) => found,
-            Err(fraction) => return fraction * self.inv_active,
-        };
-        // P(J < J_b): below the one root of a linear J (a1 = σ > 0), between the roots where
-        // J opens upward, outside them where it opens downward.
-        let (mut cdf, mut episodes) = ([0.0f32; 2], 0.0f32);
-        for (k, &x) in roots[..count].iter().enumerate() {
-            let (below, density) = normal_at(self.determinism, x);
-            cdf[k] = below;
+        let c = jacobian - a2 - self.threshold;
+        // The roots of a2 x² + σx + c, found stably: q = −(σ + √disc)/2, the roots q/a2 and
+        // c/q, |dJ/dx| = √disc at both.
+        let disc = sigma * sigma - 4.0 * a2 * c;
+        let slope = disc.max(0.0).sqrt();
+        let q = -0.5 * (sigma + slope);
+        let first = if a2 == 0.0 { f32::NEG_INFINITY } else { q / a2 };
+        let second = c / q;
+        let (lo, hi) = (first.min(second), first.max(second));
+        let (cdf_lo, density_lo) = normal_at(lo);
+        let (cdf_hi, density_hi) = normal_at(hi);
+        // J̇ = ∇J·ġ with ∇J where the surface crosses J_b: U at its mean given w = σx.
+        let rate = |x: f32, density: f32| {
+            let w = sigma * x;
+            let at = [
+                gradient[0] + beta[1] * w,
+                gradient[1] + beta[0] * w,
+                gradient[2] - 2.0 * beta[2] * w,
+            ];
+            let speed = quadratic_form(&self.rate, at).max(0.0).sqrt();
+            // At x = ±∞ (φ = 0) the speed is not a number: the select drops it.
             if density > 0.0 {
-                // J̇ = ∇J·ġ with ∇J where the surface crosses J_b: U at its mean given w = σx.
-                let w = sigma * x;
-                let at = [
-                    gradient[0] + beta[1] * w,
-                    gradient[1] + beta[0] * w,
-                    gradient[2] - 2.0 * beta[2] * w,
-                ];
-                episodes += density * quadratic_form(&self.rate, at).max(0.0).sqrt();
+                density * speed
+            } else {
+                0.0
+            }
+        };
+        let episodes = rate(lo, density_lo) + rate(hi, density_hi);
+        // P(J < J_b): between the roots where J opens upward (below the one root of a linear
+        // J), outside them where it opens downward.
+        let fraction = if a2 >= 0.0 {
+            (cdf_hi - cdf_lo).max(0.0)
+        } else {
+            (cdf_lo + 1.0 - cdf_hi).min(1.0)
+        };
+        let crossing = episodes * INV_SQRT_TAU / slope + fraction * self.inv_active;
+        // No crossing (disc ≤ 0): J is above J_b everywhere if it opens upward, below if
+        // downward.
+        let uniform = if a2 < 0.0 { self.inv_active } else { 0.0 };
+        if disc > 0.0 {
+            crossing
+        } else {
+            uniform
+        }
+    }
+
+    /// The breaking intensity at each point of a row of cascade 0's gradient, into `out`
+    /// (as long). Inlined into its caller's [`Simd::run`], so that its loop is compiled for
+    /// the caller's SIMD level; every level gives the same bits (no reduction, no FMA).
+    #[inline(always)]
+    fn intensities(&self, gradient: &[[f32; 3]], out: &mut [f32]) {
+        if self.threshold == f32::NEG_INFINITY {
+            // Nothing breaks.
+            out.fill(0.0);
+            return;
+        }
+        for (g, s) in gradient.iter().zip(out.iter_mut()) {
+            *s = self.intensity(*g);
+        }
+    }
+
+    /// One row of the step: the new intensity from cascade 0's `gradient`, the active and
+    /// residual foam `a`, `r` aged with the intensity going from `s` (replaced by the new one)
+    /// to it, and the residual foam copied into the transform's input `w`. In blocks of
+    /// [`BLOCK`] points through arrays on the stack (written straight into the five row
+    /// slices, the loop did not vectorise). Inlined into its caller's [`Simd::run`].
+    #[inline(always)]
+    fn react_row(
+        &self,
+        step: &Step,
+        gradient: &[[f32; 3]],
+        a: &mut [f32],
+        r: &mut [f32],
+        s: &mut [f32],
+        w: &mut [Complex32],
+    ) {
+        let n = a.len();
+        for start in (0..n).step_by(BLOCK) {
+            let len = BLOCK.min(n - start);
+            let range = start..start + len;
+            let mut fresh = [0.0f32; BLOCK];
+            self.intensities(&gradient[range.clone()], &mut fresh[..len]);
+            let mut active = [0.0f32; BLOCK];
+            let mut residual = [0.0f32; BLOCK];
+            active[..len].copy_from_slice(&a[range.clone()]);
+            residual[..len].copy_from_slice(&r[range.clone()]);
+            let old = &s[range.clone()];
+            for k in 0..len {
+                let (a1, r1) = self.react(step, active[k], residual[k], old[k], fresh[k]);
+                active[k] = a1;
+                residual[k] = r1;
+            }
+            a[range.clone()].copy_from_slice(&active[..len]);
+            r[range.clone()].copy_from_slice(&residual[..len]);
+            s[range.clone()].copy_from_slice(&fresh[..len]);
+            for (w, &r1) in w[range].iter_mut().zip(&residual[..len]) {
+                *w = Complex32::new(r1, 0.0);
             }
         }
-        let fraction = match (count, a2 > 0.0) {
-            (1, _) => cdf[0],
-            (_, true) => (cdf[1] - cdf[0]).max(0.0),
-            _ => (cdf[0] + 1.0 - cdf[1]).min(1.0),
-        };
-        episodes * INV_SQRT_TAU / slope + fraction * self.inv_active
     }
 
     /// The constants of a step of `dt` seconds.
     fn step(&self, dt: f32) -> Step {
-        let x = dt * self.inv_active;
-        let e_active = self.determinism.expf(-x);
-        Step {
-            dt,
-            e_active,
-            mean_active: mean_factor(x, e_active),
-            e_residual: self.determinism.expf(-dt * self.inv_residual),
-        }
+        Step { dt }
     }
 
     /// Active and residual foam after a step with the intensity going from `old` to `new`
-    /// (trapezoidal mean held over the step, the linear equations solved exactly). Where
-    /// nothing breaks (the intensity 0 at both ends, most of the sea) the exponentials are the
-    /// step's constants.
+    /// (trapezoidal mean held over the step, the linear equations solved exactly).
+    /// Branch-free.
     #[inline(always)]
     fn react(&self, step: &Step, active: f32, residual: f32, old: f32, new: f32) -> (f32, f32) {
         let dt = step.dt;
         let s = 0.5 * (old + new);
-        let (a1, a_mean) = if s == 0.0 {
-            (active * step.e_active, active * step.mean_active)
-        } else {
-            let kappa = s + self.inv_active;
-            let x = kappa * dt;
-            let e = self.determinism.expf(-x);
-            let a_star = s / kappa;
-            (
-                a_star + (active - a_star) * e,
-                a_star + (active - a_star) * mean_factor(x, e),
-            )
-        };
+        let kappa = s + self.inv_active;
+        let x = kappa * dt;
+        let e = exp(-x);
+        let a_star = s / kappa;
+        let a1 = a_star + (active - a_star) * e;
+        let a_mean = a_star + (active - a_star) * mean_factor(x, e);
         let g = a_mean * self.inv_active;
-        let r1 = if g == 0.0 {
-            residual * step.e_residual
-        } else {
-            let rho = g + self.inv_residual;
-            let r_star = g / rho;
-            // e^{−ρΔt} = e^{−Δt/τ_R}·e^{−gΔt}, the second by its series where gΔt is small
-            // (error below 5e-10 for gΔt < 0.01).
-            let y = g * dt;
-            let e_g = if y < 0.01 {
-                1.0 - y * (1.0 - y * (0.5 - y / 6.0))
-            } else {
-                self.determinism.expf(-y)
-            };
-            r_star + (residual - r_star) * (step.e_residual * e_g)
-        };
+        let rho = g + self.inv_residual;
+        let r_star = g / rho;
+        let r1 = r_star + (residual - r_star) * exp(-rho * dt);
         (a1.clamp(0.0, 1.0), r1.clamp(0.0, 1.0))
     }
 }
 
 /// (1 − e^{−x})/x from x and e = e^{−x}, by its series for small x: the mean of an
-/// exponential relaxation over a step, as a fraction of its start.
+/// exponential relaxation over a step, as a fraction of its start. Branch-free.
 #[inline(always)]
 fn mean_factor(x: f32, e: f32) -> f32 {
+    let direct = (1.0 - e) / x;
+    let series = 1.0 - x * (0.5 - x / 6.0);
     if x > 1e-3 {
-        (1.0 - e) / x
+        direct
     } else {
-        1.0 - x * (0.5 - x / 6.0)
+        series
     }
+}
+
+/// Partial sums per row in [`Foam::finish`].
+const LANES: usize = 8;
+
+/// The total foam a + r(1 − a) of a row into `f`, and the row's sums of a, r(1 − a) and the
+/// total in f64 (see [`Foam::finish`]). Inlined into its caller's [`Simd::run`].
+#[inline(always)]
+fn total_row(a: &[f32], r: &[f32], f: &mut [f32]) -> [f64; 3] {
+    let mut lanes = [[0.0f64; LANES]; 3];
+    let whole = a.len() / LANES * LANES;
+    let chunks = a[..whole]
+        .chunks_exact(LANES)
+        .zip(r[..whole].chunks_exact(LANES))
+        .zip(f[..whole].chunks_exact_mut(LANES));
+    for ((a, r), f) in chunks {
+        for k in 0..LANES {
+            let rest = r[k] * (1.0 - a[k]);
+            f[k] = a[k] + rest;
+            lanes[0][k] += f64::from(a[k]);
+            lanes[1][k] += f64::from(rest);
+            lanes[2][k] += f64::from(f[k]);
+        }
+    }
+    for (k, ((&a, &r), f)) in a[whole..]
+        .iter()
+        .zip(&r[whole..])
+        .zip(&mut f[whole..])
+        .enumerate()
+    {
+        let rest = r * (1.0 - a);
+        *f = a + rest;
+        lanes[0][k] += f64::from(a);
+        lanes[1][k] += f64::from(rest);
+        lanes[2][k] += f64::from(*f);
+    }
+    lanes.map(|lane| lane.iter().sum())
 }
 
 /// What every point's update over one step shares.
 #[derive(Debug, Clone, Copy)]
 struct Step {
     dt: f32,
-    /// e^{−Δt/τ_A}.
-    e_active: f32,
-    /// (1 − e^{−Δt/τ_A})/(Δt/τ_A).
-    mean_active: f32,
-    /// e^{−Δt/τ_R}.
-    e_residual: f32,
 }
 
 /// The foam of an ocean: its state (active and residual foam), the breaking intensity at the
@@ -281,6 +348,8 @@ pub(crate) struct Foam {
     work: Vec<Complex32>,
     fft: Fft2d,
     row_sums: Vec<[f64; 3]>,
+    /// The SIMD level of the element loops.
+    simd: Simd,
 }
 
 impl Clone for Foam {
@@ -303,6 +372,7 @@ impl Clone for Foam {
             fft: Fft2d::with_determinism(self.n, 1, self.params.determinism)
                 .expect("an FFT of a size that was planned before"),
             row_sums: self.row_sums.clone(),
+            simd: self.simd,
         }
     }
 }
@@ -399,6 +469,7 @@ impl Foam {
             work: error::try_vec(points, Complex32::default())?,
             fft: Fft2d::with_determinism(n, 1, determinism)?,
             row_sums: error::try_vec(n, [0.0; 3])?,
+            simd: Simd::detect(),
         };
         foam.refresh(cascades);
         Ok(foam)
@@ -409,16 +480,18 @@ impl Foam {
     pub(crate) fn refresh(&mut self, cascades: &[Cascade]) {
         let n = self.n;
         let params = self.params;
+        let simd = self.simd;
         let first = &cascades[0];
         self.breaking
             .par_chunks_mut(ROWS * n)
             .enumerate()
             .for_each(|(b, block)| {
                 for (r, row) in block.chunks_mut(n).enumerate() {
-                    let gradient = first.gradient_row(b * ROWS + r);
-                    for (i, s) in row.iter_mut().enumerate() {
-                        *s = params.intensity(gradient.get(i));
-                    }
+                    let gradient = first.gradient_row(b * ROWS + r).values();
+                    simd.run(
+                        #[inline(always)]
+                        || params.intensities(gradient, row),
+                    );
                 }
             });
         self.finish();
@@ -434,9 +507,11 @@ impl Foam {
         }
         self.react(cascades, dt as f32);
         if self.transport.is_active() {
+            // Finishes as it goes.
             self.transport(dt);
+        } else {
+            self.finish();
         }
-        self.finish();
     }
 
     /// Injection, aging and decay at every point, with the breaking intensity of the new
@@ -445,6 +520,7 @@ impl Foam {
         let n = self.n;
         let params = self.params;
         let step = params.step(dt);
+        let simd = self.simd;
         let first = &cascades[0];
         let block = ROWS * n;
         (
@@ -462,15 +538,11 @@ impl Foam {
                     .zip(breaking.chunks_mut(n))
                     .zip(work.chunks_mut(n));
                 for (r, (((a, rr), s), w)) in rows.enumerate() {
-                    let gradient = first.gradient_row(b * ROWS + r);
-                    for i in 0..n {
-                        let new = params.intensity(gradient.get(i));
-                        let (a1, r1) = params.react(&step, a[i], rr[i], s[i], new);
-                        s[i] = new;
-                        a[i] = a1;
-                        rr[i] = r1;
-                        w[i] = Complex32::new(r1, 0.0);
-                    }
+                    let gradient = first.gradient_row(b * ROWS + r).values();
+                    simd.run(
+                        #[inline(always)]
+                        || params.react_row(&step, gradient, a, rr, s, w),
+                    );
                 }
             });
     }
@@ -484,17 +556,21 @@ impl Foam {
     fn transport(&mut self, dt: f64) {
         let n = self.n;
         self.transport.fill_tables(dt, n, &mut self.tables);
-        let determinism = self.params.determinism;
         let Foam {
             fft,
             work,
             tables,
             transport,
             residual,
+            simd,
+            active,
+            total,
+            row_sums,
             ..
         } = self;
         let [a, b, c] = transport.exponent(dt);
         let tables = &*tables;
+        let simd = *simd;
         let spectrum = fft
             .process(work)
             .expect("the foam's work buffer holds N² values");
@@ -508,11 +584,19 @@ impl Foam {
                     let source = &spectrum[ix * n..(ix + 1) * n];
                     let shift_x = tables[ix];
                     let (ax, bx) = (a * mx * mx, 2.0 * b * mx);
-                    for (iz, (out, g)) in row.iter_mut().zip(source).enumerate() {
-                        let mz = crate::grid::wave_index(iz, n) as f32;
-                        let decay = determinism.expf(-(ax + mz * (bx + c * mz)));
-                        *out = g.conj() * (shift_x * tables[n + iz]) * decay;
-                    }
+                    let shifts = &tables[n..2 * n];
+                    simd.run(
+                        #[inline(always)]
+                        || {
+                            for (iz, ((out, g), shift_z)) in
+                                row.iter_mut().zip(source).zip(shifts).enumerate()
+                            {
+                                let mz = crate::grid::wave_index(iz, n) as f32;
+                                let decay = exp(-(ax + mz * (bx + c * mz)));
+                                *out = g.conj() * (shift_x * shift_z) * decay;
+                            }
+                        },
+                    );
                 }
             });
         let moved = fft
@@ -520,21 +604,45 @@ impl Foam {
             .expect("the foam's work buffer holds N² values");
         let scale = 1.0 / (n * n) as f32;
         let flush = |v: f32| if v < FLUSH { 0.0 } else { v.min(1.0) };
-        residual
-            .par_chunks_mut(ROWS * n)
+        // The residual foam back from the transform, and at once (while its rows are in
+        // cache) the total foam and the row sums of `finish`.
+        (
+            residual.par_chunks_mut(ROWS * n),
+            active.par_chunks(ROWS * n),
+            total.par_chunks_mut(ROWS * n),
+            row_sums.par_chunks_mut(ROWS),
+        )
+            .into_par_iter()
             .enumerate()
-            .for_each(|(b, r)| {
-                let source = &moved[b * ROWS * n..][..r.len()];
-                for (r, v) in r.iter_mut().zip(source) {
-                    *r = flush(v.re * scale);
+            .for_each(|(b, (residual, active, total, sums))| {
+                let source = &moved[b * ROWS * n..][..residual.len()];
+                let rows = residual
+                    .chunks_mut(n)
+                    .zip(source.chunks(n))
+                    .zip(active.chunks(n))
+                    .zip(total.chunks_mut(n));
+                for ((((r, source), a), f), sum) in rows.zip(sums.iter_mut()) {
+                    *sum = simd.run(
+                        #[inline(always)]
+                        || {
+                            for (r, v) in r.iter_mut().zip(source) {
+                                *r = flush(v.re * scale);
+                            }
+                            total_row(a, r, f)
+                        },
+                    );
                 }
             });
+        self.sum_rows();
     }
 
-    /// The total foam a + r(1 − a) and the coverage, by rows summed in f64 and the rows added
-    /// in order.
+    /// The total foam a + r(1 − a) and the coverage: each row summed in f64 in [`LANES`]
+    /// interleaved partial sums (column i into sum i mod `LANES`, so that the loop vectorises
+    /// and its order is fixed by the code, not by the SIMD level), those added in order, and
+    /// the rows added in order.
     fn finish(&mut self) {
         let n = self.n;
+        let simd = self.simd;
         (
             self.active.par_chunks(ROWS * n),
             self.residual.par_chunks(ROWS * n),
@@ -548,17 +656,18 @@ impl Foam {
                     .zip(residual.chunks(n))
                     .zip(total.chunks_mut(n));
                 for (((a, r), f), sum) in rows.zip(sums.iter_mut()) {
-                    let mut s = [0.0f64; 3];
-                    for ((&a, &r), f) in a.iter().zip(r).zip(f.iter_mut()) {
-                        let rest = r * (1.0 - a);
-                        *f = a + rest;
-                        s[0] += f64::from(a);
-                        s[1] += f64::from(rest);
-                        s[2] += f64::from(*f);
-                    }
-                    *sum = s;
+                    *sum = simd.run(
+                        #[inline(always)]
+                        || total_row(a, r, f),
+                    );
                 }
             });
+        self.sum_rows();
+    }
+
+    /// The coverage from the row sums of [`finish`](Self::finish), added in order.
+    fn sum_rows(&mut self) {
+        let n = self.n;
         let mut sum = [0.0f64; 3];
         for row in &self.row_sums {
             for k in 0..3 {
@@ -571,6 +680,12 @@ impl Foam {
             residual: (sum[1] / points) as f32,
             total: (sum[2] / points) as f32,
         };
+    }
+
+    /// Runs the element loops at `simd` from now on (the tests force every level).
+    #[cfg(test)]
+    pub(crate) fn set_simd(&mut self, simd: Simd) {
+        self.simd = simd;
     }
 
     /// Removes all foam (the breaking intensity, a function of the time, stays).
@@ -856,6 +971,70 @@ mod tests {
             along > 2.0 * across && along * t > s2 / 4.0,
             "{along} {across}"
         );
+    }
+
+    /// The foam's element loops (intensity, aging, transport multipliers, totals and sums)
+    /// give the same bits at every SIMD level the machine has and at 1, 2 and 3 threads, as
+    /// the baseline build at 1 thread: the active, residual and total foam, the intensity and
+    /// the coverage after steps with breaking, residual foam and transport, a refresh (a jump
+    /// in time) and a pre-roll.
+    #[test]
+    fn every_simd_level_and_thread_count_gives_the_same_foam() {
+        let levels = Simd::available();
+        // On a CPU with AVX-512 (as the project's machines) all three levels must be covered,
+        // or the test would pass vacuously.
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512bw") {
+            assert_eq!(levels.len(), 3, "{levels:?}");
+        }
+        let run = |level: Simd, threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let spectrum = Spectrum::jonswap(16.0, 300_000.0).unwrap();
+                let config = OceanConfig {
+                    size: 64,
+                    ..OceanConfig::default()
+                };
+                let mut ocean = OceanState::new(spectrum, config).unwrap();
+                ocean.foam.set_simd(level);
+                ocean.set_time(500.0).unwrap();
+                let mut bits: Vec<u32> = Vec::new();
+                let mut record = |ocean: &OceanState| {
+                    let foam = &ocean.foam;
+                    for buffer in [&foam.active, &foam.residual, &foam.total, &foam.breaking] {
+                        bits.extend(buffer.iter().map(|v| v.to_bits()));
+                    }
+                    let c = ocean.foam_coverage();
+                    bits.extend([c.active, c.residual, c.total].map(f32::to_bits));
+                };
+                for _ in 0..40 {
+                    ocean.step(0.1).unwrap();
+                }
+                record(&ocean);
+                ocean.set_time(731.25).unwrap();
+                record(&ocean);
+                ocean.pre_roll(3.0, 1.0 / 30.0).unwrap();
+                record(&ocean);
+                let coverage = ocean.foam_coverage();
+                assert!(
+                    coverage.active > 1e-3 && coverage.residual > 1e-4,
+                    "the test needs foam: {coverage:?}"
+                );
+                bits
+            })
+        };
+        let expected = run(Simd::Baseline, 1);
+        for &level in &levels {
+            for threads in [1, 2, 3] {
+                assert!(
+                    run(level, threads) == expected,
+                    "{level:?} at {threads} threads differs from the baseline at 1 thread"
+                );
+            }
+        }
     }
 
     /// Steps compose exactly: twenty steps of 0.5 s move the blob as ten of 1 s and one of
