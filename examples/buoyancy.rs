@@ -27,7 +27,7 @@ use ocean_fft::{OceanConfig, OceanState, Spectrum};
 
 use plotters::prelude::*;
 
-use common::plot::{draw_png, FONT, SERIES};
+use common::plot::{draw_legend, draw_png, line_swatch, FONT, SERIES};
 use common::{out_dir, Args, Result};
 
 const LENGTH: f64 = 4.0;
@@ -163,9 +163,7 @@ fn plot(path: &std::path::Path, frames: &[Frame], hs: f32, palette: bool) -> Res
                 blue.stroke_width(2),
             ))?
             .label("heave (mean of the four corners)")
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], blue.stroke_width(2))
-            });
+            .legend(line_swatch(blue));
         let grey = RGBColor(130, 130, 130);
         for level in [-0.5 * f64::from(hs), 0.5 * f64::from(hs)] {
             chart.draw_series(LineSeries::new(
@@ -177,13 +175,7 @@ fn plot(path: &std::path::Path, frames: &[Frame], hs: f32, palette: bool) -> Res
             .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
             .label(format!("±Hs/2 of the sea (Hs = {hs:.2} m)"))
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font((FONT, text * 0.95).into_font())
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(180, 180, 180))
-            .draw()?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight, text * 0.95)?;
 
         let mut chart = ChartBuilder::on(&bottom)
             .margin(10)
@@ -215,17 +207,9 @@ fn plot(path: &std::path::Path, frames: &[Frame], hs: f32, palette: bool) -> Res
                     colour.stroke_width(2),
                 ))?
                 .label(label)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-                });
+                .legend(line_swatch(colour));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font((FONT, text * 0.95).into_font())
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(180, 180, 180))
-            .draw()?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight, text * 0.95)?;
         Ok(())
     })
 }

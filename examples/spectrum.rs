@@ -21,7 +21,7 @@ use std::f32::consts::PI;
 use ocean_fft::{SeaState, Spectrum, Spreading};
 use plotters::prelude::*;
 
-use common::plot::{draw_png, FONT, SERIES};
+use common::plot::{draw_legend, draw_png, line_swatch, FONT, SERIES};
 use common::{out_dir, Args, Result};
 
 fn main() -> Result<()> {
@@ -105,9 +105,7 @@ fn main() -> Result<()> {
                     colour.stroke_width(2),
                 ))?
                 .label(label.clone())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-                });
+                .legend(line_swatch(colour));
         }
         // The ω⁻⁵ slope of the saturation range (Phillips 1958), through the storm's tail.
         let reference = |w: f64| 0.5 * 9.81f64.powi(2) * 0.008 * w.powi(-5);
@@ -122,13 +120,7 @@ fn main() -> Result<()> {
             ))?
             .label("ω⁻⁵ slope (Phillips)")
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font((FONT, text * 0.95).into_font())
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(180, 180, 180))
-            .draw()?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight, text * 0.95)?;
         Ok(())
     })?;
     println!(
@@ -197,17 +189,9 @@ fn main() -> Result<()> {
             chart
                 .draw_series(LineSeries::new(points.clone(), colour.stroke_width(2)))?
                 .label(*label)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-                });
+                .legend(line_swatch(colour));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font((FONT, text * 0.95).into_font())
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(180, 180, 180))
-            .draw()?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight, text * 0.95)?;
         Ok(())
     })?;
     println!(

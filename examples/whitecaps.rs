@@ -20,7 +20,7 @@ mod common;
 use ocean_fft::{OceanConfig, OceanState, Spectrum};
 use plotters::prelude::*;
 
-use common::plot::{draw_png, FONT, SERIES};
+use common::plot::{draw_legend, draw_png, line_swatch, FONT, SERIES};
 use common::{out_dir, Args, Result};
 
 const WINDS: [f32; 5] = [5.0, 7.5, 10.0, 15.0, 20.0];
@@ -131,9 +131,7 @@ fn plot(path: &std::path::Path, rows: &[(usize, f32, f64, f64)], palette: bool) 
                 black.stroke_width(2),
             ))?
             .label("Monahan & O'Muircheartaigh (1980): W = 3.84·10⁻⁶ U10^3.41")
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], black.stroke_width(2))
-            });
+            .legend(line_swatch(black));
         for (index, name) in [(0usize, "JONSWAP"), (1, "Pierson–Moskowitz")] {
             let colour = SERIES[index];
             let shift = if index == 0 { 0.985 } else { 1.015 };
@@ -152,13 +150,7 @@ fn plot(path: &std::path::Path, rows: &[(usize, f32, f64, f64)], palette: bool) 
                 .label(format!("{name}: residual foam"))
                 .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.stroke_width(2)));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .label_font((FONT, text * 0.9).into_font())
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(180, 180, 180))
-            .draw()?;
+        draw_legend(&mut chart, SeriesLabelPosition::LowerRight, text * 0.9)?;
         Ok(())
     })
 }

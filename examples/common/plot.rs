@@ -156,3 +156,26 @@ pub fn outlined_text(
     area.draw(&Text::new(text.to_string(), (x, y), style.color(&WHITE)))?;
     Ok(())
 }
+
+/// The legend's sample of a line series drawn in `colour`, 2 px wide: for
+/// `.legend(line_swatch(colour))`.
+pub fn line_swatch(colour: RGBColor) -> impl Fn((i32, i32)) -> PathElement<(i32, i32)> {
+    move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+}
+
+/// Draws the chart's legend at `position` in the examples' style: labels of `font_size` px on
+/// a translucent white box with a grey border.
+pub fn draw_legend<'a, 'b: 'a, CT: plotters::coord::CoordTranslate>(
+    chart: &mut ChartContext<'a, BitMapBackend<'b>, CT>,
+    position: SeriesLabelPosition,
+    font_size: f64,
+) -> Result<()> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .label_font((FONT, font_size).into_font())
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(180, 180, 180))
+        .draw()?;
+    Ok(())
+}
