@@ -188,8 +188,10 @@ struct Tasks {
     /// Blocks of [`ROWS_PER_TASK`] z rows each pass-2 task gathers, transforms and writes
     /// out, one after the other through its block buffer.
     blocks_per_task: usize,
-    /// Pass-2 tasks.
+    /// Pass-2 tasks at most (and block buffers).
     pass2: usize,
+    /// Blocks of [`ROWS_PER_TASK`] z rows in the grid.
+    blocks: usize,
 }
 
 impl Tasks {
@@ -203,7 +205,27 @@ impl Tasks {
             pass1: pairs.div_ceil(pairs_per_task),
             blocks_per_task,
             pass2: blocks.div_ceil(blocks_per_task),
+            blocks,
         }
+    }
+
+    /// Blocks each pass-2 task works through when the pool has `threads` threads: one task
+    /// for one thread, four per thread otherwise (enough for the work stealing to even out a
+    /// thread that other work on the machine holds up), and never more tasks than block
+    /// buffers. Every block is computed alike whichever task does it, so the result does not
+    /// depend on this; what it changes is how many block buffers an update touches, and so
+    /// how much of the cache they take from the cascade's other buffers (at 256², 16 buffers
+    /// are as large as the pass-1 buffer).
+    fn pass2_blocks_per_task(&self, threads: usize) -> usize {
+        let blocks = self.blocks;
+        let tasks = if threads <= 1 {
+            1
+        } else {
+            threads.saturating_mul(4)
+        };
+        blocks
+            .div_ceil(tasks.min(self.pass2))
+            .max(self.blocks_per_task)
     }
 
     /// FFT scratch slots: pass 1 (row 0 beside the row-pair tasks) and pass 2 run one after
@@ -504,7 +526,10 @@ impl Cascade {
         let s = rows.scratch_len();
         let zero = self.zero_columns();
         let simd = self.simd;
-        let rows_per_task = self.tasks.blocks_per_task * ROWS_PER_TASK;
+        let rows_per_task = self
+            .tasks
+            .pass2_blocks_per_task(rayon::current_num_threads())
+            * ROWS_PER_TASK;
         let out = rows_per_task * n;
         // Each task's share of the kept gradient, or an empty slice for every task where it is
         // not kept (on the stack: the update allocates nothing).
