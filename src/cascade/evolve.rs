@@ -97,12 +97,14 @@ pub(super) fn packed_pair(
 const EVOLVE_BLOCK: usize = 64;
 
 /// The column ranges of [`evolve_row_pair`]'s blocks over columns 1..N, in order: blocks of
-/// [`EVOLVE_BLOCK`] columns (fewer only when N − 1 is below it). When N − 1 ≥ EVOLVE_BLOCK
-/// every block is full: the last one starts early and recomputes a few columns, writing the
-/// same values, so that the vector loops have no scalar remainder. At most 64 blocks for
+/// [`EVOLVE_BLOCK`] columns (fewer only when N is below it). Every block is full: the last
+/// one starts early and recomputes a few columns, writing the same values, so that the
+/// vector loops have no scalar remainder; when N ≤ EVOLVE_BLOCK the one block starts at
+/// column 0 (which [`evolve_row_pair`] also computes on its own) for the same reason (at 64²
+/// the 63 columns 1..64 left 15 to the narrow remainder loops). At most 64 blocks for
 /// N ≤ 4097, so a row's blocks fit the bits of a `u64` (see [`zero_blocks`]).
 pub(super) fn column_blocks(n: usize) -> impl Iterator<Item = std::ops::Range<usize>> {
-    let len = EVOLVE_BLOCK.min(n - 1);
+    let len = EVOLVE_BLOCK.min(n);
     (1..n).step_by(EVOLVE_BLOCK).map(move |next| {
         let start = next.min(n - len);
         start..start + len
@@ -160,7 +162,9 @@ pub(super) fn evolve_row_pair(
     let (mut u, mut l) = ([u0, u1, u2, u3], [l0, l1, l2, l3]);
     for (b, range) in column_blocks(n).enumerate() {
         let len = range.len();
-        let mirror = n - range.end + 1..n - range.start + 1;
+        // Partners N − j of the block's columns j ≥ 1 (column 0 is its own partner).
+        let skip = usize::from(range.start == 0);
+        let mirror = n - range.end + 1..n - range.start - skip + 1;
         if zero & (1 << b) != 0 {
             // Zeros in, zeros out: a fill costs a fraction of the sines and cosines. (The
             // evolution would give ±0 here; the sign of a zero never reaches an output, which
@@ -196,9 +200,12 @@ pub(super) fn evolve_row_pair(
         for (out, values) in l.iter_mut().zip(&minus) {
             for (out, value) in out[mirror.clone()]
                 .iter_mut()
-                .zip(values[..len].iter().rev())
+                .zip(values[skip..len].iter().rev())
             {
                 *out = *value;
+            }
+            if skip == 1 {
+                out[0] = values[0];
             }
         }
     }

@@ -178,6 +178,16 @@ pub(crate) fn memory_bytes(n: usize, determinism: Determinism) -> usize {
 /// instead of 537 MB. 32 tasks still balance the load over as many threads.
 const MAX_TASKS: usize = 32;
 
+/// Parallel tasks a pass runs on a pool of `threads` threads (fewer when it has less work;
+/// see [`Tasks::pass2_blocks_per_task`]).
+fn tasks_for(threads: usize) -> usize {
+    if threads <= 1 {
+        1
+    } else {
+        threads.saturating_mul(4)
+    }
+}
+
 /// How one update's work is split into parallel tasks.
 #[derive(Debug, Clone, Copy)]
 struct Tasks {
@@ -209,6 +219,16 @@ impl Tasks {
         }
     }
 
+    /// Row pairs each pass-1 task evolves and transforms when `pairs` row pairs are live and
+    /// the pool has `threads` threads: as many tasks as
+    /// [`pass2_blocks_per_task`](Self::pass2_blocks_per_task) gives pass 2, for the same
+    /// reasons (and on one thread, each further task is a split and a call that buys
+    /// nothing), never more than FFT scratch slots.
+    fn pass1_pairs_per_task(&self, pairs: usize, threads: usize) -> usize {
+        let tasks = tasks_for(threads).min(self.pass1);
+        pairs.div_ceil(tasks).max(self.pairs_per_task)
+    }
+
     /// Blocks each pass-2 task works through when the pool has `threads` threads: one task
     /// for one thread, four per thread otherwise (enough for the work stealing to even out a
     /// thread that other work on the machine holds up), and never more tasks than block
@@ -218,11 +238,7 @@ impl Tasks {
     /// are as large as the pass-1 buffer).
     fn pass2_blocks_per_task(&self, threads: usize) -> usize {
         let blocks = self.blocks;
-        let tasks = if threads <= 1 {
-            1
-        } else {
-            threads.saturating_mul(4)
-        };
+        let tasks = tasks_for(threads);
         blocks
             .div_ceil(tasks.min(self.pass2))
             .max(self.blocks_per_task)
@@ -433,7 +449,9 @@ impl Cascade {
         let rows = &self.rows;
         let s = rows.scratch_len();
         let pairs = self.live_pairs;
-        let per_task = self.tasks.pairs_per_task;
+        let per_task = self
+            .tasks
+            .pass1_pairs_per_task(pairs, rayon::current_num_threads());
         let simd = self.simd;
 
         // Rows 1..=pairs, and their partners N − pairs..N − 1.
