@@ -130,8 +130,29 @@ pub(super) fn zero_blocks(table: EvolutionRow<'_>) -> u64 {
 /// whose bit is set in `zero` (see [`zero_blocks`]) are written as zeros without evolving.
 /// Inlined into its caller's [`Simd::run`](crate::simd::Simd::run), so that its loops are
 /// compiled for the level the cascade runs at.
+/// Arrays on the stack [`evolve_row_pair`] evolves a block of columns into before copying
+/// them out (see [`evolve_block`]); made once per task rather than per row pair, so that
+/// their zeroing is paid once.
+pub(super) struct EvolveBuffers {
+    turns: [f32; EVOLVE_BLOCK],
+    plus: [[Complex32; EVOLVE_BLOCK]; 4],
+    minus: [[Complex32; EVOLVE_BLOCK]; 4],
+}
+
+impl EvolveBuffers {
+    pub(super) fn new() -> Self {
+        EvolveBuffers {
+            turns: [0.0; EVOLVE_BLOCK],
+            plus: [[Complex32::default(); EVOLVE_BLOCK]; 4],
+            minus: [[Complex32::default(); EVOLVE_BLOCK]; 4],
+        }
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(super) fn evolve_row_pair(
+    buffers: &mut EvolveBuffers,
     table: EvolutionRow<'_>,
     zero: u64,
     kx: f32,
@@ -156,9 +177,7 @@ pub(super) fn evolve_row_pair(
     (l0[0], l1[0], l2[0], l3[0]) = (minus[0], minus[1], minus[2], minus[3]);
     // Per block: the f64 phase reduction first (2 lanes per SSE vector), then the f32 work
     // (4 lanes), each loop vectorising at its own width.
-    let mut turns = [0.0f32; EVOLVE_BLOCK];
-    let mut plus = [[Complex32::default(); EVOLVE_BLOCK]; 4];
-    let mut minus = [[Complex32::default(); EVOLVE_BLOCK]; 4];
+    let EvolveBuffers { turns, plus, minus } = buffers;
     let (mut u, mut l) = ([u0, u1, u2, u3], [l0, l1, l2, l3]);
     for (b, range) in column_blocks(n).enumerate() {
         let len = range.len();
@@ -190,14 +209,14 @@ pub(super) fn evolve_row_pair(
             &table.inv_k[range.clone()],
             kx,
             &kz[range.clone()],
-            &mut plus,
-            &mut minus,
+            plus,
+            minus,
         );
         // Out to the rows: the block's columns in order, their partners N − j reversed.
-        for (out, values) in u.iter_mut().zip(&plus) {
+        for (out, values) in u.iter_mut().zip(plus.iter()) {
             out[range.clone()].copy_from_slice(&values[..len]);
         }
-        for (out, values) in l.iter_mut().zip(&minus) {
+        for (out, values) in l.iter_mut().zip(minus.iter()) {
             for (out, value) in out[mirror.clone()]
                 .iter_mut()
                 .zip(values[skip..len].iter().rev())

@@ -28,8 +28,10 @@ pub use config::CascadeConfig;
 pub use field::Field;
 pub(crate) use inspect::GradientMoments;
 
-use evolve::{column_blocks, evolve_row_pair, fract_turns, packed_pair, zero_blocks};
-use outputs::{write_gradient, write_outputs};
+use evolve::{
+    column_blocks, evolve_row_pair, fract_turns, packed_pair, zero_blocks, EvolveBuffers,
+};
+use outputs::{write_gradient, write_outputs, NormalBuffers};
 pub use tables::LoopError;
 use tables::{check_amplitude, Amplitudes, EvolutionTable};
 
@@ -493,6 +495,7 @@ impl Cascade {
                     .enumerate()
                     .for_each(|(task, ((uppers, lowers), scratch))| {
                         let count = uppers.len() / stride;
+                        let mut buffers = EvolveBuffers::new();
                         for m in 0..count {
                             let i = task * per_task + m + 1;
                             if pruning[i].empty {
@@ -505,7 +508,18 @@ impl Cascade {
                             let zero = pruning[i].zero_blocks;
                             simd.run(
                                 #[inline(always)]
-                                || evolve_row_pair(table, zero, kx, kz, t, upper, lower),
+                                || {
+                                    evolve_row_pair(
+                                        &mut buffers,
+                                        table,
+                                        zero,
+                                        kx,
+                                        kz,
+                                        t,
+                                        upper,
+                                        lower,
+                                    )
+                                },
                             );
                             rows.process(upper, scratch);
                             rows.process(lower, scratch);
@@ -573,6 +587,7 @@ impl Cascade {
                     (block, scratch, height, displacement, slope, normal, jacobian, gradient),
                 )| {
                     let task_rows = height.len() / n;
+                    let mut normals = NormalBuffers::new();
                     for r0 in (0..task_rows).step_by(ROWS_PER_TASK) {
                         let count = ROWS_PER_TASK.min(task_rows - r0);
                         let j0 = task * rows_per_task + r0;
@@ -587,6 +602,7 @@ impl Cascade {
                                     let row = &block[r * stride..][..row_len];
                                     let out = (r0 + r) * n..(r0 + r + 1) * n;
                                     write_outputs(
+                                        &mut normals,
                                         row,
                                         n,
                                         lambda,

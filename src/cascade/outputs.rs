@@ -7,6 +7,28 @@ use num_complex::Complex32;
 /// kept at least this fraction of |n|, so the slope stays finite (≤ 1e4).
 const MIN_SLOPE_NY: f32 = 1e-4;
 
+/// Normals per output block: computed into plain f32 arrays (so that the arithmetic
+/// vectorises; stores of `[f32; 3]` in the same loop keep it scalar), then copied out. Made
+/// once per task rather than per row, so that their zeroing is paid once.
+pub(super) struct NormalBuffers {
+    nx: [f32; OUTPUT_BLOCK],
+    ny: [f32; OUTPUT_BLOCK],
+    nz: [f32; OUTPUT_BLOCK],
+}
+
+impl NormalBuffers {
+    pub(super) fn new() -> Self {
+        NormalBuffers {
+            nx: [0.0; OUTPUT_BLOCK],
+            ny: [0.0; OUTPUT_BLOCK],
+            nz: [0.0; OUTPUT_BLOCK],
+        }
+    }
+}
+
+/// Points [`write_outputs`] computes at once.
+const OUTPUT_BLOCK: usize = 128;
+
 /// Output buffers of one grid row from its four packed, transformed rows; `offset` (m) is
 /// added to every height (the mean-level correction, see `Cascade::mean_level_offset`).
 /// Inlined into its caller's [`Simd::run`](crate::simd::Simd::run), so that its loops are
@@ -14,6 +36,7 @@ const MIN_SLOPE_NY: f32 = 1e-4;
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(super) fn write_outputs(
+    normals: &mut NormalBuffers,
     row: &[Complex32],
     n: usize,
     lambda: f32,
@@ -27,13 +50,7 @@ pub(super) fn write_outputs(
     let (t0, rest) = row.split_at(n);
     let (t1, rest) = rest.split_at(n);
     let (t2, t3) = rest.split_at(n);
-    // Blocks of OUTPUT_BLOCK: the arithmetic runs into plain f32 arrays for the normals (so
-    // that it vectorises; stores of Vec3 in the same loop keep it scalar), then the normals
-    // are copied out.
-    const OUTPUT_BLOCK: usize = 128;
-    let mut nx = [0.0f32; OUTPUT_BLOCK];
-    let mut ny = [0.0f32; OUTPUT_BLOCK];
-    let mut nz = [0.0f32; OUTPUT_BLOCK];
+    let NormalBuffers { nx, ny, nz } = normals;
     for start in (0..n).step_by(OUTPUT_BLOCK) {
         let len = OUTPUT_BLOCK.min(n - start);
         let range = start..start + len;
@@ -52,7 +69,10 @@ pub(super) fn write_outputs(
             &mut ny[..len],
             &mut nz[..len],
         );
-        for (normal, ((&x, &y), &z)) in normal[range].iter_mut().zip(nx.iter().zip(&ny).zip(&nz)) {
+        for (normal, ((&x, &y), &z)) in normal[range]
+            .iter_mut()
+            .zip(nx.iter().zip(ny.iter()).zip(nz.iter()))
+        {
             *normal = [x, y, z];
         }
     }
