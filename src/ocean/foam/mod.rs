@@ -289,22 +289,31 @@ fn mean_factor(x: f32, e: f32) -> f32 {
 const LANES: usize = 8;
 
 /// The total foam a + r(1 − a) of a row into `f`, and the row's sums of a, r(1 − a) and the
-/// total in f64 (see [`Foam::finish`]). Inlined into its caller's [`Simd::run`].
+/// total in f64 (see [`Foam::finish`]): column i goes into partial sum i mod [`LANES`], and
+/// the partial sums are added in order at the end. Written over whole arrays of [`LANES`]
+/// values (one 512-bit register of f64), so that the conversions and additions vectorise at
+/// every SIMD level; the order of the additions is the code's, whatever the level. Inlined
+/// into its caller's [`Simd::run`].
 #[inline(always)]
 fn total_row(a: &[f32], r: &[f32], f: &mut [f32]) -> [f64; 3] {
-    let mut lanes = [[0.0f64; LANES]; 3];
+    let mut sum_a = [0.0f64; LANES];
+    let mut sum_r = [0.0f64; LANES];
+    let mut sum_f = [0.0f64; LANES];
     let whole = a.len() / LANES * LANES;
     let chunks = a[..whole]
         .chunks_exact(LANES)
         .zip(r[..whole].chunks_exact(LANES))
         .zip(f[..whole].chunks_exact_mut(LANES));
     for ((a, r), f) in chunks {
+        let a: &[f32; LANES] = a.try_into().expect("LANES values");
+        let r: &[f32; LANES] = r.try_into().expect("LANES values");
+        let rest: [f32; LANES] = std::array::from_fn(|k| r[k] * (1.0 - a[k]));
+        let total: [f32; LANES] = std::array::from_fn(|k| a[k] + rest[k]);
+        f.copy_from_slice(&total);
         for k in 0..LANES {
-            let rest = r[k] * (1.0 - a[k]);
-            f[k] = a[k] + rest;
-            lanes[0][k] += f64::from(a[k]);
-            lanes[1][k] += f64::from(rest);
-            lanes[2][k] += f64::from(f[k]);
+            sum_a[k] += f64::from(a[k]);
+            sum_r[k] += f64::from(rest[k]);
+            sum_f[k] += f64::from(total[k]);
         }
     }
     for (k, ((&a, &r), f)) in a[whole..]
@@ -315,11 +324,11 @@ fn total_row(a: &[f32], r: &[f32], f: &mut [f32]) -> [f64; 3] {
     {
         let rest = r * (1.0 - a);
         *f = a + rest;
-        lanes[0][k] += f64::from(a);
-        lanes[1][k] += f64::from(rest);
-        lanes[2][k] += f64::from(*f);
+        sum_a[k] += f64::from(a);
+        sum_r[k] += f64::from(rest);
+        sum_f[k] += f64::from(*f);
     }
-    lanes.map(|lane| lane.iter().sum())
+    [sum_a, sum_r, sum_f].map(|lane| lane.iter().sum())
 }
 
 /// What every point's update over one step shares.
