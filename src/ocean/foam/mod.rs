@@ -16,7 +16,7 @@ use crate::cascade::{check_time, Cascade, GradientMoments};
 use crate::determinism::Determinism;
 use crate::error::{self, Error};
 use crate::exp::exp;
-use crate::fft2d::Fft2d;
+use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
 use crate::simd::Simd;
 
 use super::OceanState;
@@ -30,9 +30,21 @@ use transport::Transport;
 /// Points of a row the foam's element loops handle at once, through arrays on the stack.
 const BLOCK: usize = 64;
 
-/// Rows of the foam grid one parallel task handles (the split depends only on N, never on the
-/// number of threads).
-const ROWS: usize = 8;
+/// Rows of the foam grid one parallel task handles in every pass (the split depends only on
+/// N, never on the number of threads): as many as a task of the transforms' second pass
+/// gathers, so that the row pass, the column pass and the last pass share one scratch per
+/// task.
+const ROWS: usize = ROWS_PER_TASK;
+
+/// Fewest grid points one rayon task of a foam pass works through: below this the fork and
+/// join of a task cost more than the work they share out (at 64² the whole foam is one task
+/// per pass; from 128² on, a pass is split into tasks of at least this many points).
+const MIN_TASK_POINTS: usize = 64 * 64;
+
+/// Blocks of [`ROWS`] rows one rayon task takes at least, for a grid of side `n`.
+fn min_tasks(n: usize) -> usize {
+    MIN_TASK_POINTS.div_ceil(ROWS * n).max(1)
+}
 
 /// Residual foam below this after a transport step is set to zero: the rounding of the two
 /// FFTs (about 1e-7 of the largest value) would otherwise leave a faint haze everywhere.
@@ -68,8 +80,6 @@ struct Params {
     floor: f32,
     inv_active: f32,
     inv_residual: f32,
-    /// Whose exponential the foam steps use.
-    determinism: Determinism,
 }
 
 /// gᵀ M g for a symmetric M stored as (AA, BB, CC, AB, AC, BC).
@@ -203,6 +213,22 @@ impl Params {
         }
         for (g, s) in gradient.iter().zip(out.iter_mut()) {
             *s = self.intensity(*g);
+        }
+    }
+
+    /// The breaking intensity along a row of cascade 0's gradient into `out` (as long), in
+    /// blocks of [`BLOCK`] points through an array on the stack, as [`react_row`] does.
+    /// Inlined into its caller's [`Simd::run`].
+    ///
+    /// [`react_row`]: Self::react_row
+    #[inline(always)]
+    fn intensity_row(&self, gradient: &[[f32; 3]], out: &mut [f32]) {
+        let n = out.len();
+        for start in (0..n).step_by(BLOCK) {
+            let len = BLOCK.min(n - start);
+            let mut fresh = [0.0f32; BLOCK];
+            self.intensities(&gradient[start..start + len], &mut fresh[..len]);
+            out[start..start + len].copy_from_slice(&fresh[..len]);
         }
     }
 
@@ -340,7 +366,7 @@ struct Step {
 /// The foam of an ocean: its state (active and residual foam), the breaking intensity at the
 /// current time, the total foam and the coverage, the calibration, and the buffers of the
 /// transport step (all allocated once).
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub(crate) struct Foam {
     n: usize,
     /// Side of the foam grid's tile, L of cascade 0, in metres.
@@ -354,36 +380,18 @@ pub(crate) struct Foam {
     params: Params,
     transport: Transport,
     tables: Vec<Complex32>,
-    work: Vec<Complex32>,
-    fft: Fft2d,
+    /// The transport's grid in space order (row z, column x or m_x): the residual foam
+    /// transformed along x, and in the last pass each task's gathered rows.
+    spatial: Vec<Complex32>,
+    /// The transport's grid transposed (row m_x, column m_z or z).
+    spectral: Vec<Complex32>,
+    /// The inverse FFT of length N both axes use (the plan `Fft2d` would make).
+    fft: RowFft,
+    /// FFT scratch, one slice per task of [`ROWS`] rows.
+    scratch: Vec<Complex32>,
     row_sums: Vec<[f64; 3]>,
     /// The SIMD level of the element loops.
     simd: Simd,
-}
-
-impl Clone for Foam {
-    fn clone(&self) -> Self {
-        Foam {
-            n: self.n,
-            length: self.length,
-            active: self.active.clone(),
-            residual: self.residual.clone(),
-            total: self.total.clone(),
-            breaking: self.breaking.clone(),
-            coverage: self.coverage,
-            calibration: self.calibration,
-            params: self.params,
-            transport: self.transport.clone(),
-            tables: self.tables.clone(),
-            work: self.work.clone(),
-            // A plan of the same size: the transform's scratch and buffers hold nothing
-            // between steps.
-            fft: Fft2d::with_determinism(self.n, 1, self.params.determinism)
-                .expect("an FFT of a size that was planned before"),
-            row_sums: self.row_sums.clone(),
-            simd: self.simd,
-        }
-    }
 }
 
 /// Bytes the foam of an ocean of `cascades` cascades of size `n` holds: active, residual,
@@ -443,7 +451,6 @@ impl Foam {
             floor: (floor * floor).max(f32::MIN_POSITIVE),
             inv_active: 1.0 / config.active_decay,
             inv_residual: 1.0 / config.residual_decay,
-            determinism,
         };
         // Spreads over a residual lifetime, √(2Kτ_R) = streak·λ_p, give the diffusivities.
         let peak = spectrum
@@ -463,6 +470,7 @@ impl Foam {
             determinism,
         );
         let points = n * n;
+        let fft = RowFft::new(n, determinism);
         let mut foam = Foam {
             n,
             length,
@@ -475,8 +483,10 @@ impl Foam {
             params,
             transport,
             tables: error::try_vec(2 * n, Complex32::default())?,
-            work: error::try_vec(points, Complex32::default())?,
-            fft: Fft2d::with_determinism(n, 1, determinism)?,
+            spatial: error::try_vec(points, Complex32::default())?,
+            spectral: error::try_vec(points, Complex32::default())?,
+            scratch: error::try_vec(n.div_ceil(ROWS) * fft.scratch_len(), Complex32::default())?,
+            fft,
             row_sums: error::try_vec(n, [0.0; 3])?,
             simd: Simd::detect(),
         };
@@ -485,28 +495,60 @@ impl Foam {
     }
 
     /// Recomputes the breaking intensity from the cascades as they are now (after a jump in
-    /// time or a restore), and the total foam and coverage from the state.
+    /// time or a restore), and the total foam and coverage from the state: one pass over the
+    /// rows.
     pub(crate) fn refresh(&mut self, cascades: &[Cascade]) {
         let n = self.n;
         let params = self.params;
         let simd = self.simd;
         let first = &cascades[0];
-        self.breaking
-            .par_chunks_mut(ROWS * n)
+        (
+            self.breaking.par_chunks_mut(ROWS * n),
+            self.active.par_chunks(ROWS * n),
+            self.residual.par_chunks(ROWS * n),
+            self.total.par_chunks_mut(ROWS * n),
+            self.row_sums.par_chunks_mut(ROWS),
+        )
+            .into_par_iter()
+            .with_min_len(min_tasks(n))
             .enumerate()
-            .for_each(|(b, block)| {
-                for (r, row) in block.chunks_mut(n).enumerate() {
+            .for_each(|(b, (breaking, active, residual, total, sums))| {
+                let rows = breaking
+                    .chunks_mut(n)
+                    .zip(active.chunks(n))
+                    .zip(residual.chunks(n))
+                    .zip(total.chunks_mut(n))
+                    .zip(sums.iter_mut());
+                for (r, ((((s, a), rr), f), sum)) in rows.enumerate() {
                     let gradient = first.gradient_row(b * ROWS + r).values();
-                    simd.run(
+                    *sum = simd.run(
                         #[inline(always)]
-                        || params.intensities(gradient, row),
+                        || {
+                            params.intensity_row(gradient, s);
+                            total_row(a, rr, f)
+                        },
                     );
                 }
             });
-        self.finish();
+        self.sum_rows();
     }
 
     /// Integrates the foam over `dt` seconds up to the cascades' (new) time.
+    ///
+    /// Three passes over the grid, each one parallel loop over blocks of [`ROWS`] rows:
+    /// 1. per row z: the new intensity, the aging of a and r, and r transformed along x (or,
+    ///    with no transport, the total foam and the row sums straight away);
+    /// 2. per block of m_x: the block gathered by a tiled transpose, transformed along z, the
+    ///    factor M(k) of the transport (see `transport.rs`), and transformed back along z;
+    /// 3. per block of z: gathered back, transformed along x, the residual foam (clamped to
+    ///    [0, 1], flushed below [`FLUSH`]), the total foam and the row sums.
+    ///
+    /// The forward transform is the conjugate of the inverse transform of the real r. The
+    /// transforms are the same rustfft plans on the same values in the same order as two
+    /// calls of `Fft2d::process` (rows, then the gathered columns), so the foam keeps its bits;
+    /// what the fusion saves is four parallel loops, two transposes and two passes over the
+    /// grid. Active foam stays where its wave broke (the grid already follows the water's
+    /// orbital motion; the drift moves it less than a metre in its lifetime).
     pub(crate) fn advance(&mut self, cascades: &[Cascade], dt: f64) {
         if dt <= 0.0 {
             // The same time: the intensity is recomputed (bit for bit the same), nothing
@@ -514,127 +556,140 @@ impl Foam {
             self.refresh(cascades);
             return;
         }
-        self.react(cascades, dt as f32);
-        if self.transport.is_active() {
-            // Finishes as it goes.
-            self.transport(dt);
-        } else {
-            self.finish();
+        let n = self.n;
+        let moving = self.transport.is_active();
+        if moving {
+            self.transport.fill_tables(dt, n, &mut self.tables);
         }
-    }
-
-    /// Injection, aging and decay at every point, with the breaking intensity of the new
-    /// time; fills the transform's input with the residual foam.
-    fn react(&mut self, cascades: &[Cascade], dt: f32) {
-        let n = self.n;
-        let params = self.params;
-        let step = params.step(dt);
-        let simd = self.simd;
-        let first = &cascades[0];
-        let block = ROWS * n;
-        (
-            self.active.par_chunks_mut(block),
-            self.residual.par_chunks_mut(block),
-            self.breaking.par_chunks_mut(block),
-            self.work.par_chunks_mut(block),
-        )
-            .into_par_iter()
-            .enumerate()
-            .for_each(|(b, (active, residual, breaking, work))| {
-                let rows = active
-                    .chunks_mut(n)
-                    .zip(residual.chunks_mut(n))
-                    .zip(breaking.chunks_mut(n))
-                    .zip(work.chunks_mut(n));
-                for (r, (((a, rr), s), w)) in rows.enumerate() {
-                    let gradient = first.gradient_row(b * ROWS + r).values();
-                    simd.run(
-                        #[inline(always)]
-                        || params.react_row(&step, gradient, a, rr, s, w),
-                    );
-                }
-            });
-    }
-
-    /// Moves the residual foam r by the exact solution of the transport over `dt`: forward
-    /// transform of r (as the conjugate of the inverse transform of the real r), multiplication
-    /// by M(k) (see `transport.rs`), inverse transform, clamped to [0, 1] (the Gaussian cut at
-    /// the grid's Nyquist frequency can ring slightly below 0 near sharp edges). Active foam stays where its wave broke (the
-    /// grid already follows the water's orbital motion; the drift moves it less than a metre
-    /// in its lifetime).
-    fn transport(&mut self, dt: f64) {
-        let n = self.n;
-        self.transport.fill_tables(dt, n, &mut self.tables);
         let Foam {
-            fft,
-            work,
-            tables,
-            transport,
-            residual,
-            simd,
             active,
+            residual,
+            breaking,
             total,
             row_sums,
+            spatial,
+            spectral,
+            fft,
+            scratch,
+            tables,
+            transport,
+            params,
+            simd,
             ..
         } = self;
-        let [a, b, c] = transport.exponent(dt);
-        let tables = &*tables;
-        let simd = *simd;
-        let spectrum = fft
-            .process(work)
-            .expect("the foam's work buffer holds N² values");
-        // The transform leaves its result transposed: index m_x·N + m_z.
-        work.par_chunks_mut(ROWS * n)
+        let (params, simd, fft) = (*params, *simd, &*fft);
+        let step = params.step(dt as f32);
+        let first = &cascades[0];
+        let block = ROWS * n;
+        let s = fft.scratch_len();
+        let min_len = min_tasks(n);
+        // 1. Intensity and aging row by row; r transformed along x.
+        (
+            active.par_chunks_mut(block),
+            residual.par_chunks_mut(block),
+            breaking.par_chunks_mut(block),
+            total.par_chunks_mut(block),
+            row_sums.par_chunks_mut(ROWS),
+            spatial.par_chunks_mut(block),
+            scratch.par_chunks_mut(s),
+        )
+            .into_par_iter()
+            .with_min_len(min_len)
             .enumerate()
-            .for_each(|(block, rows)| {
+            .for_each(
+                |(b, (active, residual, breaking, total, sums, work, scratch))| {
+                    let rows = active
+                        .chunks_mut(n)
+                        .zip(residual.chunks_mut(n))
+                        .zip(breaking.chunks_mut(n))
+                        .zip(work.chunks_mut(n))
+                        .zip(total.chunks_mut(n).zip(sums.iter_mut()));
+                    for (r, ((((a, rr), s), w), (f, sum))) in rows.enumerate() {
+                        let gradient = first.gradient_row(b * ROWS + r).values();
+                        simd.run(
+                            #[inline(always)]
+                            || {
+                                params.react_row(&step, gradient, a, rr, s, w);
+                                if !moving {
+                                    *sum = total_row(a, rr, f);
+                                }
+                            },
+                        );
+                    }
+                    if moving {
+                        fft.process(work, scratch);
+                    }
+                },
+            );
+        if !moving {
+            self.sum_rows();
+            return;
+        }
+        // 2. Columns: along z, the transport's factor, back along z. The block's rows are
+        // m_x = j0 … j0 + ROWS − 1, its columns m_z (then z).
+        let [ca, cb, cc] = transport.exponent(dt);
+        let tables = &*tables;
+        let source = &*spatial;
+        spectral
+            .par_chunks_mut(block)
+            .zip(scratch.par_chunks_mut(s))
+            .with_min_len(min_len)
+            .enumerate()
+            .for_each(|(b, (rows, scratch))| {
+                let j0 = b * ROWS;
+                let height = rows.len() / n;
+                transpose_into(&source[j0..], n, rows, n, height, n);
+                fft.process(rows, scratch);
+                let shifts = &tables[n..2 * n];
                 for (r, row) in rows.chunks_mut(n).enumerate() {
-                    let ix = block * ROWS + r;
+                    let ix = j0 + r;
                     let mx = crate::grid::wave_index(ix, n) as f32;
-                    let source = &spectrum[ix * n..(ix + 1) * n];
                     let shift_x = tables[ix];
-                    let (ax, bx) = (a * mx * mx, 2.0 * b * mx);
-                    let shifts = &tables[n..2 * n];
+                    let (ax, bx) = (ca * mx * mx, 2.0 * cb * mx);
                     simd.run(
                         #[inline(always)]
                         || {
-                            for (iz, ((out, g), shift_z)) in
-                                row.iter_mut().zip(source).zip(shifts).enumerate()
-                            {
+                            for (iz, (g, shift_z)) in row.iter_mut().zip(shifts).enumerate() {
                                 let mz = crate::grid::wave_index(iz, n) as f32;
-                                let decay = exp(-(ax + mz * (bx + c * mz)));
-                                *out = g.conj() * (shift_x * shift_z) * decay;
+                                let decay = exp(-(ax + mz * (bx + cc * mz)));
+                                *g = g.conj() * (shift_x * shift_z) * decay;
                             }
                         },
                     );
                 }
+                fft.process(rows, scratch);
             });
-        let moved = fft
-            .process(work)
-            .expect("the foam's work buffer holds N² values");
+        // 3. Rows again: gathered, along x, and the residual foam, the total foam and the row
+        // sums of `finish` while the row is in cache.
         let scale = 1.0 / (n * n) as f32;
         let flush = |v: f32| if v < FLUSH { 0.0 } else { v.min(1.0) };
-        // The residual foam back from the transform, and at once (while its rows are in
-        // cache) the total foam and the row sums of `finish`.
+        let source = &*spectral;
         (
-            residual.par_chunks_mut(ROWS * n),
-            active.par_chunks(ROWS * n),
-            total.par_chunks_mut(ROWS * n),
+            spatial.par_chunks_mut(block),
+            scratch.par_chunks_mut(s),
+            residual.par_chunks_mut(block),
+            active.par_chunks(block),
+            total.par_chunks_mut(block),
             row_sums.par_chunks_mut(ROWS),
         )
             .into_par_iter()
+            .with_min_len(min_len)
             .enumerate()
-            .for_each(|(b, (residual, active, total, sums))| {
-                let source = &moved[b * ROWS * n..][..residual.len()];
+            .for_each(|(b, (work, scratch, residual, active, total, sums))| {
+                let j0 = b * ROWS;
+                let height = work.len() / n;
+                transpose_into(&source[j0..], n, work, n, height, n);
+                fft.process(work, scratch);
                 let rows = residual
                     .chunks_mut(n)
-                    .zip(source.chunks(n))
+                    .zip(work.chunks(n))
                     .zip(active.chunks(n))
                     .zip(total.chunks_mut(n));
-                for ((((r, source), a), f), sum) in rows.zip(sums.iter_mut()) {
+                for ((((r, moved), a), f), sum) in rows.zip(sums.iter_mut()) {
                     *sum = simd.run(
                         #[inline(always)]
                         || {
-                            for (r, v) in r.iter_mut().zip(source) {
+                            for (r, v) in r.iter_mut().zip(moved) {
                                 *r = flush(v.re * scale);
                             }
                             total_row(a, r, f)
@@ -659,6 +714,7 @@ impl Foam {
             self.row_sums.par_chunks_mut(ROWS),
         )
             .into_par_iter()
+            .with_min_len(min_tasks(n))
             .for_each(|(active, residual, total, sums)| {
                 let rows = active
                     .chunks(n)
