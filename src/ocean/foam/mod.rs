@@ -123,6 +123,34 @@ fn normal_at(x: f32) -> (f32, f32) {
     )
 }
 
+/// ∇J of the Jacobian J = (1 + D_xx)(1 + D_zz) − D_xz² with respect to (D_xx, D_zz, D_xz).
+#[inline(always)]
+fn jacobian_gradient(g: [f32; 3]) -> [f32; 3] {
+    let [xx, zz, xz] = g;
+    [1.0 + zz, 1.0 + xx, -2.0 * xz]
+}
+
+/// What the first stage of the intensity hands to the others (see [`Params::roots`]). The
+/// stages are functions of plain values: written as one function with a closure over σ, β
+/// and ∇J for the crossing rates, the loop over points ran at 9.7 ns a point under AVX-512 and
+/// stayed scalar under AVX2 (84 ns); as stages, 4.4 and 12 ns.
+#[derive(Clone, Copy)]
+struct Roots {
+    /// The roots, lo ≤ hi (lo = −∞ where J is linear in x).
+    lo: f32,
+    hi: f32,
+    /// σ = √(σ² + floor).
+    sigma: f32,
+    /// |dJ/dx| at the roots, √disc (0 where there is no root).
+    slope: f32,
+    /// The coefficient of x².
+    a2: f32,
+    /// The discriminant.
+    disc: f32,
+    /// The regression β of U on w.
+    beta: [f32; 3],
+}
+
 impl Params {
     /// The breaking intensity s in 1/s at a point where cascade 0's gradient is `g`
     /// (D_xx, D_zz, D_xz), from its Jacobian J_R and the unresolved cascades' gradient U
@@ -137,9 +165,21 @@ impl Params {
     /// Φ = 0, which leaves P(J < J_b) = Φ(x₁) and one crossing.
     #[inline(always)]
     fn intensity(&self, g: [f32; 3]) -> f32 {
+        let r = self.roots(g);
+        let (cdf_lo, density_lo) = normal_at(r.lo);
+        let (cdf_hi, density_hi) = normal_at(r.hi);
+        let episodes = self.crossing_rate(r.lo, density_lo, r.sigma, g, r.beta)
+            + self.crossing_rate(r.hi, density_hi, r.sigma, g, r.beta);
+        self.combine(r.a2, r.disc, r.slope, cdf_lo, cdf_hi, episodes)
+    }
+
+    /// The first stage of [`intensity`](Self::intensity): σ, β, the quadratic in x and its
+    /// roots.
+    #[inline(always)]
+    fn roots(&self, g: [f32; 3]) -> Roots {
         let [xx, zz, xz] = g;
         let jacobian = (1.0 + xx) * (1.0 + zz) - xz * xz;
-        let gradient = [1.0 + zz, 1.0 + xx, -2.0 * xz];
+        let gradient = jacobian_gradient(g);
         let u = &self.unresolved;
         // Σ_u ∇J, then σ² and the regression β = Σ_u ∇J/σ² of U on w.
         let su = [
@@ -163,26 +203,49 @@ impl Params {
         let q = -0.5 * (sigma + slope);
         let first = if a2 == 0.0 { f32::NEG_INFINITY } else { q / a2 };
         let second = c / q;
-        let (lo, hi) = (first.min(second), first.max(second));
-        let (cdf_lo, density_lo) = normal_at(lo);
-        let (cdf_hi, density_hi) = normal_at(hi);
-        // J̇ = ∇J·ġ with ∇J where the surface crosses J_b: U at its mean given w = σx.
-        let rate = |x: f32, density: f32| {
-            let w = sigma * x;
-            let at = [
-                gradient[0] + beta[1] * w,
-                gradient[1] + beta[0] * w,
-                gradient[2] - 2.0 * beta[2] * w,
-            ];
-            let speed = quadratic_form(&self.rate, at).max(0.0).sqrt();
-            // At x = ±∞ (φ = 0) the speed is not a number: the select drops it.
-            if density > 0.0 {
-                density * speed
-            } else {
-                0.0
-            }
-        };
-        let episodes = rate(lo, density_lo) + rate(hi, density_hi);
+        Roots {
+            lo: first.min(second),
+            hi: first.max(second),
+            sigma,
+            slope,
+            a2,
+            disc,
+            beta,
+        }
+    }
+
+    /// φ(x)·|J̇| at a root x of [`intensity`](Self::intensity) (φ = `density`): J̇ = ∇J·ġ
+    /// with ∇J where the surface crosses J_b, U at its mean given w = σx.
+    #[inline(always)]
+    fn crossing_rate(&self, x: f32, density: f32, sigma: f32, g: [f32; 3], beta: [f32; 3]) -> f32 {
+        let gradient = jacobian_gradient(g);
+        let w = sigma * x;
+        let at = [
+            gradient[0] + beta[1] * w,
+            gradient[1] + beta[0] * w,
+            gradient[2] - 2.0 * beta[2] * w,
+        ];
+        let speed = quadratic_form(&self.rate, at).max(0.0).sqrt();
+        // At x = ±∞ (φ = 0) the speed is not a number: the select drops it.
+        if density > 0.0 {
+            density * speed
+        } else {
+            0.0
+        }
+    }
+
+    /// The last stage of [`intensity`](Self::intensity): Rice's rate and the fraction
+    /// breaking, or the uniform answer where J does not cross J_b.
+    #[inline(always)]
+    fn combine(
+        &self,
+        a2: f32,
+        disc: f32,
+        slope: f32,
+        cdf_lo: f32,
+        cdf_hi: f32,
+        episodes: f32,
+    ) -> f32 {
         // P(J < J_b): between the roots where J opens upward (below the one root of a linear
         // J), outside them where it opens downward.
         let fraction = if a2 >= 0.0 {
