@@ -1167,6 +1167,84 @@ mod tests {
         }
     }
 
+    /// The fused step (the transport's factor between the two column transforms, the last
+    /// row transform fused with the totals) gives the bits of the plain sequence it replaced:
+    /// the residual foam after aging, transformed by the public `Fft2d`, multiplied by M(k)
+    /// point by point, transformed back by `Fft2d`, scaled, clamped and flushed. Run for
+    /// both determinism modes and two grid sizes, at 1 and 2 threads; the reference runs at
+    /// the baseline SIMD level, the step at the machine's widest.
+    #[test]
+    fn fused_transport_gives_the_bits_of_two_plain_fft2d_transforms() {
+        for determinism in [Determinism::SameMachine, Determinism::CrossPlatform] {
+            for (n, threads) in [(64, 1), (64, 2), (128, 2)] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                pool.install(|| {
+                    let spectrum = Spectrum::jonswap(16.0, 300_000.0).unwrap();
+                    let config = OceanConfig {
+                        size: n,
+                        determinism,
+                        ..OceanConfig::default()
+                    };
+                    let mut ocean = OceanState::new(spectrum, config).unwrap();
+                    for _ in 0..30 {
+                        ocean.step(0.1).unwrap();
+                    }
+                    let dt = 0.1;
+                    // The same step without transport: the aged foam the transport starts from.
+                    let mut reference = ocean.foam.clone();
+                    let transport = reference.transport.clone();
+                    assert!(transport.is_active());
+                    reference.transport.drift = [0.0; 2];
+                    reference.transport.tensor = [0.0; 3];
+                    ocean.step(dt).unwrap();
+                    reference.advance(&ocean.cascades, dt);
+                    let mut tables = vec![Complex32::default(); 2 * n];
+                    transport.fill_tables(dt, n, &mut tables);
+                    let [a, b, c] = transport.exponent(dt);
+                    let mut fft = crate::Fft2d::with_determinism(n, 1, determinism).unwrap();
+                    let mut work: Vec<Complex32> = reference
+                        .residual
+                        .iter()
+                        .map(|&r| Complex32::new(r, 0.0))
+                        .collect();
+                    // The transform is left transposed: index m_x·N + m_z.
+                    let spectrum = fft.process(&mut work).unwrap().to_vec();
+                    for ix in 0..n {
+                        let mx = crate::grid::wave_index(ix, n) as f32;
+                        for iz in 0..n {
+                            let mz = crate::grid::wave_index(iz, n) as f32;
+                            let (ax, bx) = (a * mx * mx, 2.0 * b * mx);
+                            let decay = exp(-(ax + mz * (bx + c * mz)));
+                            work[ix * n + iz] = spectrum[ix * n + iz].conj()
+                                * (tables[ix] * tables[n + iz])
+                                * decay;
+                        }
+                    }
+                    let moved = fft.process(&mut work).unwrap();
+                    let scale = 1.0 / (n * n) as f32;
+                    let mut moving = 0;
+                    for (k, v) in moved.iter().enumerate() {
+                        let r = v.re * scale;
+                        let r = if r < FLUSH { 0.0 } else { r.min(1.0) };
+                        assert_eq!(
+                            r.to_bits(),
+                            ocean.foam.residual[k].to_bits(),
+                            "{determinism:?} N = {n}, {threads} threads, point {k}"
+                        );
+                        moving += usize::from(r != reference.residual[k]);
+                    }
+                    assert!(moving > n * n / 2, "the test needs foam that moves");
+                    for (x, y) in ocean.foam.active.iter().zip(&reference.active) {
+                        assert_eq!(x.to_bits(), y.to_bits());
+                    }
+                });
+            }
+        }
+    }
+
     /// Steps compose exactly: twenty steps of 0.5 s move the blob as ten of 1 s and one of
     /// 10 s, to the rounding of the transforms (1e-7 of the peak per step) and the flush of
     /// values below 1e-6 at each step.
