@@ -444,7 +444,10 @@ pub(crate) struct Foam {
     calibration: FoamCalibration,
     params: Params,
     transport: Transport,
+    /// The transport's drift factors (see `Transport::fill_tables`) for a step of
+    /// `tables_dt` seconds (NaN: not filled yet), kept while the step stays the same.
     tables: Vec<Complex32>,
+    tables_dt: f64,
     /// The transport's grid in space order (row z, column x or m_x): the residual foam
     /// transformed along x, and in the last pass each task's gathered rows.
     spatial: Vec<Complex32>,
@@ -548,6 +551,7 @@ impl Foam {
             params,
             transport,
             tables: error::try_vec(2 * n, Complex32::default())?,
+            tables_dt: f64::NAN,
             spatial: error::try_vec(points, Complex32::default())?,
             spectral: error::try_vec(points, Complex32::default())?,
             scratch: error::try_vec(n.div_ceil(ROWS) * fft.scratch_len(), Complex32::default())?,
@@ -624,7 +628,12 @@ impl Foam {
         let n = self.n;
         let moving = self.transport.is_active();
         if moving {
-            self.transport.fill_tables(dt, n, &mut self.tables);
+            // A game steps by the same dt frame after frame: the tables (2N sines and cosines
+            // in f64, a few per cent of the foam at 64²) are a function of dt alone.
+            if dt.to_bits() != self.tables_dt.to_bits() {
+                self.transport.fill_tables(dt, n, &mut self.tables);
+                self.tables_dt = dt;
+            }
         }
         let Foam {
             active,
