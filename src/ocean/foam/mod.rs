@@ -16,7 +16,7 @@ use crate::cascade::{check_time, Cascade, GradientMoments};
 use crate::determinism::Determinism;
 use crate::error::{self, Error};
 use crate::exp::exp;
-use crate::fft2d::Fft2d;
+use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
 use crate::simd::Simd;
 
 use super::OceanState;
@@ -30,9 +30,23 @@ use transport::Transport;
 /// Points of a row the foam's element loops handle at once, through arrays on the stack.
 const BLOCK: usize = 64;
 
-/// Rows of the foam grid one parallel task handles (the split depends only on N, never on the
-/// number of threads).
-const ROWS: usize = 8;
+/// Rows of the foam grid one parallel task handles in every pass (the split depends only on
+/// N, never on the number of threads): as many as a task of the transforms' second pass
+/// gathers, so that the row pass, the column pass and the last pass share one scratch per
+/// task.
+const ROWS: usize = ROWS_PER_TASK;
+
+/// Fewest grid points one rayon task of a foam pass works through, so that the smallest
+/// grids (below 64²) do not pay a fork and join per block of a few hundred points. From 64²
+/// on every block of [`ROWS`] rows is a task of its own: at 64² and 128² in a pool of two
+/// threads the default step was 10–25 % faster than with one task per pass at 64² (same
+/// process, fastest of 3 × 5 chunks, shared machine).
+const MIN_TASK_POINTS: usize = 1024;
+
+/// Blocks of [`ROWS`] rows one rayon task takes at least, for a grid of side `n`.
+fn min_tasks(n: usize) -> usize {
+    MIN_TASK_POINTS.div_ceil(ROWS * n).max(1)
+}
 
 /// Residual foam below this after a transport step is set to zero: the rounding of the two
 /// FFTs (about 1e-7 of the largest value) would otherwise leave a faint haze everywhere.
@@ -68,8 +82,6 @@ struct Params {
     floor: f32,
     inv_active: f32,
     inv_residual: f32,
-    /// Whose exponential the foam steps use.
-    determinism: Determinism,
 }
 
 /// gᵀ M g for a symmetric M stored as (AA, BB, CC, AB, AC, BC).
@@ -113,6 +125,34 @@ fn normal_at(x: f32) -> (f32, f32) {
     )
 }
 
+/// ∇J of the Jacobian J = (1 + D_xx)(1 + D_zz) − D_xz² with respect to (D_xx, D_zz, D_xz).
+#[inline(always)]
+fn jacobian_gradient(g: [f32; 3]) -> [f32; 3] {
+    let [xx, zz, xz] = g;
+    [1.0 + zz, 1.0 + xx, -2.0 * xz]
+}
+
+/// What the first stage of the intensity hands to the others (see [`Params::roots`]). The
+/// stages are functions of plain values: written as one function with a closure over σ, β
+/// and ∇J for the crossing rates, the loop over points ran at 9.7 ns a point under AVX-512 and
+/// stayed scalar under AVX2 (84 ns); as stages, 4.4 and 12 ns.
+#[derive(Clone, Copy)]
+struct Roots {
+    /// The roots, lo ≤ hi (lo = −∞ where J is linear in x).
+    lo: f32,
+    hi: f32,
+    /// σ = √(σ² + floor).
+    sigma: f32,
+    /// |dJ/dx| at the roots, √disc (0 where there is no root).
+    slope: f32,
+    /// The coefficient of x².
+    a2: f32,
+    /// The discriminant.
+    disc: f32,
+    /// The regression β of U on w.
+    beta: [f32; 3],
+}
+
 impl Params {
     /// The breaking intensity s in 1/s at a point where cascade 0's gradient is `g`
     /// (D_xx, D_zz, D_xz), from its Jacobian J_R and the unresolved cascades' gradient U
@@ -127,9 +167,21 @@ impl Params {
     /// Φ = 0, which leaves P(J < J_b) = Φ(x₁) and one crossing.
     #[inline(always)]
     fn intensity(&self, g: [f32; 3]) -> f32 {
+        let r = self.roots(g);
+        let (cdf_lo, density_lo) = normal_at(r.lo);
+        let (cdf_hi, density_hi) = normal_at(r.hi);
+        let episodes = self.crossing_rate(r.lo, density_lo, r.sigma, g, r.beta)
+            + self.crossing_rate(r.hi, density_hi, r.sigma, g, r.beta);
+        self.combine(r.a2, r.disc, r.slope, cdf_lo, cdf_hi, episodes)
+    }
+
+    /// The first stage of [`intensity`](Self::intensity): σ, β, the quadratic in x and its
+    /// roots.
+    #[inline(always)]
+    fn roots(&self, g: [f32; 3]) -> Roots {
         let [xx, zz, xz] = g;
         let jacobian = (1.0 + xx) * (1.0 + zz) - xz * xz;
-        let gradient = [1.0 + zz, 1.0 + xx, -2.0 * xz];
+        let gradient = jacobian_gradient(g);
         let u = &self.unresolved;
         // Σ_u ∇J, then σ² and the regression β = Σ_u ∇J/σ² of U on w.
         let su = [
@@ -153,26 +205,49 @@ impl Params {
         let q = -0.5 * (sigma + slope);
         let first = if a2 == 0.0 { f32::NEG_INFINITY } else { q / a2 };
         let second = c / q;
-        let (lo, hi) = (first.min(second), first.max(second));
-        let (cdf_lo, density_lo) = normal_at(lo);
-        let (cdf_hi, density_hi) = normal_at(hi);
-        // J̇ = ∇J·ġ with ∇J where the surface crosses J_b: U at its mean given w = σx.
-        let rate = |x: f32, density: f32| {
-            let w = sigma * x;
-            let at = [
-                gradient[0] + beta[1] * w,
-                gradient[1] + beta[0] * w,
-                gradient[2] - 2.0 * beta[2] * w,
-            ];
-            let speed = quadratic_form(&self.rate, at).max(0.0).sqrt();
-            // At x = ±∞ (φ = 0) the speed is not a number: the select drops it.
-            if density > 0.0 {
-                density * speed
-            } else {
-                0.0
-            }
-        };
-        let episodes = rate(lo, density_lo) + rate(hi, density_hi);
+        Roots {
+            lo: first.min(second),
+            hi: first.max(second),
+            sigma,
+            slope,
+            a2,
+            disc,
+            beta,
+        }
+    }
+
+    /// φ(x)·|J̇| at a root x of [`intensity`](Self::intensity) (φ = `density`): J̇ = ∇J·ġ
+    /// with ∇J where the surface crosses J_b, U at its mean given w = σx.
+    #[inline(always)]
+    fn crossing_rate(&self, x: f32, density: f32, sigma: f32, g: [f32; 3], beta: [f32; 3]) -> f32 {
+        let gradient = jacobian_gradient(g);
+        let w = sigma * x;
+        let at = [
+            gradient[0] + beta[1] * w,
+            gradient[1] + beta[0] * w,
+            gradient[2] - 2.0 * beta[2] * w,
+        ];
+        let speed = quadratic_form(&self.rate, at).max(0.0).sqrt();
+        // At x = ±∞ (φ = 0) the speed is not a number: the select drops it.
+        if density > 0.0 {
+            density * speed
+        } else {
+            0.0
+        }
+    }
+
+    /// The last stage of [`intensity`](Self::intensity): Rice's rate and the fraction
+    /// breaking, or the uniform answer where J does not cross J_b.
+    #[inline(always)]
+    fn combine(
+        &self,
+        a2: f32,
+        disc: f32,
+        slope: f32,
+        cdf_lo: f32,
+        cdf_hi: f32,
+        episodes: f32,
+    ) -> f32 {
         // P(J < J_b): between the roots where J opens upward (below the one root of a linear
         // J), outside them where it opens downward.
         let fraction = if a2 >= 0.0 {
@@ -203,6 +278,22 @@ impl Params {
         }
         for (g, s) in gradient.iter().zip(out.iter_mut()) {
             *s = self.intensity(*g);
+        }
+    }
+
+    /// The breaking intensity along a row of cascade 0's gradient into `out` (as long), in
+    /// blocks of [`BLOCK`] points through an array on the stack, as [`react_row`] does.
+    /// Inlined into its caller's [`Simd::run`].
+    ///
+    /// [`react_row`]: Self::react_row
+    #[inline(always)]
+    fn intensity_row(&self, gradient: &[[f32; 3]], out: &mut [f32]) {
+        let n = out.len();
+        for start in (0..n).step_by(BLOCK) {
+            let len = BLOCK.min(n - start);
+            let mut fresh = [0.0f32; BLOCK];
+            self.intensities(&gradient[start..start + len], &mut fresh[..len]);
+            out[start..start + len].copy_from_slice(&fresh[..len]);
         }
     }
 
@@ -289,22 +380,31 @@ fn mean_factor(x: f32, e: f32) -> f32 {
 const LANES: usize = 8;
 
 /// The total foam a + r(1 − a) of a row into `f`, and the row's sums of a, r(1 − a) and the
-/// total in f64 (see [`Foam::finish`]). Inlined into its caller's [`Simd::run`].
+/// total in f64 (see [`Foam::finish`]): column i goes into partial sum i mod [`LANES`], and
+/// the partial sums are added in order at the end. Written over whole arrays of [`LANES`]
+/// values (one 512-bit register of f64), so that the conversions and additions vectorise at
+/// every SIMD level; the order of the additions is the code's, whatever the level. Inlined
+/// into its caller's [`Simd::run`].
 #[inline(always)]
 fn total_row(a: &[f32], r: &[f32], f: &mut [f32]) -> [f64; 3] {
-    let mut lanes = [[0.0f64; LANES]; 3];
+    let mut sum_a = [0.0f64; LANES];
+    let mut sum_r = [0.0f64; LANES];
+    let mut sum_f = [0.0f64; LANES];
     let whole = a.len() / LANES * LANES;
     let chunks = a[..whole]
         .chunks_exact(LANES)
         .zip(r[..whole].chunks_exact(LANES))
         .zip(f[..whole].chunks_exact_mut(LANES));
     for ((a, r), f) in chunks {
+        let a: &[f32; LANES] = a.try_into().expect("LANES values");
+        let r: &[f32; LANES] = r.try_into().expect("LANES values");
+        let rest: [f32; LANES] = std::array::from_fn(|k| r[k] * (1.0 - a[k]));
+        let total: [f32; LANES] = std::array::from_fn(|k| a[k] + rest[k]);
+        f.copy_from_slice(&total);
         for k in 0..LANES {
-            let rest = r[k] * (1.0 - a[k]);
-            f[k] = a[k] + rest;
-            lanes[0][k] += f64::from(a[k]);
-            lanes[1][k] += f64::from(rest);
-            lanes[2][k] += f64::from(f[k]);
+            sum_a[k] += f64::from(a[k]);
+            sum_r[k] += f64::from(rest[k]);
+            sum_f[k] += f64::from(total[k]);
         }
     }
     for (k, ((&a, &r), f)) in a[whole..]
@@ -315,11 +415,11 @@ fn total_row(a: &[f32], r: &[f32], f: &mut [f32]) -> [f64; 3] {
     {
         let rest = r * (1.0 - a);
         *f = a + rest;
-        lanes[0][k] += f64::from(a);
-        lanes[1][k] += f64::from(rest);
-        lanes[2][k] += f64::from(*f);
+        sum_a[k] += f64::from(a);
+        sum_r[k] += f64::from(rest);
+        sum_f[k] += f64::from(*f);
     }
-    lanes.map(|lane| lane.iter().sum())
+    [sum_a, sum_r, sum_f].map(|lane| lane.iter().sum())
 }
 
 /// What every point's update over one step shares.
@@ -331,7 +431,7 @@ struct Step {
 /// The foam of an ocean: its state (active and residual foam), the breaking intensity at the
 /// current time, the total foam and the coverage, the calibration, and the buffers of the
 /// transport step (all allocated once).
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub(crate) struct Foam {
     n: usize,
     /// Side of the foam grid's tile, L of cascade 0, in metres.
@@ -344,43 +444,28 @@ pub(crate) struct Foam {
     calibration: FoamCalibration,
     params: Params,
     transport: Transport,
+    /// The transport's drift factors (see `Transport::fill_tables`) for a step of
+    /// `tables_dt` seconds (NaN: not filled yet), kept while the step stays the same.
     tables: Vec<Complex32>,
-    work: Vec<Complex32>,
-    fft: Fft2d,
+    tables_dt: f64,
+    /// The transport's grid in space order (row z, column x or m_x): the residual foam
+    /// transformed along x, and in the last pass each task's gathered rows.
+    spatial: Vec<Complex32>,
+    /// The transport's grid transposed (row m_x, column m_z or z).
+    spectral: Vec<Complex32>,
+    /// The inverse FFT of length N both axes use (the plan `Fft2d` would make).
+    fft: RowFft,
+    /// FFT scratch, one slice per task of [`ROWS`] rows.
+    scratch: Vec<Complex32>,
     row_sums: Vec<[f64; 3]>,
     /// The SIMD level of the element loops.
     simd: Simd,
 }
 
-impl Clone for Foam {
-    fn clone(&self) -> Self {
-        Foam {
-            n: self.n,
-            length: self.length,
-            active: self.active.clone(),
-            residual: self.residual.clone(),
-            total: self.total.clone(),
-            breaking: self.breaking.clone(),
-            coverage: self.coverage,
-            calibration: self.calibration,
-            params: self.params,
-            transport: self.transport.clone(),
-            tables: self.tables.clone(),
-            work: self.work.clone(),
-            // A plan of the same size: the transform's scratch and buffers hold nothing
-            // between steps.
-            fft: Fft2d::with_determinism(self.n, 1, self.params.determinism)
-                .expect("an FFT of a size that was planned before"),
-            row_sums: self.row_sums.clone(),
-            simd: self.simd,
-        }
-    }
-}
-
 /// Bytes the foam of an ocean of `cascades` cascades of size `n` holds: active, residual,
-/// total and breaking (4 bytes each per point), the transform's work buffer and intermediate
-/// (8 each) and its scratch, small tables, and the displacement gradient cascade 0 keeps for
-/// it (12 bytes per point, see `Cascade::keep_gradient`).
+/// total and breaking (4 bytes each per point), the transport's two complex grids (8 each) and
+/// FFT scratch for one task per block of rows, small tables, and the displacement gradient
+/// cascade 0 keeps for it (12 bytes per point, see `Cascade::keep_gradient`).
 pub(crate) fn memory_bytes(n: usize, cascades: usize, determinism: Determinism) -> usize {
     let points = n.saturating_mul(n);
     let scratch = if n <= crate::grid::MAX_SIZE {
@@ -434,7 +519,6 @@ impl Foam {
             floor: (floor * floor).max(f32::MIN_POSITIVE),
             inv_active: 1.0 / config.active_decay,
             inv_residual: 1.0 / config.residual_decay,
-            determinism,
         };
         // Spreads over a residual lifetime, √(2Kτ_R) = streak·λ_p, give the diffusivities.
         let peak = spectrum
@@ -454,6 +538,7 @@ impl Foam {
             determinism,
         );
         let points = n * n;
+        let fft = RowFft::new(n, determinism);
         let mut foam = Foam {
             n,
             length,
@@ -466,8 +551,11 @@ impl Foam {
             params,
             transport,
             tables: error::try_vec(2 * n, Complex32::default())?,
-            work: error::try_vec(points, Complex32::default())?,
-            fft: Fft2d::with_determinism(n, 1, determinism)?,
+            tables_dt: f64::NAN,
+            spatial: error::try_vec(points, Complex32::default())?,
+            spectral: error::try_vec(points, Complex32::default())?,
+            scratch: error::try_vec(n.div_ceil(ROWS) * fft.scratch_len(), Complex32::default())?,
+            fft,
             row_sums: error::try_vec(n, [0.0; 3])?,
             simd: Simd::detect(),
         };
@@ -476,28 +564,60 @@ impl Foam {
     }
 
     /// Recomputes the breaking intensity from the cascades as they are now (after a jump in
-    /// time or a restore), and the total foam and coverage from the state.
+    /// time or a restore), and the total foam and coverage from the state: one pass over the
+    /// rows.
     pub(crate) fn refresh(&mut self, cascades: &[Cascade]) {
         let n = self.n;
         let params = self.params;
         let simd = self.simd;
         let first = &cascades[0];
-        self.breaking
-            .par_chunks_mut(ROWS * n)
+        (
+            self.breaking.par_chunks_mut(ROWS * n),
+            self.active.par_chunks(ROWS * n),
+            self.residual.par_chunks(ROWS * n),
+            self.total.par_chunks_mut(ROWS * n),
+            self.row_sums.par_chunks_mut(ROWS),
+        )
+            .into_par_iter()
+            .with_min_len(min_tasks(n))
             .enumerate()
-            .for_each(|(b, block)| {
-                for (r, row) in block.chunks_mut(n).enumerate() {
+            .for_each(|(b, (breaking, active, residual, total, sums))| {
+                let rows = breaking
+                    .chunks_mut(n)
+                    .zip(active.chunks(n))
+                    .zip(residual.chunks(n))
+                    .zip(total.chunks_mut(n))
+                    .zip(sums.iter_mut());
+                for (r, ((((s, a), rr), f), sum)) in rows.enumerate() {
                     let gradient = first.gradient_row(b * ROWS + r).values();
-                    simd.run(
+                    *sum = simd.run(
                         #[inline(always)]
-                        || params.intensities(gradient, row),
+                        || {
+                            params.intensity_row(gradient, s);
+                            total_row(a, rr, f)
+                        },
                     );
                 }
             });
-        self.finish();
+        self.sum_rows();
     }
 
     /// Integrates the foam over `dt` seconds up to the cascades' (new) time.
+    ///
+    /// Three passes over the grid, each one parallel loop over blocks of [`ROWS`] rows:
+    /// 1. per row z: the new intensity, the aging of a and r, and r transformed along x (or,
+    ///    with no transport, the total foam and the row sums straight away);
+    /// 2. per block of m_x: the block gathered by a tiled transpose, transformed along z, the
+    ///    factor M(k) of the transport (see `transport.rs`), and transformed back along z;
+    /// 3. per block of z: gathered back, transformed along x, the residual foam (clamped to
+    ///    [0, 1], flushed below [`FLUSH`]), the total foam and the row sums.
+    ///
+    /// The forward transform is the conjugate of the inverse transform of the real r. The
+    /// transforms are the same rustfft plans on the same values in the same order as two
+    /// calls of `Fft2d::process` (rows, then the gathered columns), so the foam keeps its bits;
+    /// what the fusion saves is four parallel loops, two transposes and two passes over the
+    /// grid. Active foam stays where its wave broke (the grid already follows the water's
+    /// orbital motion; the drift moves it less than a metre in its lifetime).
     pub(crate) fn advance(&mut self, cascades: &[Cascade], dt: f64) {
         if dt <= 0.0 {
             // The same time: the intensity is recomputed (bit for bit the same), nothing
@@ -505,127 +625,145 @@ impl Foam {
             self.refresh(cascades);
             return;
         }
-        self.react(cascades, dt as f32);
-        if self.transport.is_active() {
-            // Finishes as it goes.
-            self.transport(dt);
-        } else {
-            self.finish();
+        let n = self.n;
+        let moving = self.transport.is_active();
+        if moving {
+            // A game steps by the same dt frame after frame: the tables (2N sines and cosines
+            // in f64, a few per cent of the foam at 64²) are a function of dt alone.
+            if dt.to_bits() != self.tables_dt.to_bits() {
+                self.transport.fill_tables(dt, n, &mut self.tables);
+                self.tables_dt = dt;
+            }
         }
-    }
-
-    /// Injection, aging and decay at every point, with the breaking intensity of the new
-    /// time; fills the transform's input with the residual foam.
-    fn react(&mut self, cascades: &[Cascade], dt: f32) {
-        let n = self.n;
-        let params = self.params;
-        let step = params.step(dt);
-        let simd = self.simd;
-        let first = &cascades[0];
-        let block = ROWS * n;
-        (
-            self.active.par_chunks_mut(block),
-            self.residual.par_chunks_mut(block),
-            self.breaking.par_chunks_mut(block),
-            self.work.par_chunks_mut(block),
-        )
-            .into_par_iter()
-            .enumerate()
-            .for_each(|(b, (active, residual, breaking, work))| {
-                let rows = active
-                    .chunks_mut(n)
-                    .zip(residual.chunks_mut(n))
-                    .zip(breaking.chunks_mut(n))
-                    .zip(work.chunks_mut(n));
-                for (r, (((a, rr), s), w)) in rows.enumerate() {
-                    let gradient = first.gradient_row(b * ROWS + r).values();
-                    simd.run(
-                        #[inline(always)]
-                        || params.react_row(&step, gradient, a, rr, s, w),
-                    );
-                }
-            });
-    }
-
-    /// Moves the residual foam r by the exact solution of the transport over `dt`: forward
-    /// transform of r (as the conjugate of the inverse transform of the real r), multiplication
-    /// by M(k) (see `transport.rs`), inverse transform, clamped to [0, 1] (the Gaussian cut at
-    /// the grid's Nyquist frequency can ring slightly below 0 near sharp edges). Active foam stays where its wave broke (the
-    /// grid already follows the water's orbital motion; the drift moves it less than a metre
-    /// in its lifetime).
-    fn transport(&mut self, dt: f64) {
-        let n = self.n;
-        self.transport.fill_tables(dt, n, &mut self.tables);
         let Foam {
-            fft,
-            work,
-            tables,
-            transport,
-            residual,
-            simd,
             active,
+            residual,
+            breaking,
             total,
             row_sums,
+            spatial,
+            spectral,
+            fft,
+            scratch,
+            tables,
+            transport,
+            params,
+            simd,
             ..
         } = self;
-        let [a, b, c] = transport.exponent(dt);
-        let tables = &*tables;
-        let simd = *simd;
-        let spectrum = fft
-            .process(work)
-            .expect("the foam's work buffer holds N² values");
-        // The transform leaves its result transposed: index m_x·N + m_z.
-        work.par_chunks_mut(ROWS * n)
+        let (params, simd, fft) = (*params, *simd, &*fft);
+        let step = params.step(dt as f32);
+        let first = &cascades[0];
+        let block = ROWS * n;
+        let s = fft.scratch_len();
+        let min_len = min_tasks(n);
+        // 1. Intensity and aging row by row; r transformed along x.
+        (
+            active.par_chunks_mut(block),
+            residual.par_chunks_mut(block),
+            breaking.par_chunks_mut(block),
+            total.par_chunks_mut(block),
+            row_sums.par_chunks_mut(ROWS),
+            spatial.par_chunks_mut(block),
+            scratch.par_chunks_mut(s),
+        )
+            .into_par_iter()
+            .with_min_len(min_len)
             .enumerate()
-            .for_each(|(block, rows)| {
+            .for_each(
+                |(b, (active, residual, breaking, total, sums, work, scratch))| {
+                    let rows = active
+                        .chunks_mut(n)
+                        .zip(residual.chunks_mut(n))
+                        .zip(breaking.chunks_mut(n))
+                        .zip(work.chunks_mut(n))
+                        .zip(total.chunks_mut(n).zip(sums.iter_mut()));
+                    for (r, ((((a, rr), s), w), (f, sum))) in rows.enumerate() {
+                        let gradient = first.gradient_row(b * ROWS + r).values();
+                        simd.run(
+                            #[inline(always)]
+                            || {
+                                params.react_row(&step, gradient, a, rr, s, w);
+                                if !moving {
+                                    *sum = total_row(a, rr, f);
+                                }
+                            },
+                        );
+                    }
+                    if moving {
+                        fft.process(work, scratch);
+                    }
+                },
+            );
+        if !moving {
+            self.sum_rows();
+            return;
+        }
+        // 2. Columns: along z, the transport's factor, back along z. The block's rows are
+        // m_x = j0 … j0 + ROWS − 1, its columns m_z (then z).
+        let [ca, cb, cc] = transport.exponent(dt);
+        let tables = &*tables;
+        let source = &*spatial;
+        spectral
+            .par_chunks_mut(block)
+            .zip(scratch.par_chunks_mut(s))
+            .with_min_len(min_len)
+            .enumerate()
+            .for_each(|(b, (rows, scratch))| {
+                let j0 = b * ROWS;
+                let height = rows.len() / n;
+                transpose_into(&source[j0..], n, rows, n, height, n);
+                fft.process(rows, scratch);
+                let shifts = &tables[n..2 * n];
                 for (r, row) in rows.chunks_mut(n).enumerate() {
-                    let ix = block * ROWS + r;
+                    let ix = j0 + r;
                     let mx = crate::grid::wave_index(ix, n) as f32;
-                    let source = &spectrum[ix * n..(ix + 1) * n];
                     let shift_x = tables[ix];
-                    let (ax, bx) = (a * mx * mx, 2.0 * b * mx);
-                    let shifts = &tables[n..2 * n];
+                    let (ax, bx) = (ca * mx * mx, 2.0 * cb * mx);
                     simd.run(
                         #[inline(always)]
                         || {
-                            for (iz, ((out, g), shift_z)) in
-                                row.iter_mut().zip(source).zip(shifts).enumerate()
-                            {
+                            for (iz, (g, shift_z)) in row.iter_mut().zip(shifts).enumerate() {
                                 let mz = crate::grid::wave_index(iz, n) as f32;
-                                let decay = exp(-(ax + mz * (bx + c * mz)));
-                                *out = g.conj() * (shift_x * shift_z) * decay;
+                                let decay = exp(-(ax + mz * (bx + cc * mz)));
+                                *g = g.conj() * (shift_x * shift_z) * decay;
                             }
                         },
                     );
                 }
+                fft.process(rows, scratch);
             });
-        let moved = fft
-            .process(work)
-            .expect("the foam's work buffer holds N² values");
+        // 3. Rows again: gathered, along x, and the residual foam, the total foam and the row
+        // sums of `finish` while the row is in cache.
         let scale = 1.0 / (n * n) as f32;
         let flush = |v: f32| if v < FLUSH { 0.0 } else { v.min(1.0) };
-        // The residual foam back from the transform, and at once (while its rows are in
-        // cache) the total foam and the row sums of `finish`.
+        let source = &*spectral;
         (
-            residual.par_chunks_mut(ROWS * n),
-            active.par_chunks(ROWS * n),
-            total.par_chunks_mut(ROWS * n),
+            spatial.par_chunks_mut(block),
+            scratch.par_chunks_mut(s),
+            residual.par_chunks_mut(block),
+            active.par_chunks(block),
+            total.par_chunks_mut(block),
             row_sums.par_chunks_mut(ROWS),
         )
             .into_par_iter()
+            .with_min_len(min_len)
             .enumerate()
-            .for_each(|(b, (residual, active, total, sums))| {
-                let source = &moved[b * ROWS * n..][..residual.len()];
+            .for_each(|(b, (work, scratch, residual, active, total, sums))| {
+                let j0 = b * ROWS;
+                let height = work.len() / n;
+                transpose_into(&source[j0..], n, work, n, height, n);
+                fft.process(work, scratch);
                 let rows = residual
                     .chunks_mut(n)
-                    .zip(source.chunks(n))
+                    .zip(work.chunks(n))
                     .zip(active.chunks(n))
                     .zip(total.chunks_mut(n));
-                for ((((r, source), a), f), sum) in rows.zip(sums.iter_mut()) {
+                for ((((r, moved), a), f), sum) in rows.zip(sums.iter_mut()) {
                     *sum = simd.run(
                         #[inline(always)]
                         || {
-                            for (r, v) in r.iter_mut().zip(source) {
+                            for (r, v) in r.iter_mut().zip(moved) {
                                 *r = flush(v.re * scale);
                             }
                             total_row(a, r, f)
@@ -650,6 +788,7 @@ impl Foam {
             self.row_sums.par_chunks_mut(ROWS),
         )
             .into_par_iter()
+            .with_min_len(min_tasks(n))
             .for_each(|(active, residual, total, sums)| {
                 let rows = active
                     .chunks(n)
@@ -1033,6 +1172,84 @@ mod tests {
                     run(level, threads) == expected,
                     "{level:?} at {threads} threads differs from the baseline at 1 thread"
                 );
+            }
+        }
+    }
+
+    /// The fused step (the transport's factor between the two column transforms, the last
+    /// row transform fused with the totals) gives the bits of the plain sequence it replaced:
+    /// the residual foam after aging, transformed by the public `Fft2d`, multiplied by M(k)
+    /// point by point, transformed back by `Fft2d`, scaled, clamped and flushed. Run for
+    /// both determinism modes and two grid sizes, at 1 and 2 threads; the reference runs at
+    /// the baseline SIMD level, the step at the machine's widest.
+    #[test]
+    fn fused_transport_gives_the_bits_of_two_plain_fft2d_transforms() {
+        for determinism in [Determinism::SameMachine, Determinism::CrossPlatform] {
+            for (n, threads) in [(64, 1), (64, 2), (128, 2)] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                pool.install(|| {
+                    let spectrum = Spectrum::jonswap(16.0, 300_000.0).unwrap();
+                    let config = OceanConfig {
+                        size: n,
+                        determinism,
+                        ..OceanConfig::default()
+                    };
+                    let mut ocean = OceanState::new(spectrum, config).unwrap();
+                    for _ in 0..30 {
+                        ocean.step(0.1).unwrap();
+                    }
+                    let dt = 0.1;
+                    // The same step without transport: the aged foam the transport starts from.
+                    let mut reference = ocean.foam.clone();
+                    let transport = reference.transport.clone();
+                    assert!(transport.is_active());
+                    reference.transport.drift = [0.0; 2];
+                    reference.transport.tensor = [0.0; 3];
+                    ocean.step(dt).unwrap();
+                    reference.advance(&ocean.cascades, dt);
+                    let mut tables = vec![Complex32::default(); 2 * n];
+                    transport.fill_tables(dt, n, &mut tables);
+                    let [a, b, c] = transport.exponent(dt);
+                    let mut fft = crate::Fft2d::with_determinism(n, 1, determinism).unwrap();
+                    let mut work: Vec<Complex32> = reference
+                        .residual
+                        .iter()
+                        .map(|&r| Complex32::new(r, 0.0))
+                        .collect();
+                    // The transform is left transposed: index m_x·N + m_z.
+                    let spectrum = fft.process(&mut work).unwrap().to_vec();
+                    for ix in 0..n {
+                        let mx = crate::grid::wave_index(ix, n) as f32;
+                        for iz in 0..n {
+                            let mz = crate::grid::wave_index(iz, n) as f32;
+                            let (ax, bx) = (a * mx * mx, 2.0 * b * mx);
+                            let decay = exp(-(ax + mz * (bx + c * mz)));
+                            work[ix * n + iz] = spectrum[ix * n + iz].conj()
+                                * (tables[ix] * tables[n + iz])
+                                * decay;
+                        }
+                    }
+                    let moved = fft.process(&mut work).unwrap();
+                    let scale = 1.0 / (n * n) as f32;
+                    let mut moving = 0;
+                    for (k, v) in moved.iter().enumerate() {
+                        let r = v.re * scale;
+                        let r = if r < FLUSH { 0.0 } else { r.min(1.0) };
+                        assert_eq!(
+                            r.to_bits(),
+                            ocean.foam.residual[k].to_bits(),
+                            "{determinism:?} N = {n}, {threads} threads, point {k}"
+                        );
+                        moving += usize::from(r != reference.residual[k]);
+                    }
+                    assert!(moving > n * n / 2, "the test needs foam that moves");
+                    for (x, y) in ocean.foam.active.iter().zip(&reference.active) {
+                        assert_eq!(x.to_bits(), y.to_bits());
+                    }
+                });
             }
         }
     }
