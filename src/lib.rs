@@ -81,8 +81,9 @@
 //! repository) measures it beside the four bare transforms of [`Fft2d`] in the same process,
 //! and `cargo bench -p ocean-fft-benches --bench ocean` a step of the default ocean beside its
 //! twelve bare transforms. The guide's performance section lists a measured table with the CPU
-//! it ran on (on a 2-vCPU AMD EPYC Zen 4: an update costs 0.9–1.5× its bare transforms from 64²
-//! to 512², a default step 1.2–1.75×).
+//! it ran on (on a 2-vCPU AMD EPYC Zen 4: an update costs 0.9–1.3× its bare transforms at 512²
+//! and 1024² and 1.3–2.0× from 64² to 256²; a default step, its foam included, 1.0–1.3× at
+//! 512² and 1024² and 1.3–2.5× from 64² to 256²).
 //!
 //! # Features
 //!
