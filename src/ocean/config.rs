@@ -290,7 +290,7 @@ impl OceanConfig {
     }
 
     /// Bytes the ocean holds: every cascade ([`CascadeConfig::memory_bytes`]), the foam on
-    /// cascade 0's grid (about 44·N² and its transform's scratch) and, with
+    /// cascade 0's grid (about 40·N² and its transform's scratch) and, with
     /// [`Interpolation::CubicBSpline`], the spline coefficients of the world queries (20·N² per
     /// cascade). Any config gives an answer, even one [`validate`](Self::validate) refuses.
     pub fn memory_bytes(&self) -> usize {

@@ -422,6 +422,71 @@ fn total_row(a: &[f32], r: &[f32], f: &mut [f32]) -> [f64; 3] {
     [sum_a, sum_r, sum_f].map(|lane| lane.iter().sum())
 }
 
+/// Packs two real rows (the real parts of `a` and `b`) into `a` as one complex row a + ib,
+/// so that one complex transform does both.
+#[inline(always)]
+fn pack_rows(a: &mut [Complex32], b: &[Complex32]) {
+    for (a, b) in a.iter_mut().zip(b) {
+        a.im = b.re;
+    }
+}
+
+/// From W, the transform of a + ib for two real rows a and b (in `w`), the transforms of a
+/// and b at m = 0 … N/2 (the rest follows from their Hermitian symmetry) into `w` and `b`:
+/// A[m] = (W[m] + conj W[N − m])/2 and B[m] = (W[m] − conj W[N − m])/(2i). Each m reads
+/// W[m] and W[N − m] before writing index m, and N − m > N/2 for 0 < m < N/2, so `w` can
+/// take A in place.
+#[inline(always)]
+fn unpack_halves(w: &mut [Complex32], b: &mut [Complex32]) {
+    let n = w.len();
+    let half = n / 2;
+    // (x − y)/(2i) = −i(x − y)/2.
+    let split = |x: Complex32, y: Complex32| {
+        (
+            Complex32::new(0.5 * (x.re + y.re), 0.5 * (x.im + y.im)),
+            Complex32::new(0.5 * (x.im - y.im), -0.5 * (x.re - y.re)),
+        )
+    };
+    (w[0], b[0]) = split(w[0], w[0].conj());
+    (w[half], b[half]) = split(w[half], w[half].conj());
+    let (low, high) = w.split_at_mut(half);
+    // m = 1 … N/2 − 1 pairs with N − m = N − 1 … N/2 + 1.
+    for ((x, b), y) in low[1..]
+        .iter_mut()
+        .zip(b[1..half].iter_mut())
+        .zip(high[1..].iter().rev())
+    {
+        (*x, *b) = split(*x, y.conj());
+    }
+}
+
+/// The inverse of [`unpack_halves`] before the last transform: from the half spectra Y_a
+/// (in `v`) and Y_b (in `w`) at m = 0 … N/2 of two rows whose transforms are real, the row
+/// Y_a + iY_b over all m in `v`, extended by Y[N − m] = conj Y[m]; at m = 0 and N/2, where
+/// Y is its own partner, only its real part is kept (what taking the real part of a complex
+/// result keeps there).
+#[inline(always)]
+fn repack_halves(v: &mut [Complex32], w: &[Complex32]) {
+    let n = v.len();
+    let half = n / 2;
+    let join = |a: Complex32, b: Complex32| Complex32::new(a.re - b.im, a.im + b.re);
+    let (low, high) = v.split_at_mut(half + 1);
+    // m = N/2 + 1 … N − 1 from N − m = N/2 − 1 … 1.
+    for ((y, a), b) in high
+        .iter_mut()
+        .zip(low[1..half].iter().rev())
+        .zip(w[1..half].iter().rev())
+    {
+        *y = join(a.conj(), b.conj());
+    }
+    for (a, b) in low[1..half].iter_mut().zip(&w[1..half]) {
+        *a = join(*a, *b);
+    }
+    for m in [0, half] {
+        v[m] = Complex32::new(v[m].re, w[m].re);
+    }
+}
+
 /// What every point's update over one step shares.
 #[derive(Debug, Clone, Copy)]
 struct Step {
@@ -451,7 +516,7 @@ pub(crate) struct Foam {
     /// The transport's grid in space order (row z, column x or m_x): the residual foam
     /// transformed along x, and in the last pass each task's gathered rows.
     spatial: Vec<Complex32>,
-    /// The transport's grid transposed (row m_x, column m_z or z).
+    /// The transport's grid transposed (row m_x, column m_z or z), for m_x = 0 … N/2 only.
     spectral: Vec<Complex32>,
     /// The inverse FFT of length N both axes use (the plan `Fft2d` would make).
     fft: RowFft,
@@ -463,9 +528,10 @@ pub(crate) struct Foam {
 }
 
 /// Bytes the foam of an ocean of `cascades` cascades of size `n` holds: active, residual,
-/// total and breaking (4 bytes each per point), the transport's two complex grids (8 each) and
-/// FFT scratch for one task per block of rows, small tables, and the displacement gradient
-/// cascade 0 keeps for it (12 bytes per point, see `Cascade::keep_gradient`).
+/// total and breaking (4 bytes each per point), the transport's complex grid (8 bytes per
+/// point) and its transposed half (N/2 + 1 rows of N, 8 bytes each), FFT scratch for one
+/// task per block of rows, small tables, and the displacement gradient cascade 0 keeps for
+/// it (12 bytes per point, see `Cascade::keep_gradient`).
 pub(crate) fn memory_bytes(n: usize, cascades: usize, determinism: Determinism) -> usize {
     let points = n.saturating_mul(n);
     let scratch = if n <= crate::grid::MAX_SIZE {
@@ -476,8 +542,10 @@ pub(crate) fn memory_bytes(n: usize, cascades: usize, determinism: Determinism) 
     let tasks = n.div_ceil(crate::fft2d::ROWS_PER_TASK);
     let _ = cascades;
     let tables = n.saturating_mul(2 * 8 + 24);
+    let half = (n / 2 + 1).saturating_mul(n);
     points
-        .saturating_mul(4 * 4 + 2 * 8 + 12)
+        .saturating_mul(4 * 4 + 8 + 12)
+        .saturating_add(half.saturating_mul(8))
         .saturating_add(tasks.saturating_mul(scratch).saturating_mul(8))
         .saturating_add(tables)
 }
@@ -553,7 +621,7 @@ impl Foam {
             tables: error::try_vec(2 * n, Complex32::default())?,
             tables_dt: f64::NAN,
             spatial: error::try_vec(points, Complex32::default())?,
-            spectral: error::try_vec(points, Complex32::default())?,
+            spectral: error::try_vec((n / 2 + 1) * n, Complex32::default())?,
             scratch: error::try_vec(n.div_ceil(ROWS) * fft.scratch_len(), Complex32::default())?,
             fft,
             row_sums: error::try_vec(n, [0.0; 3])?,
@@ -605,19 +673,22 @@ impl Foam {
     /// Integrates the foam over `dt` seconds up to the cascades' (new) time.
     ///
     /// Three passes over the grid, each one parallel loop over blocks of [`ROWS`] rows:
-    /// 1. per row z: the new intensity, the aging of a and r, and r transformed along x (or,
-    ///    with no transport, the total foam and the row sums straight away);
-    /// 2. per block of m_x: the block gathered by a tiled transpose, transformed along z, the
+    /// 1. per row z: the new intensity, the aging of a and r, and r transformed along x, two
+    ///    rows in one complex transform (or, with no transport, the total foam and the row
+    ///    sums straight away);
+    /// 2. per block of m_x = 0 … N/2 (r is real, so its transform at −m_x is the conjugate of
+    ///    that at m_x): the block gathered by a tiled transpose, transformed along z, the
     ///    factor M(k) of the transport (see `transport.rs`), and transformed back along z;
-    /// 3. per block of z: gathered back, transformed along x, the residual foam (clamped to
-    ///    [0, 1], flushed below [`FLUSH`]), the total foam and the row sums.
+    /// 3. per block of z: gathered back, transformed along x, two rows in one complex
+    ///    transform, the residual foam (clamped to [0, 1], flushed below [`FLUSH`]), the
+    ///    total foam and the row sums.
     ///
-    /// The forward transform is the conjugate of the inverse transform of the real r. The
-    /// transforms are the same rustfft plans on the same values in the same order as two
-    /// calls of `Fft2d::process` (rows, then the gathered columns), so the foam keeps its bits;
-    /// what the fusion saves is four parallel loops, two transposes and two passes over the
-    /// grid. Active foam stays where its wave broke (the grid already follows the water's
-    /// orbital motion; the drift moves it less than a metre in its lifetime).
+    /// The forward transform is the conjugate of the inverse transform of the real r. Packing
+    /// two real rows in one complex row and transforming half the columns halves the
+    /// transforms, transposes and factors of a complex transport, to the same result within
+    /// the transforms' rounding (tested against two plain `Fft2d` transforms). Active foam
+    /// stays where its wave broke (the grid already follows the water's orbital motion; the
+    /// drift moves it less than a metre in its lifetime).
     pub(crate) fn advance(&mut self, cascades: &[Cascade], dt: f64) {
         if dt <= 0.0 {
             // The same time: the intensity is recomputed (bit for bit the same), nothing
@@ -691,7 +762,18 @@ impl Foam {
                         );
                     }
                     if moving {
-                        fft.process(work, scratch);
+                        for pair in work.chunks_exact_mut(2 * n) {
+                            let (a, b) = pair.split_at_mut(n);
+                            simd.run(
+                                #[inline(always)]
+                                || pack_rows(a, b),
+                            );
+                            fft.process(a, scratch);
+                            simd.run(
+                                #[inline(always)]
+                                || unpack_halves(a, b),
+                            );
+                        }
                     }
                 },
             );
@@ -704,6 +786,7 @@ impl Foam {
         let [ca, cb, cc] = transport.exponent(dt);
         let tables = &*tables;
         let source = &*spatial;
+        let half = n / 2 + 1;
         spectral
             .par_chunks_mut(block)
             .zip(scratch.par_chunks_mut(s))
@@ -752,21 +835,32 @@ impl Foam {
             .for_each(|(b, (work, scratch, residual, active, total, sums))| {
                 let j0 = b * ROWS;
                 let height = work.len() / n;
-                transpose_into(&source[j0..], n, work, n, height, n);
-                fft.process(work, scratch);
+                transpose_into(&source[j0..], n, work, n, height, half);
                 let rows = residual
-                    .chunks_mut(n)
-                    .zip(work.chunks(n))
-                    .zip(active.chunks(n))
-                    .zip(total.chunks_mut(n));
-                for ((((r, moved), a), f), sum) in rows.zip(sums.iter_mut()) {
-                    *sum = simd.run(
+                    .chunks_mut(2 * n)
+                    .zip(work.chunks_exact_mut(2 * n))
+                    .zip(active.chunks(2 * n))
+                    .zip(total.chunks_mut(2 * n))
+                    .zip(sums.chunks_mut(2));
+                for ((((r, pair), a), f), sums) in rows {
+                    let (v, w) = pair.split_at_mut(n);
+                    simd.run(
+                        #[inline(always)]
+                        || repack_halves(v, w),
+                    );
+                    fft.process(v, scratch);
+                    let (r0, r1) = r.split_at_mut(n);
+                    let (a0, a1) = a.split_at(n);
+                    let (f0, f1) = f.split_at_mut(n);
+                    simd.run(
                         #[inline(always)]
                         || {
-                            for (r, v) in r.iter_mut().zip(moved) {
-                                *r = flush(v.re * scale);
+                            for ((r0, r1), v) in r0.iter_mut().zip(r1.iter_mut()).zip(&*v) {
+                                *r0 = flush(v.re * scale);
+                                *r1 = flush(v.im * scale);
                             }
-                            total_row(a, r, f)
+                            sums[0] = total_row(a0, r0, f0);
+                            sums[1] = total_row(a1, r1, f1);
                         },
                     );
                 }
@@ -1176,14 +1270,16 @@ mod tests {
         }
     }
 
-    /// The fused step (the transport's factor between the two column transforms, the last
-    /// row transform fused with the totals) gives the bits of the plain sequence it replaced:
-    /// the residual foam after aging, transformed by the public `Fft2d`, multiplied by M(k)
-    /// point by point, transformed back by `Fft2d`, scaled, clamped and flushed. Run for
-    /// both determinism modes and two grid sizes, at 1 and 2 threads; the reference runs at
-    /// the baseline SIMD level, the step at the machine's widest.
+    /// The fused real-data step (two rows packed in one complex row, half the columns
+    /// transformed, the transport's factor between the two column transforms, the last row
+    /// transform fused with the totals) gives, to the rounding of the transforms, what the
+    /// plain complex sequence gives: the residual foam after aging, transformed by the public
+    /// `Fft2d`, multiplied by M(k) point by point, transformed back by `Fft2d`, scaled,
+    /// clamped and flushed. Run for both determinism modes and two grid sizes, at 1 and 2
+    /// threads; the reference runs at the baseline SIMD level, the step at the machine's
+    /// widest.
     #[test]
-    fn fused_transport_gives_the_bits_of_two_plain_fft2d_transforms() {
+    fn real_data_transport_matches_two_plain_complex_fft2d_transforms() {
         for determinism in [Determinism::SameMachine, Determinism::CrossPlatform] {
             for (n, threads) in [(64, 1), (64, 2), (128, 2)] {
                 let pool = rayon::ThreadPoolBuilder::new()
@@ -1235,16 +1331,23 @@ mod tests {
                     let moved = fft.process(&mut work).unwrap();
                     let scale = 1.0 / (n * n) as f32;
                     let mut moving = 0;
+                    let (mut worst, mut peak) = (0.0f32, 0.0f32);
                     for (k, v) in moved.iter().enumerate() {
                         let r = v.re * scale;
                         let r = if r < FLUSH { 0.0 } else { r.min(1.0) };
-                        assert_eq!(
-                            r.to_bits(),
-                            ocean.foam.residual[k].to_bits(),
-                            "{determinism:?} N = {n}, {threads} threads, point {k}"
-                        );
+                        worst = worst.max((r - ocean.foam.residual[k]).abs());
+                        peak = peak.max(r);
                         moving += usize::from(r != reference.residual[k]);
                     }
+                    // Two transforms of N² points in f32 round each value to about
+                    // ε·log₂(N²) ≈ 6e-8 × 14 of the largest (8e-7); the real-data transform
+                    // rounds in other places (and keeps only the Hermitian part at the
+                    // Nyquist wave numbers, which hold next to nothing), so it may differ by
+                    // that much, not more. Measured: 1.5e-8 at a peak of 0.09.
+                    assert!(
+                        worst <= 1e-6 * peak,
+                        "{determinism:?} N = {n}, {threads} threads: {worst:e} (peak {peak})"
+                    );
                     assert!(moving > n * n / 2, "the test needs foam that moves");
                     for (x, y) in ocean.foam.active.iter().zip(&reference.active) {
                         assert_eq!(x.to_bits(), y.to_bits());
