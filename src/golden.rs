@@ -259,16 +259,7 @@ fn cross_platform_mode_gives_the_golden_bits_on_every_level_and_thread_count() {
         // with fewer paths than it claims.
         assert_eq!(levels.len(), 3, "levels {levels:?}");
     }
-    let pools: Vec<(usize, rayon::ThreadPool)> = [1, 2, 3]
-        .into_iter()
-        .map(|threads| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            (threads, pool)
-        })
-        .collect();
+    let pools = crate::simd::test_pools();
     let mut reference: Option<Vec<(String, String, u64)>> = None;
     for &level in &levels {
         for (threads, pool) in &pools {

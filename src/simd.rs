@@ -86,3 +86,19 @@ impl std::fmt::Debug for Simd {
         })
     }
 }
+
+/// Rayon pools of 1, 2 and 3 threads, each with its size, for the tests that compare every
+/// SIMD level at every thread count.
+#[cfg(test)]
+pub(crate) fn test_pools() -> Vec<(usize, rayon::ThreadPool)> {
+    [1, 2, 3]
+        .into_iter()
+        .map(|threads| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("a thread pool");
+            (threads, pool)
+        })
+        .collect()
+}

@@ -99,16 +99,7 @@ fn every_simd_level_and_thread_count_gives_the_same_bits() {
         assert_eq!(levels.len(), expected, "levels {levels:?}");
     }
     println!("SIMD levels: {levels:?}");
-    let pools: Vec<(usize, rayon::ThreadPool)> = [1, 2, 3]
-        .into_iter()
-        .map(|threads| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            (threads, pool)
-        })
-        .collect();
+    let pools = crate::simd::test_pools();
     let times = [0.0, 7.25, 1000.5];
     for (spectrum, config) in configs() {
         let mut reference = Cascade::new(&spectrum, config).unwrap();
