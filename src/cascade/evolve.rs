@@ -130,12 +130,11 @@ pub(super) fn zero_blocks(table: EvolutionRow<'_>) -> u64 {
 /// whose bit is set in `zero` (see [`zero_blocks`]) are written as zeros without evolving.
 /// Inlined into its caller's [`Simd::run`](crate::simd::Simd::run), so that its loops are
 /// compiled for the level the cascade runs at.
-/// Arrays on the stack [`evolve_row_pair`] evolves a block of columns into before copying
-/// them out (see [`evolve_block`]); made once per task rather than per row pair, so that
-/// their zeroing is paid once.
+/// Arrays on the stack [`evolve_row_pair`] computes a block's phases and its partners'
+/// values into before those are copied out, reversed (see [`evolve_block`]); made once per
+/// task rather than per row pair, so that their zeroing is paid once.
 pub(super) struct EvolveBuffers {
     turns: [f32; EVOLVE_BLOCK],
-    plus: [[Complex32; EVOLVE_BLOCK]; 4],
     minus: [[Complex32; EVOLVE_BLOCK]; 4],
 }
 
@@ -143,7 +142,6 @@ impl EvolveBuffers {
     pub(super) fn new() -> Self {
         EvolveBuffers {
             turns: [0.0; EVOLVE_BLOCK],
-            plus: [[Complex32::default(); EVOLVE_BLOCK]; 4],
             minus: [[Complex32::default(); EVOLVE_BLOCK]; 4],
         }
     }
@@ -177,7 +175,7 @@ pub(super) fn evolve_row_pair(
     (l0[0], l1[0], l2[0], l3[0]) = (minus[0], minus[1], minus[2], minus[3]);
     // Per block: the f64 phase reduction first (2 lanes per SSE vector), then the f32 work
     // (4 lanes), each loop vectorising at its own width.
-    let EvolveBuffers { turns, plus, minus } = buffers;
+    let EvolveBuffers { turns, minus } = buffers;
     let (mut u, mut l) = ([u0, u1, u2, u3], [l0, l1, l2, l3]);
     for (b, range) in column_blocks(n).enumerate() {
         let len = range.len();
@@ -200,6 +198,7 @@ pub(super) fn evolve_row_pair(
         for (turns, &freq) in turns.iter_mut().zip(&table.freq[range.clone()]) {
             *turns = fract_turns(freq * t);
         }
+        let [u0, u1, u2, u3] = &mut u;
         evolve_block(
             turns,
             &table.p_re[range.clone()],
@@ -209,13 +208,13 @@ pub(super) fn evolve_row_pair(
             &table.inv_k[range.clone()],
             kx,
             &kz[range.clone()],
-            plus,
+            &mut u0[range.clone()],
+            &mut u1[range.clone()],
+            &mut u2[range.clone()],
+            &mut u3[range.clone()],
             minus,
         );
-        // Out to the rows: the block's columns in order, their partners N − j reversed.
-        for (out, values) in u.iter_mut().zip(plus.iter()) {
-            out[range.clone()].copy_from_slice(&values[..len]);
-        }
+        // Out to the rows: the partners N − j of the block's columns, reversed.
         for (out, values) in l.iter_mut().zip(minus.iter()) {
             for (out, value) in out[mirror.clone()]
                 .iter_mut()
@@ -230,12 +229,16 @@ pub(super) fn evolve_row_pair(
     }
 }
 
-/// The four packed values of a block of columns j (`plus`) and of their partners N − j
-/// (`minus`, in the same order), from the block's reduced phases and table entries (p_re,
-/// p_im, q_re, q_im), into arrays on the caller's stack. A loop on its own over stack arrays
-/// (which LLVM knows alias nothing) so that it vectorises at any SIMD level: written
-/// straight into the eight row slices it stayed scalar once inlined into the AVX-512
-/// kernel (LLVM lost track of their not overlapping), and the update took 1.3× as long.
+/// The four packed values of a block of columns j, straight into the block's part of the
+/// four upper rows (`u0`…`u3`), and of their partners N − j into arrays on the caller's
+/// stack (`minus`, in the same order, reversed into the lower rows afterwards), from the
+/// block's reduced phases and table entries (p_re, p_im, q_re, q_im). Every slice is an
+/// argument of its own, so that LLVM knows that none overlaps another and the loop
+/// vectorises at every SIMD level. The partners go through the stack because their columns
+/// run backwards: written straight into the eight row slices, the loop stayed scalar once
+/// inlined into the AVX-512 kernel and the update took 1.3× as long. (The upper values went
+/// through the stack too until the copy out, a `memmove` call per block and transform, was
+/// measured at 3–4 % of a 64² update; writing them straight saves 3–5 % at 64² and 128².)
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn evolve_block(
@@ -247,21 +250,23 @@ fn evolve_block(
     inv_k: &[f32],
     kx: f32,
     kz: &[f32],
-    plus: &mut [[Complex32; EVOLVE_BLOCK]; 4],
+    u0: &mut [Complex32],
+    u1: &mut [Complex32],
+    u2: &mut [Complex32],
+    u3: &mut [Complex32],
     minus: &mut [[Complex32; EVOLVE_BLOCK]; 4],
 ) {
     let len = turns.len().min(EVOLVE_BLOCK);
     let (p_re, p_im) = (&p_re[..len], &p_im[..len]);
     let (q_re, q_im) = (&q_re[..len], &q_im[..len]);
     let (inv_k, kz) = (&inv_k[..len], &kz[..len]);
-    let [u0, u1, u2, u3] = plus;
-    let [l0, l1, l2, l3] = minus;
     let (u0, u1, u2, u3) = (
         &mut u0[..len],
         &mut u1[..len],
         &mut u2[..len],
         &mut u3[..len],
     );
+    let [l0, l1, l2, l3] = minus;
     let (l0, l1, l2, l3) = (
         &mut l0[..len],
         &mut l1[..len],
