@@ -548,13 +548,16 @@ fn fields_at_larger_sizes_equal_a_separable_f64_dft() {
         }
     }
     // 50 and 66: not multiples of the 16-row task blocks (and 66/2 = 33 odd); 130: N/2 odd;
-    // 256: the default size. Larger N also has larger k, so the slope fields are no longer
-    // the small member of their packed pair.
+    // 256: the default size; 300: above 256, where the evolution stages its values on the
+    // stack before copying them into the rows (`STRAIGHT_MAX` in src/cascade/evolve.rs). Larger
+    // N also has larger k, so the slope fields are no longer the small member of their
+    // packed pair.
     for (n, length, times) in [
         (50usize, 300.0f32, &[0.0, 41.7][..]),
         (66, 300.0, &[12.25][..]),
         (130, 600.0, &[5.5][..]),
         (256, 1000.0, &[100.0][..]),
+        (300, 1200.0, &[7.5][..]),
     ] {
         for spectrum in [jonswap(0.4), phillips(-1.1)] {
             let mut cascade = Cascade::new(

@@ -125,16 +125,24 @@ pub(super) fn zero_blocks(table: EvolutionRow<'_>) -> u64 {
     })
 }
 
-/// Fills spectral rows i (`upper`, k_x > 0) and N − i (`lower`, its Hermitian partner), each
-/// four packed transforms of N, from table row i: (i, j) pairs with (N − i, N − j). Blocks
-/// whose bit is set in `zero` (see [`zero_blocks`]) are written as zeros without evolving.
-/// Inlined into its caller's [`Simd::run`](crate::simd::Simd::run), so that its loops are
-/// compiled for the level the cascade runs at.
-/// Arrays on the stack [`evolve_row_pair`] computes a block's phases and its partners'
-/// values into before those are copied out, reversed (see [`evolve_block`]); made once per
-/// task rather than per row pair, so that their zeroing is paid once.
+/// Largest N whose evolution writes a block's own values straight into the four upper rows
+/// (see [`evolve_block`]); larger grids stage them on the stack too and copy them out.
+/// Measured in one process against the staged copy (fastest of 30–40 chunks, the two builds'
+/// order alternating): straight writes make the update 4 % faster at 64², 5–7 % at 128² and
+/// 2–6 % at 256², but 2–5 % slower at 512² (beyond the 2–3 % two identical builds differed
+/// by there). Likely why: from N = 512 on a row's four transforms lie 4 KiB or a multiple
+/// apart, so the four streams of stores at the same offset in each fall into the same L1
+/// cache set.
+const STRAIGHT_MAX: usize = 256;
+
+/// Arrays on the stack [`evolve_row_pair`] computes a block's phases and values into before
+/// they are copied out (see [`evolve_block`]); made once per task rather than per row pair,
+/// so that their zeroing is paid once.
 pub(super) struct EvolveBuffers {
     turns: [f32; EVOLVE_BLOCK],
+    /// The block's own values, for N above [`STRAIGHT_MAX`].
+    plus: [[Complex32; EVOLVE_BLOCK]; 4],
+    /// Their partners' values, in the block's order (reversed into the lower rows).
     minus: [[Complex32; EVOLVE_BLOCK]; 4],
 }
 
@@ -142,11 +150,17 @@ impl EvolveBuffers {
     pub(super) fn new() -> Self {
         EvolveBuffers {
             turns: [0.0; EVOLVE_BLOCK],
+            plus: [[Complex32::default(); EVOLVE_BLOCK]; 4],
             minus: [[Complex32::default(); EVOLVE_BLOCK]; 4],
         }
     }
 }
 
+/// Fills spectral rows i (`upper`, k_x > 0) and N − i (`lower`, its Hermitian partner), each
+/// four packed transforms of N, from table row i: (i, j) pairs with (N − i, N − j). Blocks
+/// whose bit is set in `zero` (see [`zero_blocks`]) are written as zeros without evolving.
+/// Inlined into its caller's [`Simd::run`](crate::simd::Simd::run), so that its loops are
+/// compiled for the level the cascade runs at.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(super) fn evolve_row_pair(
@@ -175,7 +189,7 @@ pub(super) fn evolve_row_pair(
     (l0[0], l1[0], l2[0], l3[0]) = (minus[0], minus[1], minus[2], minus[3]);
     // Per block: the f64 phase reduction first (2 lanes per SSE vector), then the f32 work
     // (4 lanes), each loop vectorising at its own width.
-    let EvolveBuffers { turns, minus } = buffers;
+    let EvolveBuffers { turns, plus, minus } = buffers;
     let (mut u, mut l) = ([u0, u1, u2, u3], [l0, l1, l2, l3]);
     for (b, range) in column_blocks(n).enumerate() {
         let len = range.len();
@@ -198,22 +212,35 @@ pub(super) fn evolve_row_pair(
         for (turns, &freq) in turns.iter_mut().zip(&table.freq[range.clone()]) {
             *turns = fract_turns(freq * t);
         }
-        let [u0, u1, u2, u3] = &mut u;
-        evolve_block(
-            turns,
-            &table.p_re[range.clone()],
-            &table.p_im[range.clone()],
-            &table.q_re[range.clone()],
-            &table.q_im[range.clone()],
-            &table.inv_k[range.clone()],
-            kx,
-            &kz[range.clone()],
-            &mut u0[range.clone()],
-            &mut u1[range.clone()],
-            &mut u2[range.clone()],
-            &mut u3[range.clone()],
-            minus,
-        );
+        let (p_re, p_im) = (&table.p_re[range.clone()], &table.p_im[range.clone()]);
+        let (q_re, q_im) = (&table.q_re[range.clone()], &table.q_im[range.clone()]);
+        let (inv_k, kz) = (&table.inv_k[range.clone()], &kz[range.clone()]);
+        if n <= STRAIGHT_MAX {
+            let [u0, u1, u2, u3] = &mut u;
+            evolve_block(
+                turns,
+                p_re,
+                p_im,
+                q_re,
+                q_im,
+                inv_k,
+                kx,
+                kz,
+                &mut u0[range.clone()],
+                &mut u1[range.clone()],
+                &mut u2[range.clone()],
+                &mut u3[range.clone()],
+                minus,
+            );
+        } else {
+            let [p0, p1, p2, p3] = &mut *plus;
+            evolve_block(
+                turns, p_re, p_im, q_re, q_im, inv_k, kx, kz, p0, p1, p2, p3, minus,
+            );
+            for (out, values) in u.iter_mut().zip(plus.iter()) {
+                out[range.clone()].copy_from_slice(&values[..len]);
+            }
+        }
         // Out to the rows: the partners N − j of the block's columns, reversed.
         for (out, values) in l.iter_mut().zip(minus.iter()) {
             for (out, value) in out[mirror.clone()]
@@ -229,16 +256,18 @@ pub(super) fn evolve_row_pair(
     }
 }
 
-/// The four packed values of a block of columns j, straight into the block's part of the
-/// four upper rows (`u0`…`u3`), and of their partners N − j into arrays on the caller's
-/// stack (`minus`, in the same order, reversed into the lower rows afterwards), from the
-/// block's reduced phases and table entries (p_re, p_im, q_re, q_im). Every slice is an
-/// argument of its own, so that LLVM knows that none overlaps another and the loop
-/// vectorises at every SIMD level. The partners go through the stack because their columns
-/// run backwards: written straight into the eight row slices, the loop stayed scalar once
-/// inlined into the AVX-512 kernel and the update took 1.3× as long. (The upper values went
-/// through the stack too until the copy out, a `memmove` call per block and transform, was
-/// measured at 3–4 % of a 64² update; writing them straight saves 3–5 % at 64² and 128².)
+/// The four packed values of a block of columns j into `u0`…`u3` (the block's part of the
+/// four upper rows, or arrays on the stack: see [`STRAIGHT_MAX`]) and of their partners
+/// N − j into `minus` (arrays on the caller's stack, in the block's order, reversed into the
+/// lower rows afterwards), from the block's reduced phases and its table entries
+/// (p_re, p_im, q_re, q_im, 1/|k|).
+///
+/// A loop on its own with every slice an argument of its own: LLVM knows that reference
+/// arguments do not overlap and keeps that knowledge once this is inlined, so the loop
+/// vectorises at every SIMD level (slices passed in an array lose it, and the loop stayed
+/// scalar: a 64² update took 1.6× as long). The partners always go through the stack
+/// because their columns run backwards: written straight into the lower rows, the loop
+/// stayed scalar once inlined into the AVX-512 kernel and the update took 1.3× as long.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn evolve_block(
