@@ -81,9 +81,9 @@
 //! repository) measures it beside the four bare transforms of [`Fft2d`] in the same process,
 //! and `cargo bench -p ocean-fft-benches --bench ocean` a step of the default ocean beside its
 //! twelve bare transforms. The guide's performance section lists a measured table with the CPU
-//! it ran on (on a 2-vCPU AMD EPYC Zen 4: an update costs 1.1–1.2× its bare transforms at 512²
-//! and 1024² on one thread and 1.4–2.0× from 64² to 256²; a default step, its foam included,
-//! 1.1–1.2× at 512² and 1024² and 1.25–2.6× from 64² to 256²).
+//! it ran on (on a 2-vCPU AMD EPYC Zen 4: an update costs 1.0–1.2× its bare transforms at 512²
+//! and 1024² and 1.3–2.3× from 64² to 256², on one or two threads; a default step, its foam
+//! included, 1.0–1.2× at 512² and 1024² and 1.25–2.4× from 64² to 256²).
 //!
 //! # Features
 //!
