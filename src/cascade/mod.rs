@@ -88,10 +88,10 @@ pub struct Cascade {
     /// (p = q = 0 in their whole table row), so their spectral rows stay zero from
     /// construction on and pass 2 writes zeros for them without reading them.
     live_pairs: usize,
-    /// Pass-1 buffer, layout [i][transform][j] (k_x row, k_z column → after the FFT, z).
+    /// Pass-1 buffer, layout `[i][transform][j]` (k_x row, k_z column → after the FFT, z).
     spectral: Vec<Complex32>,
     /// Pass-2 block buffers, one per pass-2 task, each [`ROWS_PER_TASK`] rows of layout
-    /// [j][transform][i] (z row, x column) once transformed.
+    /// `[j][transform][i]` (z row, x column) once transformed.
     blocks: Vec<Complex32>,
     /// FFT scratch, one slot per task of the pass running (the passes run one after the
     /// other and share it).

@@ -14,7 +14,7 @@ use crate::grid::wave_index;
 use crate::rng;
 use crate::spectrum::Spectrum;
 
-/// Largest accepted bound on the outputs' magnitude (see [`Cascade::new`]): far enough below
+/// Largest accepted bound on the outputs' magnitude (see [`Cascade::new`](crate::Cascade::new)): far enough below
 /// f32::MAX that squares and cross products of the fields stay finite.
 pub(super) const AMPLITUDE_LIMIT: f64 = 1e15;
 

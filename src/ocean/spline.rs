@@ -1,11 +1,11 @@
 //! Cubic B-spline interpolation of the cascades' fields for the world queries: the
 //! coefficients (the prefilter, computed once per update) and the 4×4 stencil of a point.
 //!
-//! A field f sampled on the periodic grid is represented as f(x) = Σ_n c[n] β³(x/Δ − n),
-//! β³ the cubic B-spline. Interpolating the samples means (c[n−1] + 4c[n] + c[n+1])/6 = f[n]
+//! A field f sampled on the periodic grid is represented as f(x) = Σ_n c\[n\] β³(x/Δ − n),
+//! β³ the cubic B-spline. Interpolating the samples means (c\[n−1\] + 4c\[n\] + c\[n+1\])/6 = f\[n\]
 //! along each axis, solved by the recursive filter of Unser, Aldroubi & Eden (1991): with
-//! the pole z = √3 − 2, a causal pass y[n] = f[n] + z·y[n−1], an anticausal pass
-//! c[n] = y[n] + z·c[n+1], and the gain −6z, each pass started from its exact periodic
+//! the pole z = √3 − 2, a causal pass y\[n\] = f\[n\] + z·y\[n−1\], an anticausal pass
+//! c\[n\] = y\[n\] + z·c\[n+1\], and the gain −6z, each pass started from its exact periodic
 //! initial value (a geometric sum over the period; terms beyond z²⁴ ≈ 2·10⁻¹⁴ dropped).
 
 use std::sync::{PoisonError, RwLock, RwLockReadGuard};
@@ -133,7 +133,7 @@ fn periodic_factor(n: usize) -> f32 {
 
 /// The interpolation filter along each of the R periodic rows of N values in `group`, in
 /// place, the R recursions interleaved. The gain is applied in the anticausal pass,
-/// c'[n] = G·y[n] + z·c'[n + 1] (the same as G·c, without a pass of its own).
+/// c'\[n\] = G·y\[n\] + z·c'\[n + 1\] (the same as G·c, without a pass of its own).
 fn filter_rows<const C: usize, const R: usize>(group: &mut [[f32; C]], n: usize) {
     let mut chunks = group.chunks_exact_mut(n);
     let rows: [&mut [[f32; C]]; R] =

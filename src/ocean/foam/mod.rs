@@ -433,8 +433,8 @@ fn pack_rows(a: &mut [Complex32], b: &[Complex32]) {
 
 /// From W, the transform of a + ib for two real rows a and b (in `w`), the transforms of a
 /// and b at m = 0 … N/2 (the rest follows from their Hermitian symmetry) into `w` and `b`:
-/// A[m] = (W[m] + conj W[N − m])/2 and B[m] = (W[m] − conj W[N − m])/(2i). Each m reads
-/// W[m] and W[N − m] before writing index m, and N − m > N/2 for 0 < m < N/2, so `w` can
+/// A\[m\] = (W\[m\] + conj W\[N − m\])/2 and B\[m\] = (W\[m\] − conj W\[N − m\])/(2i). Each m reads
+/// W\[m\] and W\[N − m\] before writing index m, and N − m > N/2 for 0 < m < N/2, so `w` can
 /// take A in place.
 #[inline(always)]
 fn unpack_halves(w: &mut [Complex32], b: &mut [Complex32]) {
@@ -462,7 +462,7 @@ fn unpack_halves(w: &mut [Complex32], b: &mut [Complex32]) {
 
 /// The inverse of [`unpack_halves`] before the last transform: from the half spectra Y_a
 /// (in `v`) and Y_b (in `w`) at m = 0 … N/2 of two rows whose transforms are real, the row
-/// Y_a + iY_b over all m in `v`, extended by Y[N − m] = conj Y[m]; at m = 0 and N/2, where
+/// Y_a + iY_b over all m in `v`, extended by Y\[N − m\] = conj Y\[m\]; at m = 0 and N/2, where
 /// Y is its own partner, only its real part is kept (what taking the real part of a complex
 /// result keeps there).
 #[inline(always)]
