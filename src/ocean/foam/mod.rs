@@ -632,42 +632,28 @@ impl Foam {
     }
 
     /// Recomputes the breaking intensity from the cascades as they are now (after a jump in
-    /// time or a restore), and the total foam and coverage from the state: one pass over the
-    /// rows.
+    /// time or a restore), and the total foam and coverage from the state
+    /// ([`finish`](Self::finish)). Not on the per-frame path (a step with dt > 0 computes
+    /// the intensity in its first pass), so the intensity has a pass of its own.
     pub(crate) fn refresh(&mut self, cascades: &[Cascade]) {
         let n = self.n;
         let params = self.params;
         let simd = self.simd;
         let first = &cascades[0];
-        (
-            self.breaking.par_chunks_mut(ROWS * n),
-            self.active.par_chunks(ROWS * n),
-            self.residual.par_chunks(ROWS * n),
-            self.total.par_chunks_mut(ROWS * n),
-            self.row_sums.par_chunks_mut(ROWS),
-        )
-            .into_par_iter()
+        self.breaking
+            .par_chunks_mut(ROWS * n)
             .with_min_len(min_tasks(n))
             .enumerate()
-            .for_each(|(b, (breaking, active, residual, total, sums))| {
-                let rows = breaking
-                    .chunks_mut(n)
-                    .zip(active.chunks(n))
-                    .zip(residual.chunks(n))
-                    .zip(total.chunks_mut(n))
-                    .zip(sums.iter_mut());
-                for (r, ((((s, a), rr), f), sum)) in rows.enumerate() {
+            .for_each(|(b, breaking)| {
+                for (r, s) in breaking.chunks_mut(n).enumerate() {
                     let gradient = first.gradient_row(b * ROWS + r).values();
-                    *sum = simd.run(
+                    simd.run(
                         #[inline(always)]
-                        || {
-                            params.intensity_row(gradient, s);
-                            total_row(a, rr, f)
-                        },
+                        || params.intensity_row(gradient, s),
                     );
                 }
             });
-        self.sum_rows();
+        self.finish();
     }
 
     /// Integrates the foam over `dt` seconds up to the cascades' (new) time.
@@ -1220,11 +1206,8 @@ mod tests {
         if std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512bw") {
             assert_eq!(levels.len(), 3, "{levels:?}");
         }
-        let run = |level: Simd, threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
+        let pools = crate::simd::test_pools();
+        let run = |level: Simd, pool: &rayon::ThreadPool| {
             pool.install(|| {
                 let spectrum = Spectrum::jonswap(16.0, 300_000.0).unwrap();
                 let config = OceanConfig {
@@ -1259,11 +1242,11 @@ mod tests {
                 bits
             })
         };
-        let expected = run(Simd::Baseline, 1);
+        let expected = run(Simd::Baseline, &pools[0].1);
         for &level in &levels {
-            for threads in [1, 2, 3] {
+            for (threads, pool) in &pools {
                 assert!(
-                    run(level, threads) == expected,
+                    run(level, pool) == expected,
                     "{level:?} at {threads} threads differs from the baseline at 1 thread"
                 );
             }
@@ -1280,12 +1263,10 @@ mod tests {
     /// widest.
     #[test]
     fn real_data_transport_matches_two_plain_complex_fft2d_transforms() {
+        let pools = crate::simd::test_pools();
         for determinism in [Determinism::SameMachine, Determinism::CrossPlatform] {
             for (n, threads) in [(64, 1), (64, 2), (128, 2)] {
-                let pool = rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads)
-                    .build()
-                    .unwrap();
+                let (_, pool) = &pools[threads - 1];
                 pool.install(|| {
                     let spectrum = Spectrum::jonswap(16.0, 300_000.0).unwrap();
                     let config = OceanConfig {
