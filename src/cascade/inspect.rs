@@ -52,7 +52,13 @@ impl Cascade {
     pub fn omega_at(&self, i: usize, j: usize) -> Result<f64, Error> {
         error::index("i", i, self.n)?;
         error::index("j", j, self.n)?;
-        Ok(self.evolution_entry(i, j).0.freq * TAU)
+        Ok(self.frequency(i, j) * TAU)
+    }
+
+    /// The frequency ω/2π in cycles per second the update evolves spectral index (i, j) with
+    /// (i, j < N; quantised when looping, 0 on the Nyquist row and column).
+    pub(crate) fn frequency(&self, i: usize, j: usize) -> f64 {
+        self.evolution_entry(i, j).0.freq
     }
 
     /// The table entry that evolves (i, j), and whether (i, j) is the conjugate partner.
@@ -111,182 +117,5 @@ impl Cascade {
     pub fn packed_transform(&self, transform: usize) -> Result<Vec<Complex32>, Error> {
         error::index("transform", transform, TRANSFORMS)?;
         Ok(self.finish_transform(transform))
-    }
-}
-
-/// One grid row of the displacement gradient (D_xx, D_zz, D_xz) at unit choppiness, kept by
-/// the update of a cascade that [`Cascade::keep_gradient`] asked to: what the foam assembles
-/// the Jacobian of the summed displacement from (see [`Cascade::gradient_row`]).
-#[derive(Clone, Copy)]
-pub(crate) struct GradientRow<'a> {
-    row: &'a [[f32; 3]],
-}
-
-impl<'a> GradientRow<'a> {
-    /// `[D_xx, D_zz, D_xz]` at column `i`, dimensionless.
-    #[cfg(test)]
-    pub(crate) fn get(&self, i: usize) -> [f32; 3] {
-        self.row[i]
-    }
-
-    /// The whole row, `[D_xx, D_zz, D_xz]` per column.
-    pub(crate) fn values(self) -> &'a [[f32; 3]] {
-        self.row
-    }
-}
-
-/// Covariances of the displacement gradient (D_xx, D_zz, D_xz) at unit choppiness over space
-/// and time, and of its time derivative, from a cascade's amplitudes: for each field pair
-/// Σ_k M_a(k) M_b(k) · 2|h0(k)|² (and the same times ω(k)²), the time average of the realised
-/// field's spatial mean square (Parseval).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub(crate) struct GradientMoments {
-    /// E[g_a g_b] for g = (D_xx, D_zz, D_xz).
-    pub(crate) value: [[f64; 3]; 3],
-    /// E[ġ_a ġ_b], in 1/s².
-    pub(crate) rate: [[f64; 3]; 3],
-}
-
-impl GradientMoments {
-    /// The moments of a sum of independent fields (cascades with their own seeds and
-    /// disjoint bands): the sums of the moments.
-    pub(crate) fn add(&mut self, other: &GradientMoments) {
-        for a in 0..3 {
-            for b in 0..3 {
-                self.value[a][b] += other.value[a][b];
-                self.rate[a][b] += other.rate[a][b];
-            }
-        }
-    }
-}
-
-impl Cascade {
-    /// Grid row `j` (< N) of the displacement gradient at the last update, allocation-free
-    /// (the values [`Cascade::field`] computes for [`Field::DisplacementXX`],
-    /// [`Field::DisplacementZZ`] and [`Field::DisplacementXZ`]). Only for a cascade that keeps
-    /// its gradient ([`Cascade::keep_gradient`]; panics otherwise, a bug of the crate).
-    pub(crate) fn gradient_row(&self, j: usize) -> GradientRow<'_> {
-        let n = self.n;
-        GradientRow {
-            row: &self.gradient[j * n..][..n],
-        }
-    }
-
-    /// The [`GradientMoments`] of this cascade's realised amplitudes (with the frequencies it
-    /// evolves them with, quantised when looping). Serial, in index order.
-    pub(crate) fn gradient_moments(&self) -> GradientMoments {
-        let n = self.n;
-        let mut moments = GradientMoments::default();
-        for j in 0..n {
-            let kz = f64::from(crate::grid::wave_index(j, n)) * f64::from(self.dk);
-            for i in 0..n {
-                let h = self.h0[j * n + i];
-                let weight = 2.0 * f64::from(h.norm_sqr());
-                if weight == 0.0 {
-                    continue;
-                }
-                let kx = f64::from(crate::grid::wave_index(i, n)) * f64::from(self.dk);
-                let k = kx.hypot(kz);
-                if k == 0.0 {
-                    continue;
-                }
-                let m = [-kx * kx / k, -kz * kz / k, -kx * kz / k];
-                let omega = self.evolution_entry(i, j).0.freq * TAU;
-                let omega2 = omega * omega;
-                for a in 0..3 {
-                    for b in 0..3 {
-                        let v = weight * m[a] * m[b];
-                        moments.value[a][b] += v;
-                        moments.rate[a][b] += v * omega2;
-                    }
-                }
-            }
-        }
-        moments
-    }
-}
-
-#[cfg(test)]
-// Matrix arithmetic reads best with its indices.
-#[allow(clippy::needless_range_loop)]
-mod tests {
-    use super::*;
-    use crate::{CascadeConfig, Spectrum};
-
-    /// The allocation-free rows read the same numbers as the public, copying `field`: if the
-    /// packing of the transforms ever changes, this fails rather than the foam silently
-    /// reading the wrong field.
-    #[test]
-    fn gradient_rows_match_the_fields() {
-        let spectrum = Spectrum::jonswap(12.0, 50_000.0).unwrap();
-        let config = CascadeConfig {
-            size: 16,
-            length: 120.0,
-            ..CascadeConfig::default()
-        };
-        let mut cascade = Cascade::new(&spectrum, config).unwrap();
-        cascade.keep_gradient().unwrap();
-        cascade.update(3.7).unwrap();
-        let xx = cascade.field(Field::DisplacementXX);
-        let zz = cascade.field(Field::DisplacementZZ);
-        let xz = cascade.field(Field::DisplacementXZ);
-        let mut nonzero = 0;
-        for j in 0..16 {
-            let row = cascade.gradient_row(j);
-            for i in 0..16 {
-                let k = j * 16 + i;
-                assert_eq!(row.get(i), [xx[k], zz[k], xz[k]], "({i}, {j})");
-                nonzero += usize::from(xx[k] != 0.0);
-            }
-        }
-        assert!(nonzero > 200);
-    }
-
-    /// The moments against the fields themselves: the spatial mean of g_a·g_b over the grid,
-    /// averaged over many times, approaches the time-averaged Parseval sum (the cross term
-    /// h0(k)·h0(−k) oscillates at 2ω and averages out).
-    #[test]
-    fn gradient_moments_match_the_fields_mean_squares() {
-        let spectrum = Spectrum::jonswap(12.0, 50_000.0).unwrap();
-        let config = CascadeConfig {
-            size: 16,
-            length: 60.0,
-            ..CascadeConfig::default()
-        };
-        let mut cascade = Cascade::new(&spectrum, config).unwrap();
-        cascade.keep_gradient().unwrap();
-        let moments = cascade.gradient_moments();
-        let mut sums = [[0.0f64; 3]; 3];
-        let times = 4000;
-        for step in 0..times {
-            // Irregular times over 400 s: far longer than every period on this grid.
-            cascade
-                .update(f64::from(step) * 0.1 + 0.013 * f64::from(step % 7))
-                .unwrap();
-            for j in 0..16 {
-                let row = cascade.gradient_row(j);
-                for i in 0..16 {
-                    let g = row.get(i).map(f64::from);
-                    for a in 0..3 {
-                        for b in 0..3 {
-                            sums[a][b] += g[a] * g[b];
-                        }
-                    }
-                }
-            }
-        }
-        let scale = moments.value[0][0] + moments.value[1][1];
-        for a in 0..3 {
-            for b in 0..3 {
-                let measured = sums[a][b] / f64::from(times * 256);
-                // The time average over 4000 irregular samples leaves a few per cent of the
-                // scale from the slowest waves (periods of 6 s here: about 70 cycles).
-                assert!(
-                    (measured - moments.value[a][b]).abs() < 0.05 * scale,
-                    "({a}, {b}): measured {measured}, moments {}",
-                    moments.value[a][b]
-                );
-            }
-        }
     }
 }

@@ -26,7 +26,6 @@ use crate::spectrum::{SlopeVariance, Spectrum};
 pub(crate) use config::check_band;
 pub use config::CascadeConfig;
 pub use field::Field;
-pub(crate) use inspect::GradientMoments;
 
 use evolve::{
     column_blocks, evolve_row_pair, fract_turns, packed_pair, zero_blocks, EvolveBuffers,
@@ -101,10 +100,6 @@ pub struct Cascade {
     slope: Vec<[f32; 2]>,
     normal: Vec<[f32; 3]>,
     jacobian: Vec<f32>,
-    /// The displacement gradient `[D_xx, D_zz, D_xz]` at unit choppiness of every grid point,
-    /// kept only where [`Cascade::keep_gradient`] asked for it (cascade 0 of an ocean, whose
-    /// foam reads it); empty otherwise.
-    gradient: Vec<[f32; 3]>,
 }
 
 impl std::fmt::Debug for Cascade {
@@ -398,7 +393,6 @@ impl Cascade {
             slope: error::try_vec(points, [0.0; 2])?,
             normal: error::try_vec(points, [0.0, 1.0, 0.0])?,
             jacobian: error::try_vec(points, 1.0)?,
-            gradient: Vec::new(),
         };
         cascade.update(0.0)?;
         Ok(cascade)
@@ -413,12 +407,14 @@ impl Cascade {
     /// were.
     pub fn update(&mut self, t: f64) -> Result<(), Error> {
         check_time("t", t)?;
-        self.update_checked(t);
+        self.update_checked(t, &mut []);
         Ok(())
     }
 
-    /// [`Cascade::update`] for a time already checked with [`check_time`].
-    pub(crate) fn update_checked(&mut self, t: f64) {
+    /// [`Cascade::update`] for a time already checked with [`check_time`]; a `gradient` of N²
+    /// points also receives the displacement gradient `[D_xx, D_zz, D_xz]` at unit choppiness
+    /// of every grid point (what the foam reads), an empty one nothing.
+    pub(crate) fn update_checked(&mut self, t: f64, gradient: &mut [[f32; 3]]) {
         self.time = t;
         // Looping: the phases are integer multiples of t/T, so t mod T gives the same fields
         // with smaller, more precise phases.
@@ -430,7 +426,7 @@ impl Cascade {
         // workers, whose own queues do not allocate (see `tests/alloc.rs`).
         rayon::scope(|_| {
             self.spectral_pass(phase_time);
-            self.spatial_pass();
+            self.spatial_pass(gradient);
         });
     }
 
@@ -545,8 +541,9 @@ impl Cascade {
 
     /// Pass 2: gathers blocks of z rows from the pass-1 buffer (a blocked transpose),
     /// transforms them along x and turns the four packed results into the output buffers.
-    /// Each task works through its share of blocks with one block buffer.
-    fn spatial_pass(&mut self) {
+    /// Each task works through its share of blocks with one block buffer. A non-empty
+    /// `gradient` (N² points) receives the displacement gradient too.
+    fn spatial_pass(&mut self, gradient_out: &mut [[f32; 3]]) {
         let n = self.n;
         let row_len = TRANSFORMS * n;
         let stride = row_stride(n);
@@ -563,10 +560,10 @@ impl Cascade {
             .pass2_blocks_per_task(rayon::current_num_threads())
             * ROWS_PER_TASK;
         let out = rows_per_task * n;
-        // Each task's share of the kept gradient, or an empty slice for every task where it is
-        // not kept (on the stack: the update allocates nothing).
+        // Each task's share of the gradient, or an empty slice for every task where none is
+        // asked for (on the stack: the update allocates nothing).
         let mut gradient: [&mut [[f32; 3]]; MAX_TASKS] = Default::default();
-        for (slot, chunk) in gradient.iter_mut().zip(self.gradient.chunks_mut(out)) {
+        for (slot, chunk) in gradient.iter_mut().zip(gradient_out.chunks_mut(out)) {
             *slot = chunk;
         }
         (
@@ -624,17 +621,11 @@ impl Cascade {
             );
     }
 
-    /// Keeps the displacement gradient at unit choppiness of every grid point from now on
-    /// (12 bytes a point; see [`Cascade::gradient_row`]), computed at once for the current
-    /// time and by every update after.
-    pub(crate) fn keep_gradient(&mut self) -> Result<(), Error> {
-        if self.gradient.is_empty() {
-            self.gradient = error::try_vec(self.n * self.n, [0.0; 3])?;
-            // The pass-1 buffer still holds the current time's transforms: pass 2 alone
-            // recomputes the outputs (the same bits) and fills the gradient.
-            rayon::scope(|_| self.spatial_pass());
-        }
-        Ok(())
+    /// Writes the displacement gradient of the current time into `gradient` (N² points) by
+    /// running pass 2 again: the pass-1 buffer still holds this time's transforms, so the
+    /// output buffers get the same bits again.
+    pub(crate) fn fill_gradient(&mut self, gradient: &mut [[f32; 3]]) {
+        rayon::scope(|_| self.spatial_pass(gradient));
     }
 
     /// Runs the element loops at `simd` from now on (the tests force every level).

@@ -295,7 +295,7 @@ impl OceanConfig {
     /// cascade). Any config gives an answer, even one [`validate`](Self::validate) refuses.
     pub fn memory_bytes(&self) -> usize {
         let cascade = crate::cascade::memory_bytes(self.size, self.determinism);
-        let foam = super::foam::memory_bytes(self.size, self.lengths.len(), self.determinism);
+        let foam = super::foam::memory_bytes(self.size, self.determinism);
         let spline = match self.query.interpolation {
             Interpolation::CubicBSpline => super::spline::Spline::memory_bytes(self.size),
             Interpolation::Bilinear => 0,

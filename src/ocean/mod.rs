@@ -6,12 +6,9 @@ mod foam;
 mod query;
 mod snapshot;
 mod spline;
+mod time;
 
-use rayon::prelude::*;
-
-use std::ops::Bound::Included;
-
-use crate::cascade::{check_time, Cascade, LoopError};
+use crate::cascade::{Cascade, LoopError};
 use crate::error::{self, Error};
 use crate::spectrum::{SlopeVariance, Spectrum};
 use spline::{QuerySplines, Spline};
@@ -71,9 +68,7 @@ impl OceanState {
             .map(|(index, &band)| Cascade::new(&spectrum, config.cascade_config(index, band)))
             .collect::<Result<Vec<_>, _>>()?;
         let mut cascades = cascades;
-        // The foam reads cascade 0's displacement gradient after every update.
-        cascades[0].keep_gradient()?;
-        let foam = foam::Foam::new(&cascades, &config.foam, &spectrum)?;
+        let foam = foam::Foam::new(&mut cascades, &config.foam, &spectrum)?;
         let cubic = config.query.interpolation == Interpolation::CubicBSpline;
         let splines = QuerySplines::new(
             cascades
@@ -93,98 +88,10 @@ impl OceanState {
         })
     }
 
-    /// Advances the time by `dt` seconds (0 ≤ dt ≤ [`MAX_STEP`](Self::MAX_STEP)), updates
-    /// every cascade and the foam. Allocates nothing inside a rayon pool.
-    ///
-    /// # Errors
-    /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `dt`, or for the new time
-    /// (`time + dt`) beyond [`Cascade::MAX_TIME`]. Nothing changes then.
-    pub fn step(&mut self, dt: f64) -> Result<(), Error> {
-        error::in_range_f64("dt", dt, Included(0.0), Included(Self::MAX_STEP))?;
-        let t = check_time("time + dt", self.time + dt)?;
-        self.advance(t, dt);
-        Ok(())
-    }
-
-    /// Advances to the absolute time `t` in seconds, from [`time`](Self::time) up to
-    /// `time + MAX_STEP`: the cascades are evaluated at `t` itself and the foam is integrated
-    /// over `t − time`, as [`step`](Self::step) does. For a game that follows a time it is
-    /// given (a server clock, a replay's timeline) rather than accumulating steps, so that
-    /// the waves match the given time exactly whatever the frame rate. Allocates nothing
-    /// inside a rayon pool.
-    ///
-    /// ```
-    /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
-    /// let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
-    /// let mut ocean = OceanState::new(spectrum, OceanConfig { size: 16, ..Default::default() })?;
-    /// for server_time in [0.016, 0.035, 0.049] {
-    ///     ocean.step_to(server_time)?;          // s, foam carried along
-    /// }
-    /// assert_eq!(ocean.time(), 0.049);
-    /// // A time behind the ocean's is refused: jump there with `set_time` (or restore a
-    /// // snapshot) instead.
-    /// assert!(ocean.step_to(0.02).is_err());
-    /// # Ok::<(), ocean_fft::Error>(())
-    /// ```
-    ///
-    /// # Errors
-    /// [`Error::NonFinite`] or [`Error::OutOfRange`] (naming `t`) unless
-    /// `time` ≤ `t` ≤ `time + MAX_STEP` and |t| ≤ [`Cascade::MAX_TIME`]. Nothing changes
-    /// then.
-    pub fn step_to(&mut self, t: f64) -> Result<(), Error> {
-        let t = check_time("t", t)?;
-        let max = (self.time + Self::MAX_STEP).min(Cascade::MAX_TIME);
-        error::in_range_f64("t", t, Included(self.time), Included(max))?;
-        self.advance(t, t - self.time);
-        Ok(())
-    }
-
-    /// Updates every cascade to the checked time `t` and integrates the foam over `dt`.
-    fn advance(&mut self, t: f64, dt: f64) {
-        // One job handed to rayon per step (see `Cascade::update`).
-        rayon::scope(|_| {
-            self.update_cascades(t);
-            self.time = t;
-            self.foam.advance(&self.cascades, dt);
-        });
-    }
-
-    /// Jumps to time `t` in seconds (|t| ≤ [`Cascade::MAX_TIME`]), forward or back, and
-    /// updates every cascade. The foam is kept as it is: a jump has no history, so foam
-    /// neither builds nor decays across it (call [`clear_foam`](Self::clear_foam) for a
-    /// clean sea). To follow a clock forward with the foam evolving, use
-    /// [`step_to`](Self::step_to); to go back to an earlier state exactly, use
-    /// [`restore`](Self::restore).
-    ///
-    /// # Errors
-    /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `t`. Nothing changes then.
-    pub fn set_time(&mut self, t: f64) -> Result<(), Error> {
-        let t = check_time("t", t)?;
-        rayon::scope(|_| {
-            self.update_cascades(t);
-            self.foam.refresh(&self.cascades);
-        });
-        self.time = t;
-        Ok(())
-    }
-
     /// Removes all foam (coverage 0 everywhere; the breaking intensity, a function of the
     /// time, stays).
     pub fn clear_foam(&mut self) {
         self.foam.clear();
-    }
-
-    /// Updates every cascade to a time already checked (so none can fail); the spline
-    /// coefficients of the queries become stale, to be recomputed by the next query.
-    fn update_cascades(&mut self, t: f64) {
-        self.applied_choppiness = self.config.choppiness;
-        self.splines.invalidate();
-        let update = |cascade: &mut Cascade| cascade.update_checked(t);
-        if self.config.parallel_cascades {
-            self.cascades.par_iter_mut().for_each(update);
-        } else {
-            self.cascades.iter_mut().for_each(update);
-        }
     }
 
     /// Simulated time in seconds.

@@ -1,10 +1,9 @@
 //! Snapshots of an ocean's history-dependent state, for rollback, replays and save games.
 
-use std::ops::Bound::Included;
-
 use crate::cascade::check_time;
-use crate::error::{self, Error};
+use crate::error::Error;
 
+use super::time::{FoamMotion, Scope};
 use super::OceanState;
 
 /// Everything about an [`OceanState`] that cannot be recomputed from its spectrum and config:
@@ -80,9 +79,9 @@ impl OceanState {
         snapshot.choppiness = self.config.choppiness;
         snapshot.applied_choppiness = self.applied_choppiness;
         snapshot.active.clear();
-        snapshot.active.extend_from_slice(&self.foam.active);
+        snapshot.active.extend_from_slice(self.foam.active());
         snapshot.residual.clear();
-        snapshot.residual.extend_from_slice(&self.foam.residual);
+        snapshot.residual.extend_from_slice(self.foam.residual());
     }
 
     /// Brings the ocean back to the state `snapshot` holds: its time, choppiness and foam, and
@@ -97,31 +96,19 @@ impl OceanState {
     /// [`Cascade::MAX_TIME`](crate::Cascade::MAX_TIME) or a foam value outside [0, 1], and the
     /// errors of [`set_choppiness`](Self::set_choppiness). Nothing changes then.
     pub fn restore(&mut self, snapshot: &OceanSnapshot) -> Result<(), Error> {
-        let points = self.foam.points();
-        error::length("snapshot.active", snapshot.active.len(), points)?;
-        error::length("snapshot.residual", snapshot.residual.len(), points)?;
-        let t = check_time("snapshot.time", snapshot.time)?;
-        for (name, values) in [
+        self.foam.check_state(
             ("snapshot.active", &snapshot.active),
             ("snapshot.residual", &snapshot.residual),
-        ] {
-            for &value in values {
-                error::in_range(name, value, Included(0.0), Included(1.0))?;
-            }
-        }
+        )?;
+        let t = check_time("snapshot.time", snapshot.time)?;
         self.check_choppiness(snapshot.applied_choppiness)?;
         self.check_choppiness(snapshot.choppiness)?;
-        self.foam.active.copy_from_slice(&snapshot.active);
-        self.foam.residual.copy_from_slice(&snapshot.residual);
+        self.foam.set_state(&snapshot.active, &snapshot.residual);
         // The buffers as they were (with the choppiness they were computed with), then the
         // choppiness set since, for the next update.
         self.set_choppiness_checked(snapshot.applied_choppiness);
-        rayon::scope(|_| {
-            self.update_cascades(t);
-            self.foam.refresh(&self.cascades);
-        });
+        self.advance(t, FoamMotion::Jump, Scope::All);
         self.set_choppiness_checked(snapshot.choppiness);
-        self.time = t;
         Ok(())
     }
 }

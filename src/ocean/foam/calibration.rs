@@ -15,7 +15,7 @@
 //! J_b at a fixed point of the surface) are one-dimensional Gaussian integrals in closed form,
 //! integrated over the remaining two dimensions by the trapezoidal rule.
 
-use crate::cascade::GradientMoments;
+use super::moments::GradientMoments;
 use crate::determinism::Determinism;
 
 /// The whitecap fraction of Monahan & O'Muircheartaigh (1980), W = 3.84·10⁻⁶ U10^3.41, for a
