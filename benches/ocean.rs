@@ -31,9 +31,9 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput};
+use ocean_fft::inspect::{Complex32, Fft2d};
 use ocean_fft::{
-    Complex32, Determinism, Fft2d, FoamConfig, Interpolation, OceanConfig, OceanState, Spectrum,
-    SurfaceSample,
+    Determinism, FoamConfig, Interpolation, OceanConfig, OceanState, Spectrum, SurfaceSample,
 };
 
 const SIZES: [usize; 5] = [64, 128, 256, 512, 1024];

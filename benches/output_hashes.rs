@@ -15,7 +15,9 @@
 
 use std::hash::{DefaultHasher, Hasher};
 
-use ocean_fft::{Cascade, CascadeConfig, Field, OceanConfig, OceanState, Spectrum, Spreading};
+use ocean_fft::inspect;
+use ocean_fft::inspect::Field;
+use ocean_fft::{Cascade, CascadeConfig, OceanConfig, OceanState, Spectrum, Spreading};
 
 /// FNV-like fold of the bit patterns through `DefaultHasher` (SipHash with fixed keys, so
 /// the same bits give the same hash on every run).
@@ -55,11 +57,11 @@ fn cascade_lines(cascade: &Cascade) -> Vec<(String, u64)> {
     for field in Field::ALL {
         lines.push((
             format!("field {field:?}"),
-            hash_bits(cascade.field(field).iter().map(|v| v.to_bits())),
+            hash_bits(inspect::field(cascade, field).iter().map(|v| v.to_bits())),
         ));
     }
     for transform in 0..4 {
-        let packed = cascade.packed_transform(transform).expect("transform < 4");
+        let packed = inspect::packed_transform(cascade, transform).expect("transform < 4");
         lines.push((
             format!("packed {transform}"),
             hash_bits(packed.iter().flat_map(|c| [c.re.to_bits(), c.im.to_bits()])),

@@ -21,8 +21,9 @@ use std::alloc::System;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
+use ocean_fft::gpu::{NormalMapGreen, TexelLayout, Vertex};
 use ocean_fft::half::f16;
-use ocean_fft::{Error, NormalMapGreen, OceanConfig, OceanState, Spectrum, TexelLayout, Vertex};
+use ocean_fft::{Error, OceanConfig, OceanState, Spectrum};
 use stats_alloc::{StatsAlloc, INSTRUMENTED_SYSTEM};
 
 #[global_allocator]

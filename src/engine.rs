@@ -27,7 +27,7 @@
 /// engine expects by default.
 ///
 /// ```
-/// use ocean_fft::Engine;
+/// use ocean_fft::gpu::Engine;
 /// // A point 2 m above the water at (x, z) = (10, 3) m, in Unreal's centimetres, z up:
 /// assert_eq!(Engine::Unreal.position([10.0, 2.0, 3.0]), [1000.0, 300.0, 200.0]);
 /// // The up direction is each engine's up.

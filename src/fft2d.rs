@@ -119,7 +119,7 @@ pub(crate) fn transpose_into(
 /// cascade, which lays its spectra out so that no transpose back is needed.
 ///
 /// ```
-/// use ocean_fft::{Complex32, Fft2d};
+/// use ocean_fft::inspect::{Complex32, Fft2d};
 /// let mut fft = Fft2d::new(8, 1)?;
 /// let mut data = vec![Complex32::new(0.0, 0.0); 64];
 /// data[0] = Complex32::new(1.0, 0.0);

@@ -1,6 +1,8 @@
-//! GPU upload: a cascade's buffers interleaved into the RGBA texels engines upload (f32, and
-//! f16 with the `half` feature), a vertex array for a cascade mesh with its triangle indices,
-//! and tangent-space normal maps with a choice of green channel.
+//! What a renderer needs: the layouts of the RGBA texels that [`Cascade::pack_texels`] and
+//! [`OceanState::pack_texels`] interleave a cascade's buffers into (f32, and f16 with the
+//! `half` feature), the [`Vertex`] of a cascade mesh with its triangle indices, the green
+//! channel of tangent-space normal maps ([`NormalMapGreen`]), and each engine's axes and
+//! units ([`Engine`]).
 //!
 //! Everything here writes into caller-owned buffers of N² elements in the grids' order
 //! (texel, vertex or pixel (i, j) at index `j * N + i`, z the row), row blocks in parallel on
@@ -8,6 +10,8 @@
 //! nothing is allocated inside a pool.
 
 use rayon::prelude::*;
+
+pub use crate::engine::Engine;
 
 use crate::cascade::Cascade;
 use crate::error::{self, Error};
@@ -51,7 +55,7 @@ pub enum TexelLayout {
     /// the surface folds), and in alpha the **sub-grid mean-square slope** σ² (dimensionless,
     /// linear, not squared again or remapped): the slope variance, along plus across the
     /// wind, that the spectrum holds between the top of this cascade's band and
-    /// [`SlopeVariance::DEFAULT_CUTOFF`](crate::SlopeVariance::DEFAULT_CUTOFF)
+    /// [`SlopeVariance::DEFAULT_CUTOFF`](crate::inspect::SlopeVariance::DEFAULT_CUTOFF)
     /// ([`Cascade::subgrid_slope_variance`]). It is the same in every texel of a cascade.
     /// A renderer that draws cascades 0..=c takes cascade c's σ² as the roughness of its
     /// specular lobe: a Beckmann or GGX slope variance, i.e. α² = σ² for Beckmann and

@@ -18,7 +18,7 @@ pub(crate) fn check_size(name: &'static str, size: usize) -> Result<usize, Error
     Ok(size)
 }
 
-/// The default memory limit of a cascade, an ocean or an [`Fft2d`](crate::Fft2d): 4 GiB
+/// The default memory limit of a cascade, an ocean or an [`Fft2d`](crate::inspect::Fft2d): 4 GiB
 /// (or the whole address space on targets with narrower pointers).
 pub(crate) const DEFAULT_MEMORY_LIMIT: usize = (u32::MAX as usize).saturating_add(1);
 

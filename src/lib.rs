@@ -37,12 +37,15 @@
 //!   drawn into streaks and a breaking intensity: [`OceanState::foam`],
 //!   [`OceanState::breaking`], [`FoamConfig`]), and the world queries [`OceanState::sample`]
 //!   and [`OceanState::height_at`].
-//! - GPU upload into buffers you own: [`Cascade::pack_texels`] and
+//! - GPU upload into buffers you own ([`gpu`]): [`Cascade::pack_texels`] and
 //!   [`OceanState::pack_texels`] interleave the buffers into RGBA32F texels of a
-//!   [`TexelLayout`] (RGBA16F with the `half` feature), [`Cascade::write_vertices`] writes a
-//!   [`Vertex`] array with [`Cascade::triangle_indices`], and [`Cascade::write_normal_map`]
-//!   an RGBA8 tangent-space normal map with OpenGL- or DirectX-style green
-//!   ([`NormalMapGreen`]).
+//!   [`gpu::TexelLayout`] (RGBA16F with the `half` feature), [`Cascade::write_vertices`]
+//!   writes a [`gpu::Vertex`] array with [`Cascade::triangle_indices`], and
+//!   [`Cascade::write_normal_map`] an RGBA8 tangent-space normal map with OpenGL- or
+//!   DirectX-style green ([`gpu::NormalMapGreen`]); [`gpu::Engine`] maps the crate's axes
+//!   and units to those of common engines.
+//! - Verification and tooling ([`inspect`]): the crate's FFT on its own, a cascade's evolved
+//!   spectrum, frequencies and single fields, and the diagnostics some methods return.
 //!
 //! # Conventions
 //!
@@ -78,7 +81,7 @@
 //!
 //! Each [`Cascade::update`] runs four packed complex 2D inverse FFTs plus the evolution and
 //! output passes around them; `cargo bench -p ocean-fft-benches --bench cascade` (run in the
-//! repository) measures it beside the four bare transforms of [`Fft2d`] in the same process,
+//! repository) measures it beside the four bare transforms of [`inspect::Fft2d`] in the same process,
 //! and `cargo bench -p ocean-fft-benches --bench ocean` a step of the default ocean beside its
 //! twelve bare transforms. The guide's performance section lists a measured table with the CPU
 //! it ran on (on a 2-vCPU AMD EPYC Zen 4: an update costs 1.0–1.2× its bare transforms at 512²
@@ -123,7 +126,7 @@
 //! ```
 //!
 //! - **`bytemuck`**: `bytemuck::Pod` and `bytemuck::Zeroable` (derived) for
-//!   [`SurfaceSample`] and [`Vertex`] (and `half`'s f16 when `half` is on too), so that
+//!   [`SurfaceSample`] and [`gpu::Vertex`] (and `half`'s f16 when `half` is on too), so that
 //!   `bytemuck::cast_slice` gives a vertex array's bytes to upload and views the results of
 //!   [`OceanState::surfaces_at`] as `&[f32]`, or as any `#[repr(C)]` struct of the same nine
 //!   `f32`, without copying. The cascade buffers need no feature: they are `&[f32]`,
@@ -169,8 +172,9 @@ mod exp;
 mod fft2d;
 #[cfg(test)]
 mod golden;
-mod gpu;
+pub mod gpu;
 mod grid;
+pub mod inspect;
 mod ocean;
 mod presets;
 mod rng;
@@ -179,24 +183,20 @@ mod serde_impls;
 mod simd;
 mod spectrum;
 
-pub use cascade::{Cascade, CascadeConfig, Field, LoopError};
+pub use cascade::{Cascade, CascadeConfig};
 pub use determinism::Determinism;
-pub use dispersion::{Dispersion, GRAVITY, SURFACE_TENSION, WATER_DENSITY};
-pub use engine::Engine;
+pub use dispersion::{Dispersion, GRAVITY};
 pub use error::Error;
-pub use fft2d::Fft2d;
-pub use gpu::{NormalMapGreen, TexelLayout, Vertex};
 /// The `half` crate (with the `half` feature), whose `f16` the `pack_texels_f16` functions
 /// write: `ocean_fft::half::f16` is the version this crate was built with.
 #[cfg(feature = "half")]
 pub use half;
-pub use num_complex::Complex32;
 pub use ocean::{
-    FoamCalibration, FoamConfig, FoamCoverage, Interpolation, Location, OceanConfig, OceanSnapshot,
-    OceanState, QueryConfig, SurfaceSample,
+    FoamConfig, FoamCoverage, Interpolation, Location, OceanConfig, OceanSnapshot, OceanState,
+    QueryConfig, SurfaceSample,
 };
 pub use presets::SeaState;
-pub use spectrum::{DepthFactor, SlopeVariance, Spectrum, Spreading};
+pub use spectrum::{DepthFactor, Spectrum, Spreading};
 
 // docs/guide.md's Rust blocks are doc-tests when every optional feature is on (its serde block
 // needs `serde`), as CI runs them: `cargo test --release --doc --all-features`. A `rust,ignore`

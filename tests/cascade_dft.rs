@@ -10,6 +10,7 @@ mod common;
 use std::f64::consts::TAU;
 
 use common::*;
+use ocean_fft::inspect;
 use ocean_fft::{Cascade, CascadeConfig, Error, Spectrum, GRAVITY};
 
 /// Powers of two, 24 (not a power of two), and 6, 10, 18, 34 (N/2 odd; 34 also not a
@@ -59,7 +60,7 @@ fn tolerance(n: usize) -> f64 {
 /// of the eight fields (real parts; the imaginary residue is checked to be ~0).
 fn reference_fields(cascade: &Cascade, t: f64) -> Vec<Vec<f64>> {
     let n = cascade.size();
-    let h = cascade.wave_spectrum(t).unwrap();
+    let h = inspect::wave_spectrum(cascade, t).unwrap();
     FIELDS
         .iter()
         .map(|&field| {
@@ -88,7 +89,7 @@ fn fields_equal_naive_dft_of_wave_spectrum_times_multiplier() {
                 cascade.update(t).unwrap();
                 let reference = reference_fields(&cascade, t);
                 for (f, &field) in FIELDS.iter().enumerate() {
-                    let got = cascade.field(field);
+                    let got = inspect::field(&cascade, field);
                     assert_eq!(got.len(), n * n);
                     let scale = max_abs(&reference[f]);
                     assert!(
@@ -120,7 +121,7 @@ fn packed_transforms_equal_naive_dft_of_a_plus_i_b() {
             let mut cascade = cascade(&spectrum, n);
             for t in [0.0, 17.9] {
                 cascade.update(t).unwrap();
-                let h = cascade.wave_spectrum(t).unwrap();
+                let h = inspect::wave_spectrum(&cascade, t).unwrap();
                 for p in 0..4 {
                     // The two fields of transform p per `Field::packing`: 2p real, 2p + 1
                     // imaginary; check the packing claim itself too.
@@ -136,7 +137,7 @@ fn packed_transforms_equal_naive_dft_of_a_plus_i_b() {
                         .map(|(a, b)| (a.0 - b.1, a.1 + b.0))
                         .collect();
                     let reference = naive_idft(&packed, n);
-                    let got = cascade.packed_transform(p).unwrap();
+                    let got = inspect::packed_transform(&cascade, p).unwrap();
                     assert_eq!(got.len(), n * n);
                     let scale = reference.iter().fold(0.0f64, |s, v| s.max(cabs(*v)));
                     let err = got.iter().zip(&reference).fold(0.0f64, |s, (g, r)| {
@@ -149,8 +150,8 @@ fn packed_transforms_equal_naive_dft_of_a_plus_i_b() {
                         "{name} N={n} t={t} transform {p}: error {err:e} of max {scale:e}"
                     );
                     // Real part is field 2p, imaginary part field 2p + 1, as `field` says.
-                    let fa = cascade.field(a_field);
-                    let fb = cascade.field(b_field);
+                    let fa = inspect::field(&cascade, a_field);
+                    let fb = inspect::field(&cascade, b_field);
                     for idx in 0..n * n {
                         assert_eq!(got[idx].re.to_bits(), fa[idx].to_bits());
                         assert_eq!(got[idx].im.to_bits(), fb[idx].to_bits());
@@ -158,7 +159,7 @@ fn packed_transforms_equal_naive_dft_of_a_plus_i_b() {
                 }
             }
             assert_eq!(
-                cascade.packed_transform(4).unwrap_err(),
+                inspect::packed_transform(&cascade, 4).unwrap_err(),
                 Error::IndexOutOfRange {
                     name: "transform",
                     index: 4,
@@ -314,15 +315,15 @@ fn wave_spectrum_is_hermitian_and_follows_the_evolution_formula() {
             let cascade = cascade(&spectrum, n);
             let h0 = cascade.h0();
             for t in TIMES {
-                let h = cascade.wave_spectrum(t).unwrap();
+                let h = inspect::wave_spectrum(&cascade, t).unwrap();
                 let scale = h.iter().fold(0.0f64, |a, c| a.max(cabs(to64(*c))));
                 for j in 0..n {
                     for i in 0..n {
                         let idx = j * n + i;
                         let neg = neg_index(i, j, n);
                         if i == n / 2 || j == n / 2 || (i == 0 && j == 0) {
-                            assert_eq!(h[idx], ocean_fft::Complex32::new(0.0, 0.0));
-                            assert_eq!(h0[idx], ocean_fft::Complex32::new(0.0, 0.0));
+                            assert_eq!(h[idx], ocean_fft::inspect::Complex32::new(0.0, 0.0));
+                            assert_eq!(h0[idx], ocean_fft::inspect::Complex32::new(0.0, 0.0));
                             continue;
                         }
                         // Hermitian: h̃(−k) = conj h̃(k), to f32 rounding of the value.
@@ -332,7 +333,7 @@ fn wave_spectrum_is_hermitian_and_follows_the_evolution_formula() {
                             "{name} N={n} t={t} ({i},{j}): not Hermitian {a:?} vs {b:?}"
                         );
                         // h̃ = h0(k) e^{−iωt} + conj(h0(−k)) e^{iωt}, in f64 here.
-                        let omega = cascade.omega_at(i, j).unwrap();
+                        let omega = inspect::omega_at(&cascade, i, j).unwrap();
                         let phase = (omega * t).rem_euclid(TAU);
                         let (s, c) = phase.sin_cos();
                         let p = to64(h0[idx]);
@@ -373,7 +374,7 @@ fn omega_is_deep_water_dispersion() {
                         continue;
                     }
                     let k = dk * (m(i, n) as f64).hypot(m(j, n) as f64);
-                    let omega = cascade.omega_at(i, j).unwrap();
+                    let omega = inspect::omega_at(&cascade, i, j).unwrap();
                     assert!(
                         (omega - (g * k).sqrt()).abs() <= 1e-12 * omega,
                         "{name} N={n} ({i},{j}): ω {omega} vs √(gk) {}",
@@ -441,7 +442,7 @@ fn looping_cascade_fields_equal_naive_dft_of_its_wave_spectrum() {
             cascade.update(t).unwrap();
             let reference = reference_fields(&cascade, t);
             for (f, &field) in FIELDS.iter().enumerate() {
-                let got = cascade.field(field);
+                let got = inspect::field(&cascade, field);
                 let scale = max_abs(&reference[f]);
                 let err = got
                     .iter()
@@ -464,7 +465,8 @@ fn omega_follows_finite_depth_and_capillary_dispersion() {
     let g = f64::from(GRAVITY);
     // σ/ρ from the crate's f32 constants (0.074 as f32 is 0.0740000009…): the literal would
     // differ by 1.3e-8 relative.
-    let tension = f64::from(ocean_fft::SURFACE_TENSION) / f64::from(ocean_fft::WATER_DENSITY);
+    let tension = f64::from(ocean_fft::inspect::SURFACE_TENSION)
+        / f64::from(ocean_fft::inspect::WATER_DENSITY);
     assert!((tension - 0.074 / 1000.0).abs() < 2e-8 * tension);
     type Omega = Box<dyn Fn(f64) -> f64>;
     let cases: [(Spectrum, f32, Omega); 2] = [
@@ -500,7 +502,7 @@ fn omega_follows_finite_depth_and_capillary_dispersion() {
                 }
                 let k = dk * (m(i, n) as f64).hypot(m(j, n) as f64);
                 let expected = omega_of(k);
-                let omega = cascade.omega_at(i, j).unwrap();
+                let omega = inspect::omega_at(&cascade, i, j).unwrap();
                 // Both in f64 from the same constants: only rounding differs.
                 assert!(
                     (omega - expected).abs() <= 1e-10 * expected,
@@ -539,8 +541,13 @@ fn fields_at_larger_sizes_equal_a_separable_f64_dft() {
     // separably (common::separable_idft), itself checked against the naive form at N = 24.
     {
         let cascade = cascade(&jonswap(0.4), 24);
-        let h = cascade.wave_spectrum(3.0).unwrap();
-        let c = field_spectrum(&h, 24, f64::from(LENGTH), ocean_fft::Field::DisplacementXZ);
+        let h = inspect::wave_spectrum(&cascade, 3.0).unwrap();
+        let c = field_spectrum(
+            &h,
+            24,
+            f64::from(LENGTH),
+            ocean_fft::inspect::Field::DisplacementXZ,
+        );
         let (a, b) = (naive_idft(&c, 24), separable_idft(&c, 24));
         let scale = a.iter().fold(0.0f64, |s, v| s.max(cabs(*v)));
         for (x, y) in a.iter().zip(&b) {
@@ -573,12 +580,12 @@ fn fields_at_larger_sizes_equal_a_separable_f64_dft() {
             .unwrap();
             for &t in times {
                 cascade.update(t).unwrap();
-                let h = cascade.wave_spectrum(t).unwrap();
+                let h = inspect::wave_spectrum(&cascade, t).unwrap();
                 let mut worst = 0.0f64;
                 for field in FIELDS {
                     let c = field_spectrum(&h, n, f64::from(length), field);
                     let reference: Vec<f64> = separable_idft(&c, n).iter().map(|v| v.0).collect();
-                    let got = cascade.field(field);
+                    let got = inspect::field(&cascade, field);
                     let scale = max_abs(&reference);
                     let err = got
                         .iter()

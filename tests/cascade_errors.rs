@@ -7,7 +7,9 @@ mod common;
 use std::ops::Bound;
 
 use common::*;
-use ocean_fft::{Cascade, CascadeConfig, Complex32, Error, Fft2d, Field, Spectrum};
+use ocean_fft::inspect;
+use ocean_fft::inspect::{Complex32, Fft2d, Field};
+use ocean_fft::{Cascade, CascadeConfig, Error, Spectrum};
 
 const MAX_SIZE: usize = CascadeConfig::MAX_SIZE;
 
@@ -56,7 +58,7 @@ fn assert_all_finite(cascade: &Cascade, context: &str) {
     );
     for field in FIELDS {
         assert!(
-            cascade.field(field).iter().all(|v| v.is_finite()),
+            inspect::field(cascade, field).iter().all(|v| v.is_finite()),
             "{context}: {field:?}"
         );
     }
@@ -79,7 +81,7 @@ fn snapshot(cascade: &Cascade) -> Vec<u32> {
     bits.extend(cascade.slope().iter().flat_map(v2));
     bits.extend(cascade.normal().iter().flat_map(v3));
     for field in FIELDS {
-        bits.extend(cascade.field(field).iter().map(|v| v.to_bits()));
+        bits.extend(inspect::field(cascade, field).iter().map(|v| v.to_bits()));
     }
     bits
 }
@@ -383,11 +385,11 @@ fn bad_times_are_refused_and_leave_buffers_unchanged() {
     // wave_spectrum checks its time as update does: a non-finite or too large time is an
     // error, not NaN.
     assert_eq!(
-        cascade.wave_spectrum(f64::NAN),
+        inspect::wave_spectrum(&cascade, f64::NAN),
         Err(Error::NonFinite { name: "t" })
     );
     assert!(matches!(
-        cascade.wave_spectrum(-2e9),
+        inspect::wave_spectrum(&cascade, -2e9),
         Err(Error::OutOfRange { name: "t", .. })
     ));
 }
@@ -482,7 +484,9 @@ fn degenerate_but_valid_configs_stay_finite() {
                 .unwrap_or_else(|error| panic!("{config:?}: {error}"));
             cascade.update(123.4).unwrap();
             assert_all_finite(&cascade, &format!("{config:?}"));
-            assert!(cascade.field(Field::Height).iter().all(|v| v.is_finite()));
+            assert!(inspect::field(&cascade, Field::Height)
+                .iter()
+                .all(|v| v.is_finite()));
         }
     }
 }
@@ -491,7 +495,7 @@ fn degenerate_but_valid_configs_stay_finite() {
 fn out_of_range_queries_do_not_panic() {
     let cascade = build(small()).unwrap();
     assert_eq!(
-        cascade.omega_at(16, 0),
+        inspect::omega_at(&cascade, 16, 0),
         Err(Error::IndexOutOfRange {
             name: "i",
             index: 16,
@@ -499,7 +503,7 @@ fn out_of_range_queries_do_not_panic() {
         })
     );
     assert_eq!(
-        cascade.omega_at(0, usize::MAX),
+        inspect::omega_at(&cascade, 0, usize::MAX),
         Err(Error::IndexOutOfRange {
             name: "j",
             index: usize::MAX,
@@ -507,7 +511,7 @@ fn out_of_range_queries_do_not_panic() {
         })
     );
     assert_eq!(
-        cascade.packed_transform(4),
+        inspect::packed_transform(&cascade, 4),
         Err(Error::IndexOutOfRange {
             name: "transform",
             index: 4,
@@ -515,7 +519,7 @@ fn out_of_range_queries_do_not_panic() {
         })
     );
     assert_eq!(
-        cascade.packed_transform(usize::MAX),
+        inspect::packed_transform(&cascade, usize::MAX),
         Err(Error::IndexOutOfRange {
             name: "transform",
             index: usize::MAX,
@@ -523,12 +527,15 @@ fn out_of_range_queries_do_not_panic() {
         })
     );
     assert_eq!(
-        cascade.wave_spectrum(f64::INFINITY),
+        inspect::wave_spectrum(&cascade, f64::INFINITY),
         Err(Error::NonFinite { name: "t" })
     );
     // The last valid indices still answer.
-    assert!(cascade.omega_at(15, 15).is_ok());
-    assert_eq!(cascade.packed_transform(3).unwrap().len(), 16 * 16);
+    assert!(inspect::omega_at(&cascade, 15, 15).is_ok());
+    assert_eq!(
+        inspect::packed_transform(&cascade, 3).unwrap().len(),
+        16 * 16
+    );
 }
 
 #[test]

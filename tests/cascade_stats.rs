@@ -6,7 +6,7 @@ mod common;
 use std::f64::consts::TAU;
 
 use common::*;
-use ocean_fft::{Cascade, CascadeConfig, Spectrum};
+use ocean_fft::{inspect, Cascade, CascadeConfig, Spectrum};
 
 fn config(n: usize, length: f32, seed: u64) -> CascadeConfig {
     CascadeConfig {
@@ -57,8 +57,7 @@ fn parseval_spatial_variance_equals_spectral_energy() {
                 .collect();
             let mu = mean(&eta);
             let spatial = eta.iter().map(|x| x * x).sum::<f64>() / (n * n) as f64;
-            let spectral: f64 = cascade
-                .wave_spectrum(t)
+            let spectral: f64 = inspect::wave_spectrum(&cascade, t)
                 .unwrap()
                 .iter()
                 .map(|c| f64::from(c.norm_sqr()))

@@ -1,7 +1,7 @@
 //! The engine mappings keep what the docs' table says: each engine's up, handedness and unit,
 //! exact inverses, and lengths and angles (the mappings are rotations or mirrors).
 
-use ocean_fft::Engine;
+use ocean_fft::gpu::Engine;
 
 const UP: [f32; 3] = [0.0, 1.0, 0.0];
 

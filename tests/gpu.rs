@@ -8,9 +8,9 @@ mod common;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
 use common::*;
+use ocean_fft::gpu::{NormalMapGreen, TexelLayout, Vertex};
 use ocean_fft::{
-    Cascade, CascadeConfig, Error, FoamConfig, NormalMapGreen, OceanConfig, OceanState, Spectrum,
-    Spreading, TexelLayout, Vertex,
+    Cascade, CascadeConfig, Error, FoamConfig, OceanConfig, OceanState, Spectrum, Spreading,
 };
 
 /// A 64² ocean of a rough sea stepped for 2 s, with foam on some grid points (five times the

@@ -9,7 +9,8 @@
 mod counting;
 
 use counting::count;
-use ocean_fft::{NormalMapGreen, OceanConfig, OceanState, Spectrum, TexelLayout, Vertex};
+use ocean_fft::gpu::{NormalMapGreen, TexelLayout, Vertex};
+use ocean_fft::{OceanConfig, OceanState, Spectrum};
 
 #[global_allocator]
 static GLOBAL: counting::Counting = counting::Counting;

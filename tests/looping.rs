@@ -4,6 +4,7 @@
 
 use std::f64::consts::TAU;
 
+use ocean_fft::inspect;
 use ocean_fft::{Dispersion, OceanConfig, OceanState, Spectrum};
 
 fn looping_ocean(period: f32, size: usize) -> OceanState {
@@ -31,7 +32,7 @@ fn a_four_second_loop_of_the_default_sea_freezes_nothing() {
                 if e == 0.0 {
                     continue;
                 }
-                let omega = cascade.omega_at(i, j).unwrap();
+                let omega = inspect::omega_at(cascade, i, j).unwrap();
                 energy += e;
                 if omega == 0.0 {
                     frozen += e;
@@ -94,7 +95,7 @@ fn longer_loops_cost_less_and_no_loop_costs_nothing() {
                 if cascade.h0()[j * n + i].norm_sqr() == 0.0 {
                     continue;
                 }
-                let omega = cascade.omega_at(i, j).unwrap();
+                let omega = inspect::omega_at(cascade, i, j).unwrap();
                 let m = |i: usize| {
                     if i < n / 2 {
                         i as f64

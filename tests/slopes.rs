@@ -4,9 +4,8 @@
 
 use std::f64::consts::{PI, TAU};
 
-use ocean_fft::{
-    DepthFactor, Error, OceanConfig, OceanState, SlopeVariance, Spectrum, Spreading, GRAVITY,
-};
+use ocean_fft::inspect::SlopeVariance;
+use ocean_fft::{DepthFactor, Error, OceanConfig, OceanState, Spectrum, Spreading, GRAVITY};
 
 /// Slope variance along and across the wind of `spectrum` over k_min ≤ |k| < k_max by a
 /// polar quadrature of `Spectrum::density` (f32 evaluation, as a user would): trapezoid
@@ -142,7 +141,7 @@ fn sub_grid_slope_variance_is_the_spectrum_above_the_band() {
         assert!(close(got, expected, 5e-3), "cascade {c}");
         let mut texels = vec![[0.0f32; 4]; 64 * 64];
         ocean
-            .pack_texels(c, ocean_fft::TexelLayout::Normal, &mut texels)
+            .pack_texels(c, ocean_fft::gpu::TexelLayout::Normal, &mut texels)
             .unwrap();
         assert!(texels.iter().all(|t| t[3] == got.total()));
     }

@@ -4,6 +4,7 @@
 mod common;
 
 use common::*;
+use ocean_fft::inspect;
 use ocean_fft::{Cascade, CascadeConfig, Spectrum};
 
 /// Bit patterns of everything a cascade exposes after an update, plus h0 and its expected
@@ -47,7 +48,12 @@ fn fingerprint(spectrum: &Spectrum, config: CascadeConfig, times: &[f64]) -> Vec
                 .collect(),
         );
         for field in FIELDS {
-            out.push(cascade.field(field).iter().map(|v| v.to_bits()).collect());
+            out.push(
+                inspect::field(&cascade, field)
+                    .iter()
+                    .map(|v| v.to_bits())
+                    .collect(),
+            );
         }
     }
     out

@@ -3,7 +3,8 @@
 
 use std::fmt::Write as _;
 
-use ocean_fft::{Engine, OceanState};
+use ocean_fft::gpu::Engine;
+use ocean_fft::OceanState;
 use serde_json::{json, Value};
 
 use crate::args::Format;

@@ -22,7 +22,8 @@
 //!   within ε of the loop's periodic steady state, and it meets the end of the loop within
 //!   q·ε(1 − q) — frame F (= frame 0) follows frame F − 1 as continuously as any two frames.
 
-use ocean_fft::{OceanSnapshot, OceanState, TexelLayout};
+use ocean_fft::gpu::TexelLayout;
+use ocean_fft::{OceanSnapshot, OceanState};
 
 use crate::error::CliError;
 use crate::setup::Sea;

@@ -4,7 +4,7 @@ use num_complex::Complex32;
 
 use crate::error;
 
-/// The eight real fields a cascade synthesises, for [`Cascade::field`](crate::Cascade::field). Each is the inverse
+/// The eight real fields a cascade synthesises, for [`inspect::field`](crate::inspect::field). Each is the inverse
 /// DFT of h̃(k, t) times the multiplier named (k = |k|); the displacement fields are per unit
 /// choppiness.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -42,7 +42,7 @@ impl Field {
 
     /// Which packed transform holds this field and whether it is the imaginary part:
     /// transform p holds fields 2p (real part) and 2p + 1 (imaginary part) of [`Field::ALL`].
-    /// For inspecting [`Cascade::packed_transform`](crate::Cascade::packed_transform).
+    /// For inspecting [`inspect::packed_transform`](crate::inspect::packed_transform).
     pub fn packing(self) -> (usize, bool) {
         let index = self as usize;
         (index / 2, index % 2 == 1)

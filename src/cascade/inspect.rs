@@ -1,5 +1,6 @@
-//! Read-only views of a cascade for verification and tools: the evolved spectrum, ω per
-//! wave vector, single fields and the raw packed transforms. These allocate.
+//! Read-only views of a cascade for verification and tools (public as [`crate::inspect`]):
+//! the evolved spectrum, ω per wave vector, single fields and the raw packed transforms.
+//! These allocate.
 
 use std::f64::consts::TAU;
 
@@ -18,7 +19,7 @@ impl Cascade {
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `t` outside
     /// ±[`MAX_TIME`](Self::MAX_TIME), as [`Cascade::update`].
-    pub fn wave_spectrum(&self, t: f64) -> Result<Vec<Complex32>, Error> {
+    pub(crate) fn wave_spectrum(&self, t: f64) -> Result<Vec<Complex32>, Error> {
         let n = self.n;
         check_time("t", t)?;
         let t = match self.config.repeat_period {
@@ -49,7 +50,7 @@ impl Cascade {
     ///
     /// # Errors
     /// [`Error::IndexOutOfRange`] unless `i` and `j` are below N.
-    pub fn omega_at(&self, i: usize, j: usize) -> Result<f64, Error> {
+    pub(crate) fn omega_at(&self, i: usize, j: usize) -> Result<f64, Error> {
         error::index("i", i, self.n)?;
         error::index("j", j, self.n)?;
         Ok(self.frequency(i, j) * TAU)
@@ -79,7 +80,7 @@ impl Cascade {
     /// [`Field`] says, in buffer order (index j·N + i). Allocates; its packed transform is
     /// finished afresh from the update's first pass (N row FFTs), to the same bits the
     /// update's outputs were computed from.
-    pub fn field(&self, field: Field) -> Vec<f32> {
+    pub(crate) fn field(&self, field: Field) -> Vec<f32> {
         let (transform, imaginary) = field.packing();
         let packed = self.finish_transform(transform);
         packed
@@ -114,7 +115,7 @@ impl Cascade {
     ///
     /// # Errors
     /// [`Error::IndexOutOfRange`] unless `transform` < 4.
-    pub fn packed_transform(&self, transform: usize) -> Result<Vec<Complex32>, Error> {
+    pub(crate) fn packed_transform(&self, transform: usize) -> Result<Vec<Complex32>, Error> {
         error::index("transform", transform, TRANSFORMS)?;
         Ok(self.finish_transform(transform))
     }

@@ -357,7 +357,7 @@ impl Cascade {
     /// slopes too short for this grid, computed once at construction by
     /// [`Spectrum::slope_variance`]. A renderer that draws this cascade and the larger ones
     /// adds it as BRDF roughness; it is the alpha channel of
-    /// [`TexelLayout::Normal`](crate::TexelLayout::Normal).
+    /// [`TexelLayout::Normal`](crate::gpu::TexelLayout::Normal).
     pub fn subgrid_slope_variance(&self) -> SlopeVariance {
         self.subgrid_slope
     }

@@ -2,8 +2,9 @@
 //! thread count, for cascades over the whole band and pruned ones.
 
 use super::{Cascade, CascadeConfig};
+use crate::inspect::Field;
 use crate::simd::Simd;
-use crate::{Field, Spectrum, Spreading};
+use crate::{Spectrum, Spreading};
 
 /// The bit patterns of every buffer a cascade exposes after updates at `times`.
 fn fingerprint(cascade: &mut Cascade, times: &[f64]) -> Vec<Vec<u32>> {

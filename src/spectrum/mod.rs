@@ -275,7 +275,8 @@ impl Spectrum {
     /// formulas and their parameters are listed in docs/theory.md.
     ///
     /// ```
-    /// # use ocean_fft::{Spectrum, SlopeVariance};
+    /// # use ocean_fft::inspect::SlopeVariance;
+    /// # use ocean_fft::Spectrum;
     /// let spectrum = Spectrum::elfouhaily(10.0, 0.84)?;   // U10 [m/s], Ω
     /// let mss = spectrum.slope_variance(0.0, 1e4).total();
     /// assert!((mss - 0.054).abs() < 0.01);                 // Cox & Munk: 0.003 + 5.12e-3 U10

@@ -21,7 +21,7 @@ pub struct SlopeVariance {
 impl SlopeVariance {
     /// Wave number in rad/m (a wavelength of 3.1 mm) up to which
     /// [`Cascade::subgrid_slope_variance`](crate::Cascade::subgrid_slope_variance) and the
-    /// alpha channel of [`TexelLayout::Normal`](crate::TexelLayout::Normal) count sub-grid
+    /// alpha channel of [`TexelLayout::Normal`](crate::gpu::TexelLayout::Normal) count sub-grid
     /// slopes: above it viscosity damps capillary waves within a fraction of a second, and
     /// the Elfouhaily spectrum holds less than 0.1 % of its slope variance there. The
     /// JONSWAP and Pierson–Moskowitz ω⁻⁵ tails have no such end (their slope variance grows

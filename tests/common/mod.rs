@@ -6,7 +6,8 @@
 
 use std::f64::consts::TAU;
 
-use ocean_fft::{Complex32, Field, Spectrum};
+use ocean_fft::inspect::{Complex32, Field};
+use ocean_fft::Spectrum;
 
 /// A complex number in f64 as (re, im).
 pub type C64 = (f64, f64);

@@ -7,7 +7,8 @@
 use macroquad::math::{Vec2, Vec3};
 use macroquad::models::{Mesh, Vertex as MqVertex};
 use macroquad::texture::Texture2D;
-use ocean_fft::{Cascade, Error, NormalMapGreen, OceanState, Vertex};
+use ocean_fft::gpu::{NormalMapGreen, Vertex};
+use ocean_fft::{Cascade, Error, OceanState};
 
 /// macroquad draws a mesh in one draw call only if its buffers hold it: raise the capacities
 /// (the defaults are 10 000 vertices and 5 000 indices) for an N×N cascade mesh.

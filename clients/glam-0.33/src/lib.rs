@@ -8,8 +8,9 @@
 
 // guide: OceanTexels
 use glam::Vec3;
+use ocean_fft::gpu::{Engine, TexelLayout};
 use ocean_fft::half::f16;
-use ocean_fft::{Cascade, Engine, Error, OceanState, TexelLayout};
+use ocean_fft::{Cascade, Error, OceanState};
 
 /// Two RGBA16F textures per cascade, allocated once and refilled every frame:
 /// `displacement[c]` holds cascade c's `DisplacementFoam` texels (D_x, η, D_z, foam),

@@ -30,8 +30,9 @@ mod engines {
     use super::zero_copy::{ocean, same_memory, varies};
     use client_glam_0_33::{engine_types, float_on_water, water_point_under, OceanTexels};
     use glam::Vec3;
+    use ocean_fft::gpu::Engine;
     use ocean_fft::half::f16;
-    use ocean_fft::{Engine, OceanState};
+    use ocean_fft::OceanState;
 
     #[test]
     fn step_and_pack_fills_every_cascade_from_the_stepped_ocean() {

@@ -72,7 +72,8 @@ impl GradientMoments {
 mod tests {
     use super::*;
     use crate::determinism::Std;
-    use crate::{Cascade, CascadeConfig, Field, Spectrum};
+    use crate::inspect::Field;
+    use crate::{Cascade, CascadeConfig, Spectrum};
 
     /// The gradient an update writes holds the same numbers as the public, copying `field`: if the
     /// packing of the transforms ever changes, this fails rather than the foam silently

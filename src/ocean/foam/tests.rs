@@ -222,7 +222,7 @@ fn real_data_transport_matches_two_plain_complex_fft2d_transforms() {
                 let mut tables = vec![Complex32::default(); 2 * n];
                 transport.fill_tables(dt, n, &mut tables);
                 let [a, b, c] = transport.exponent(dt);
-                let mut fft = crate::Fft2d::with_determinism(n, 1, determinism).unwrap();
+                let mut fft = crate::inspect::Fft2d::with_determinism(n, 1, determinism).unwrap();
                 let mut work: Vec<Complex32> = reference
                     .residual
                     .iter()
