@@ -198,13 +198,26 @@ pub use ocean::{
 pub use presets::SeaState;
 pub use spectrum::{DepthFactor, SlopeVariance, Spectrum, Spreading};
 
-// docs/guide.md's Rust blocks are doc-tests when every optional feature is on (its serde block
-// needs `serde`), as CI runs them: `cargo test --release --doc --all-features`. A `rust,ignore`
-// block there is a verbatim copy of code compiled in clients/ or says why it is not compiled;
-// tests/guide.rs checks both.
+// The Rust blocks of the guide's chapters (docs/guide/) are doc-tests when every optional
+// feature is on (the serde block of spectra.md needs `serde`), as CI runs them:
+// `cargo test --release --doc --all-features`. A `rust,ignore` block there is a verbatim copy of
+// code compiled in clients/ or says why it is not compiled; tests/guide.rs checks both. One
+// item per chapter that holds Rust blocks, so a failure names the chapter.
 #[cfg(all(doctest, feature = "serde", feature = "half", feature = "bytemuck"))]
-#[doc = include_str!("../docs/guide.md")]
-struct GuideDocTests;
+mod guide_doc_tests {
+    #[doc = include_str!("../docs/guide/getting-started.md")]
+    struct GettingStarted;
+    #[doc = include_str!("../docs/guide/spectra.md")]
+    struct Spectra;
+    #[doc = include_str!("../docs/guide/foam.md")]
+    struct Foam;
+    #[doc = include_str!("../docs/guide/rendering.md")]
+    struct Rendering;
+    #[doc = include_str!("../docs/guide/baking.md")]
+    struct Baking;
+    #[doc = include_str!("../docs/guide/errors.md")]
+    struct Errors;
+}
 
 // The README's example is a doc-test with or without features.
 #[cfg(doctest)]
