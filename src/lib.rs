@@ -80,10 +80,9 @@
 //! output passes around them; `cargo bench -p ocean-fft-benches --bench cascade` (run in the
 //! repository) measures it beside the four bare transforms of [`Fft2d`] in the same process,
 //! and `cargo bench -p ocean-fft-benches --bench ocean` a step of the default ocean beside its
-//! twelve bare transforms. The guide's performance section lists a measured table with the CPU
-//! it ran on (on a 2-vCPU AMD EPYC Zen 4: an update costs 1.0–1.2× its bare transforms at 512²
-//! and 1024² and 1.3–2.3× from 64² to 256², on one or two threads; a default step, its foam
-//! included, 1.0–1.2× at 512² and 1024² and 1.25–2.4× from 64² to 256²).
+//! twelve bare transforms. The repository's `docs/benchmarks.md` holds the measured ratios with
+//! the CPU, commit and toolchain they were measured with (`bench-table` generates it), and
+//! `docs/performance.md` explains them.
 //!
 //! # Features
 //!
@@ -156,7 +155,7 @@
 //!
 //! The formulas, their sources and the choices made where sources differ are in the
 //! repository's `docs/theory.md`; how to pick parameters and embed the crate in a game is in
-//! `docs/guide.md`.
+//! its user guide, `docs/guide/` (start with `docs/guide/getting-started.md`).
 #![warn(missing_docs)]
 #![warn(clippy::missing_errors_doc)]
 
