@@ -318,7 +318,7 @@ impl Spectrum {
     ///
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `gamma` is finite and > 0;
-    /// [`Error::NotApplicable`] on a Phillips spectrum.
+    /// [`Error::NotApplicable`] on a Phillips or Elfouhaily spectrum.
     #[must_use = "with_* returns the changed spectrum"]
     pub fn with_gamma(mut self, gamma: f32) -> Result<Self, Error> {
         let gamma = error::positive("gamma", gamma)?;
@@ -428,7 +428,8 @@ impl Spectrum {
     /// Sets the shallow-water depth factor (used only at finite depth).
     ///
     /// # Errors
-    /// [`Error::NotApplicable`] on a Phillips spectrum, which is defined on k directly.
+    /// [`Error::NotApplicable`] for a factor other than [`DepthFactor::None`] on a Phillips or
+    /// Elfouhaily spectrum, which are defined on k directly.
     #[must_use = "with_* returns the changed spectrum"]
     pub fn with_depth_factor(mut self, depth_factor: DepthFactor) -> Result<Self, Error> {
         if !matches!(self.model, Model::Jonswap { .. }) && depth_factor != DepthFactor::None {
