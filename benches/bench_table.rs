@@ -1,12 +1,14 @@
-//! Regenerates the bench tables of docs/performance.md: runs the criterion benches
-//! `cascade_update`, `ocean_step` and `cascade_scaling` (`cargo bench -p ocean-fft-benches`)
-//! a few rounds, reads criterion's medians, and writes the tables with the machine they ran
-//! on between the `<!-- bench-table:begin -->` and `<!-- bench-table:end -->` markers.
+//! Regenerates docs/benchmarks.md, the one file that holds the project's measured bench
+//! figures: runs the criterion benches `cascade_update`, `ocean_step` and `cascade_scaling`
+//! (`cargo bench -p ocean-fft-benches`) a few rounds, reads criterion's samples, and rewrites
+//! the whole file with the tables and the machine, commit and toolchain they ran on. Every
+//! other document links to that file rather than quoting its numbers.
 //!
 //! ```sh
 //! cargo run --release -p ocean-fft-benches --bin bench-table               # 3 rounds
 //! cargo run --release -p ocean-fft-benches --bin bench-table -- --rounds 5
 //! cargo run --release -p ocean-fft-benches --bin bench-table -- --no-run   # print the last results
+//! cargo run --release -p ocean-fft-benches --bin bench-table -- --out FILE # write elsewhere
 //! ```
 //!
 //! Every ratio is taken within one round (update and its bare FFTs measured one right after
@@ -24,8 +26,20 @@ use ocean_fft::CascadeConfig;
 const SIZES: [usize; 5] = [64, 128, 256, 512, 1024];
 const LARGE_SIZES: [usize; 2] = [2048, 4096];
 const THREADS: [usize; 2] = [1, 2];
-const BEGIN: &str = "<!-- bench-table:begin -->";
-const END: &str = "<!-- bench-table:end -->";
+
+/// What the generated file says before the tables: what it is and where the explanations are.
+const HEADER: &str = "\
+# Benchmarks
+
+This file is generated: `cargo run --release -p ocean-fft-benches --bin bench-table` runs the
+benches and rewrites it whole, so edit `benches/bench_table.rs` rather than this file. It holds
+the measured cost of `Cascade::update` and of the default `OceanState::step` beside the bare
+FFTs they cannot do without, with the machine, the commit and the toolchain of the run. What
+the benches compare, the targets, what makes an update cheap and the other measurements of the
+project are in [performance.md](performance.md). Timings from one machine say little about
+another: measure on yours.
+
+";
 
 struct Options {
     rounds: usize,
@@ -52,7 +66,7 @@ fn options() -> Options {
         scaling: true,
         criterion: std::env::var_os("CRITERION_HOME")
             .map_or_else(|| target.join("criterion"), PathBuf::from),
-        out: Some(root.join("docs/performance.md")),
+        out: Some(root.join("docs/benchmarks.md")),
     };
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
@@ -329,11 +343,11 @@ fn main() {
          and its floor measured one right after the other) from the samples' minima, and shown as \
          the median over the rounds with their range in brackets; the last column gives the \
          ratio of the samples' medians, which other work on the machine inflates.\n\n\
-         #### `Cascade::update` ÷ its four bare packed FFTs (`cascade_update`, a 500 m cascade \
+         ## `Cascade::update` ÷ its four bare packed FFTs (`cascade_update`, a 500 m cascade \
          over the whole band; target ≤ 1.3)\n\n{update}\n\
-         #### Default `OceanState::step` ÷ the twelve bare FFTs of its three cascades \
+         ## Default `OceanState::step` ÷ the twelve bare FFTs of its three cascades \
          (`ocean_step`; target ≤ 1.2)\n\n{step}\n\
-         #### Time and memory per cascade (`cascade_update` at 2 threads and `cascade_scaling`; \
+         ## Time and memory per cascade (`cascade_update` at 2 threads and `cascade_scaling`; \
          memory from `CascadeConfig::memory_bytes`)\n\n{scaling}",
         date = command_output("date", &["-u", "+%Y-%m-%d %H:%M UTC"]),
         commit = command_output("git", &["rev-parse", "--short", "HEAD"]),
@@ -346,10 +360,7 @@ fn main() {
     match options.out {
         None => println!("{table}"),
         Some(path) => {
-            let doc = std::fs::read_to_string(&path).expect("docs/performance.md exists");
-            let (head, rest) = doc.split_once(BEGIN).expect("the begin marker");
-            let (_, tail) = rest.split_once(END).expect("the end marker");
-            std::fs::write(&path, format!("{head}{BEGIN}\n{table}{END}{tail}")).expect("writable");
+            std::fs::write(&path, format!("{HEADER}{table}")).expect("the output file is writable");
             println!("{table}");
             eprintln!("wrote {}", path.display());
         }

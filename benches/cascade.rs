@@ -14,7 +14,7 @@
 //! - `cascade_new`: building a 256² cascade (h0 and the tables, once).
 //!
 //! `cargo bench -p ocean-fft-benches --bench cascade [--features half] [-- GROUP]`; the bench
-//! table of docs/performance.md comes from `cargo run --release -p ocean-fft-benches --bin
+//! tables of docs/benchmarks.md come from `cargo run --release -p ocean-fft-benches --bin
 //! bench-table`. The first line printed names the CPU.
 
 mod common;

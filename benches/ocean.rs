@@ -13,7 +13,8 @@
 //!   aging and the totals run), so that the difference is what the foam costs.
 //! - `ocean_parallel_cascades`: at N = 256 in a pool of 2 threads, `sequential` and
 //!   `parallel` (`OceanConfig::parallel_cascades` off and on), and `parallel_bilinear_queries`
-//!   (parallel, with bilinear queries: no spline prefilter on the first query).
+//!   (parallel, with bilinear queries; no step computes the spline coefficients, so it times
+//!   the same work as `parallel`).
 //! - `ocean_determinism`: the default ocean's step with `Determinism::SameMachine` and
 //!   `Determinism::CrossPlatform` (`step_same_machine`, `step_cross_platform`) at
 //!   N = 64 … 512 in a pool of 2 threads, one after the other for each N; and building the
@@ -184,7 +185,8 @@ fn parallel_cascades(c: &mut Criterion) {
             pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step")))
         });
     }
-    // The same parallel step without the cubic B-spline prefilter of the queries.
+    // The same parallel step with bilinear queries. The step computes no spline coefficients
+    // (the first query after it does), so this times the same work as `parallel`.
     let mut state = ocean_with(size, true, Interpolation::Bilinear);
     group.bench_with_input(
         BenchmarkId::new("parallel_bilinear_queries", size),

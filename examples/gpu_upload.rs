@@ -13,7 +13,7 @@
 //!
 //! The frames run inside a rayon pool (`pool.install`), as an engine keeps the simulation off
 //! its own threads: called from outside every pool, rayon's job queue allocates one 1.5 KiB
-//! block per 63 parallel calls (see the guide's "Threads and determinism").
+//! block per 63 parallel calls (see docs/guide/networking.md, "Threads and determinism").
 //!
 //! Run with `cargo run --release -p ocean-fft-examples --example gpu_upload`.
 

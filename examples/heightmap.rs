@@ -57,7 +57,7 @@ fn main() -> Result<()> {
     let mut ocean = OceanState::new(spectrum, OceanConfig::default())?;
 
     // Jump to t = 10 s and pre-roll the foam over the 15 s before it: active whitecaps (τ_A =
-    // 3.85 s) reach their steady coverage, residual foam (τ_R = 20 s) is still building.
+    // 3.85 s) reach their steady coverage, residual foam (τ_R = 15 s) is still building.
     ocean.set_time(10.0)?;
     ocean.pre_roll(15.0, 1.0 / 20.0)?;
     let simulated = start.elapsed().as_secs_f32();

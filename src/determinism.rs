@@ -32,8 +32,8 @@
 ///   Box–Muller transform for the Gaussian draws. Every output buffer, h0 and query
 ///   result is then bit-identical on every CPU and operating system with IEEE 754
 ///   arithmetic (x86-64, aarch64, wasm32, …; not x87-only 32-bit x86), for the same
-///   versions of this crate, `rustfft` and `libm`. Slower: see the guide's section on
-///   determinism for what it costs and what else a game must keep equal.
+///   versions of this crate, `rustfft` and `libm`. Slower: the guide's chapter
+///   `docs/guide/networking.md` says what it costs and what else a game must keep equal.
 ///
 /// The two modes give different waves (the Gaussian draws differ), equally calibrated.
 ///

@@ -18,8 +18,7 @@ use crate::grid;
 /// Rows handled by one parallel task of the second pass (the rows a task gathers by a
 /// transpose and transforms). 16 rows of a 512-point complex transform are 64 KiB (256 KiB
 /// for a cascade's four packed transforms): they stay in a core's L2 cache while they are
-/// worked on, and a 512² grid still gives 32 tasks to balance over the threads. (8 and 32
-/// measured no better at N = 256 and 512.)
+/// worked on, and a 512² grid still gives 32 tasks to balance over the threads.
 pub(crate) const ROWS_PER_TASK: usize = 16;
 
 /// An inverse complex FFT of length N applied to many rows, with scratch for a fixed number

@@ -83,10 +83,9 @@
 //! output passes around them; `cargo bench -p ocean-fft-benches --bench cascade` (run in the
 //! repository) measures it beside the four bare transforms of [`inspect::Fft2d`] in the same process,
 //! and `cargo bench -p ocean-fft-benches --bench ocean` a step of the default ocean beside its
-//! twelve bare transforms. The guide's performance section lists a measured table with the CPU
-//! it ran on (on a 2-vCPU AMD EPYC Zen 4: an update costs 1.0–1.2× its bare transforms at 512²
-//! and 1024² and 1.3–2.3× from 64² to 256², on one or two threads; a default step, its foam
-//! included, 1.0–1.2× at 512² and 1024² and 1.25–2.4× from 64² to 256²).
+//! twelve bare transforms. The repository's `docs/benchmarks.md` holds the measured ratios with
+//! the CPU, commit and toolchain they were measured with (`bench-table` generates it), and
+//! `docs/performance.md` explains them.
 //!
 //! # Features
 //!
@@ -159,7 +158,7 @@
 //!
 //! The formulas, their sources and the choices made where sources differ are in the
 //! repository's `docs/theory.md`; how to pick parameters and embed the crate in a game is in
-//! `docs/guide.md`.
+//! its user guide, `docs/guide/` (start with `docs/guide/getting-started.md`).
 #![warn(missing_docs)]
 #![warn(clippy::missing_errors_doc)]
 
@@ -198,13 +197,26 @@ pub use ocean::{
 pub use presets::SeaState;
 pub use spectrum::{DepthFactor, Spectrum, Spreading};
 
-// docs/guide.md's Rust blocks are doc-tests when every optional feature is on (its serde block
-// needs `serde`), as CI runs them: `cargo test --release --doc --all-features`. A `rust,ignore`
-// block there is a verbatim copy of code compiled in clients/ or says why it is not compiled;
-// tests/guide.rs checks both.
+// The Rust blocks of the guide's chapters (docs/guide/) are doc-tests when every optional
+// feature is on (the serde block of spectra.md needs `serde`), as CI runs them:
+// `cargo test --release --doc --all-features`. A `rust,ignore` block there is a verbatim copy of
+// code compiled in clients/ or says why it is not compiled; tests/guide.rs checks both. One
+// item per chapter that holds Rust blocks, so a failure names the chapter.
 #[cfg(all(doctest, feature = "serde", feature = "half", feature = "bytemuck"))]
-#[doc = include_str!("../docs/guide.md")]
-struct GuideDocTests;
+mod guide_doc_tests {
+    #[doc = include_str!("../docs/guide/getting-started.md")]
+    struct GettingStarted;
+    #[doc = include_str!("../docs/guide/spectra.md")]
+    struct Spectra;
+    #[doc = include_str!("../docs/guide/foam.md")]
+    struct Foam;
+    #[doc = include_str!("../docs/guide/rendering.md")]
+    struct Rendering;
+    #[doc = include_str!("../docs/guide/baking.md")]
+    struct Baking;
+    #[doc = include_str!("../docs/guide/errors.md")]
+    struct Errors;
+}
 
 // The README's example is a doc-test with or without features.
 #[cfg(doctest)]

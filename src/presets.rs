@@ -8,7 +8,7 @@ use crate::spectrum::{Spectrum, Spreading};
 ///
 /// [`SeaState::build`] gives the spectrum and an [`OceanConfig`] whose cascade lengths suit
 /// the sea's peak wavelength. The significant wave heights and peak periods of every preset
-/// are listed in the guide (`docs/guide.md`).
+/// are listed in the guide (`docs/guide/spectra.md`).
 ///
 /// ```
 /// use ocean_fft::{OceanState, SeaState};

@@ -4,8 +4,8 @@
 //! The loops themselves (evolution, outputs) are plain scalar Rust that LLVM vectorises; run
 //! through [`Simd::run`] they are compiled once more inside an AVX2 (x86-64-v3) and an
 //! AVX-512 (x86-64-v4) context by the `pulp` crate, which checks the CPU and holds the only
-//! `unsafe` of the dispatch. On the measurement machine that made the evolution and
-//! output loops about twice as fast as the baseline x86-64 build (SSE2, 4 lanes).
+//! `unsafe` of the dispatch. Wider lanes are the point: baseline x86-64 gives LLVM only SSE2's
+//! four (what that buys is measured in docs/performance.md).
 //!
 //! Why pulp rather than `multiversion`: pulp's levels are values (`V3::try_new()`,
 //! `V4::try_new()`), so a cascade stores the one it runs at and the tests force every level

@@ -1,9 +1,9 @@
-//! docs/guide.md's Rust blocks that rustdoc does not run (`rust,ignore`) are honest: each is
-//! either a verbatim copy of a region of a crate in clients/ that CI compiles, or says why it
-//! is not compiled. Every other ```rust block of the guide is a doc-test (src/lib.rs,
-//! `GuideDocTests`).
+//! The Rust blocks of the guide's chapters (docs/guide/*.md) that rustdoc does not run
+//! (`rust,ignore`) are honest: each is either a verbatim copy of a region of a crate in
+//! clients/ that CI compiles, or says why it is not compiled. Every other ```rust block of a
+//! chapter is a doc-test: src/lib.rs includes each chapter that has one (`guide_doc_tests`).
 //!
-//! In the guide, the line before an ignored block is an HTML comment, either
+//! In a chapter, the line before an ignored block is an HTML comment, either
 //! `<!-- verbatim: PATH NAME -->` (the block equals the lines between `// guide: NAME` and
 //! `// guide: end` in PATH, minus their common indentation) or `<!-- not compiled: WHY -->`.
 //! Every region in the clients must be quoted somewhere, so that none is left behind.
@@ -11,7 +11,8 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-const GUIDE: &str = include_str!("../docs/guide.md");
+/// The guide's directory, relative to the crate root.
+const GUIDE_DIR: &str = "docs/guide";
 
 /// The files whose `// guide:` regions the guide quotes.
 const SOURCES: &[&str] = &[
@@ -20,7 +21,7 @@ const SOURCES: &[&str] = &[
     "clients/engines-macroquad/src/lib.rs",
 ];
 
-/// A fenced code block of the guide: its info string, the closest non-blank line above its
+/// A fenced code block of a chapter: its info string, the closest non-blank line above its
 /// opening fence, its content and the line it starts on (1-based).
 struct Block<'a> {
     info: &'a str,
@@ -38,7 +39,7 @@ fn blocks(text: &str) -> Vec<Block<'_>> {
             let above = lines[..k].iter().rev().find(|l| !l.trim().is_empty());
             let end = (k + 1..lines.len())
                 .find(|&e| lines[e].starts_with("```"))
-                .unwrap_or_else(|| panic!("guide line {}: unclosed code block", k + 1));
+                .unwrap_or_else(|| panic!("line {}: unclosed code block", k + 1));
             out.push(Block {
                 info: info.trim(),
                 above: above.map_or("", |l| l.trim()),
@@ -93,70 +94,33 @@ fn read(path: &str) -> String {
     std::fs::read_to_string(&full).unwrap_or_else(|e| panic!("{}: {e}", full.display()))
 }
 
+/// Every chapter of the guide: its path relative to the crate root and its text, by name.
+fn chapters() -> Vec<(String, String)> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(GUIDE_DIR);
+    let mut paths: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|entry| entry.expect("a directory entry").file_name())
+        .filter_map(|name| name.to_str().map(str::to_owned))
+        .filter(|name| name.ends_with(".md"))
+        .map(|name| format!("{GUIDE_DIR}/{name}"))
+        .collect();
+    paths.sort();
+    assert!(paths.len() > 5, "the guide's chapters are gone? {paths:?}");
+    paths
+        .into_iter()
+        .map(|path| {
+            let text = read(&path);
+            (path, text)
+        })
+        .collect()
+}
+
 #[test]
 fn ignored_guide_blocks_are_verbatim_copies_of_compiled_code_or_say_why_not() {
     let mut quoted = BTreeSet::new();
     let mut ignored = 0;
-    for block in blocks(GUIDE) {
-        if !block.info.starts_with("rust") || !block.info.contains("ignore") {
-            continue;
-        }
-        ignored += 1;
-        let marker = block
-            .above
-            .strip_prefix("<!--")
-            .and_then(|m| m.strip_suffix("-->"))
-            .map(str::trim)
-            .unwrap_or_else(|| {
-                panic!(
-                    "guide line {}: a `{}` block needs `<!-- verbatim: PATH NAME -->` or \
-                     `<!-- not compiled: WHY -->` on the line before it",
-                    block.line, block.info
-                )
-            });
-        if let Some(why) = marker.strip_prefix("not compiled:") {
-            assert!(
-                why.trim().len() > 10,
-                "guide line {}: say why the block is not compiled",
-                block.line
-            );
-        } else if let Some(reference) = marker.strip_prefix("verbatim:") {
-            let (path, name) = reference
-                .trim()
-                .split_once(' ')
-                .unwrap_or_else(|| panic!("guide line {}: `verbatim: PATH NAME`", block.line));
-            assert!(
-                SOURCES.contains(&path),
-                "guide line {}: {path} is not in SOURCES",
-                block.line
-            );
-            let source = read(path);
-            let code = region(&source, name).unwrap_or_else(|| {
-                panic!(
-                    "guide line {}: no region `// guide: {name}` in {path}",
-                    block.line
-                )
-            });
-            if block.content != code {
-                let first = block
-                    .content
-                    .lines()
-                    .zip(code.lines())
-                    .position(|(a, b)| a != b)
-                    .unwrap_or(block.content.lines().count().min(code.lines().count()));
-                panic!(
-                    "guide line {}: the block differs from `{name}` in {path} from its line {} on \
-                     (guide: {:?}, source: {:?}); copy the source into the guide",
-                    block.line,
-                    first + 1,
-                    block.content.lines().nth(first),
-                    code.lines().nth(first)
-                );
-            }
-            quoted.insert(format!("{path} {name}"));
-        } else {
-            panic!("guide line {}: unknown marker `{marker}`", block.line);
-        }
+    for (chapter, text) in chapters() {
+        check_ignored_blocks(&chapter, &text, &mut quoted, &mut ignored);
     }
     assert!(
         ignored >= 5,
@@ -169,6 +133,97 @@ fn ignored_guide_blocks_are_verbatim_copies_of_compiled_code_or_say_why_not() {
                 "region `{name}` of {path} is quoted nowhere in the guide"
             );
         }
+    }
+}
+
+/// Checks the `rust,ignore` blocks of one chapter, counting them in `ignored` and adding each
+/// region they quote to `quoted`.
+fn check_ignored_blocks(
+    chapter: &str,
+    text: &str,
+    quoted: &mut BTreeSet<String>,
+    ignored: &mut usize,
+) {
+    for block in blocks(text) {
+        if !block.info.starts_with("rust") || !block.info.contains("ignore") {
+            continue;
+        }
+        *ignored += 1;
+        let marker = block
+            .above
+            .strip_prefix("<!--")
+            .and_then(|m| m.strip_suffix("-->"))
+            .map(str::trim)
+            .unwrap_or_else(|| {
+                panic!(
+                    "{chapter} line {}: a `{}` block needs `<!-- verbatim: PATH NAME -->` or \
+                     `<!-- not compiled: WHY -->` on the line before it",
+                    block.line, block.info
+                )
+            });
+        if let Some(why) = marker.strip_prefix("not compiled:") {
+            assert!(
+                why.trim().len() > 10,
+                "{chapter} line {}: say why the block is not compiled",
+                block.line
+            );
+        } else if let Some(reference) = marker.strip_prefix("verbatim:") {
+            let (path, name) = reference
+                .trim()
+                .split_once(' ')
+                .unwrap_or_else(|| panic!("{chapter} line {}: `verbatim: PATH NAME`", block.line));
+            assert!(
+                SOURCES.contains(&path),
+                "{chapter} line {}: {path} is not in SOURCES",
+                block.line
+            );
+            let source = read(path);
+            let code = region(&source, name).unwrap_or_else(|| {
+                panic!(
+                    "{chapter} line {}: no region `// guide: {name}` in {path}",
+                    block.line
+                )
+            });
+            if block.content != code {
+                let first = block
+                    .content
+                    .lines()
+                    .zip(code.lines())
+                    .position(|(a, b)| a != b)
+                    .unwrap_or(block.content.lines().count().min(code.lines().count()));
+                panic!(
+                    "{chapter} line {}: the block differs from `{name}` in {path} from its line {} on \
+                     (guide: {:?}, source: {:?}); copy the source into the guide",
+                    block.line,
+                    first + 1,
+                    block.content.lines().nth(first),
+                    code.lines().nth(first)
+                );
+            }
+            quoted.insert(format!("{path} {name}"));
+        } else {
+            panic!("{chapter} line {}: unknown marker `{marker}`", block.line);
+        }
+    }
+}
+
+/// Every chapter with a Rust block rustdoc runs is included by src/lib.rs, so that its blocks
+/// are doc-tests; a chapter without one is not (its include would test nothing).
+#[test]
+fn every_chapter_with_rust_blocks_is_a_doc_test() {
+    let lib = read("src/lib.rs");
+    for (chapter, text) in chapters() {
+        let runs = blocks(&text)
+            .iter()
+            .any(|b| b.info.split(',').next() == Some("rust") && !b.info.contains("ignore"));
+        let included = lib.contains(&format!("include_str!(\"../{chapter}\")"));
+        assert_eq!(
+            runs,
+            included,
+            "{chapter}: {} Rust blocks to run, {} by src/lib.rs (mod guide_doc_tests)",
+            if runs { "has" } else { "has no" },
+            if included { "included" } else { "not included" }
+        );
     }
 }
 

@@ -1,7 +1,7 @@
 //! The `ocean-fft` command-line tool: bakes an ocean-fft sea into OpenEXR or 16-bit PNG
 //! texture sequences with a JSON sidecar, for tools, engines and render farms. The binary
 //! is `src/main.rs`; this library holds everything, so that the tests drive it directly.
-//! The user documentation is the repository's `docs/guide.md`, section "Baking".
+//! The user documentation is the repository's `docs/guide/baking.md`.
 
 pub mod args;
 pub mod bake;

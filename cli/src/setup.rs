@@ -27,8 +27,8 @@ pub struct Looping {
     pub frames: u32,
 }
 
-/// How the foam's history is made a pure function of the frame number (see the guide's
-/// "Render farms" section).
+/// How the foam's history is made a pure function of the frame number (see
+/// docs/guide/baking.md, "Render farms").
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Preroll {
     /// ε: the largest difference from the foam of an ocean simulated forever.
@@ -267,7 +267,7 @@ pub fn build(args: &SeaArgs) -> Result<Sea, CliError> {
 
     // The foam's memory: a difference in active foam decays at least as e^{−t/τ_A}, one in
     // residual foam as e^{−t/τ_R} plus what the active difference still feeds it, which
-    // (τ_A + τ_R)·ln(1/ε) covers for the default decays (docs: guide, "Render farms").
+    // (τ_A + τ_R)·ln(1/ε) covers for the default decays (docs/guide/baking.md, "Render farms").
     let tau = f64::from(config.foam.active_decay) + f64::from(config.foam.residual_decay);
     let frames = if config.foam.coverage > 0.0 {
         (tau * (1.0 / tolerance).ln() * fps).ceil()

@@ -353,8 +353,8 @@ fn a_loop_closes_in_every_channel_with_the_foam_in_its_periodic_steady_state() {
 
     // Independently: an ocean of the sidecar's spectrum and config simulated without a
     // break for 200 loops from no foam (continuous time, no jump back to t = 0). The foam
-    // forgets its start at least as about 2.35·e^{−t/τ_R} (τ_R = 15 s, see the guide's
-    // "Render farms"), so after 200 s it is within 4e-6 of the periodic steady state; at
+    // forgets its start at least as about 2.35·e^{−t/τ_R} (τ_R = 15 s, see
+    // docs/guide/baking.md, "Render farms"), so after 200 s it is within 4e-6 of the periodic steady state; at
     // t = 200 s and 200.3 s it must match frames 0 and 3.
     let sidecar: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("storm.json")).unwrap()).unwrap();

@@ -76,8 +76,8 @@ pub struct OceanConfig {
     )]
     pub repeat_period: Option<f32>,
     /// Update the cascades in parallel with each other, on top of the parallel rows inside
-    /// each (default: `true`, measured faster for three 256² cascades on 2 cores; see the
-    /// guide's performance section). The results are bit-identical either way.
+    /// each (default: `true`, faster for three 256² cascades on 2 cores in the
+    /// `ocean_parallel_cascades` bench). The results are bit-identical either way.
     pub parallel_cascades: bool,
     /// How [`OceanState::height_at`](crate::OceanState::height_at) and the queries built on
     /// it invert the horizontal displacement.
@@ -96,7 +96,7 @@ pub struct OceanConfig {
     /// world queries: [`Determinism::SameMachine`] (the default, fastest) or
     /// [`Determinism::CrossPlatform`] (the same bits on every CPU and operating system, for
     /// lockstep or server-authoritative networking and replays shared between machines;
-    /// slower, see the guide's section on determinism). The two modes draw different,
+    /// slower, see `docs/guide/networking.md`). The two modes draw different,
     /// equally calibrated waves. Configs saved without it read back with the default.
     #[cfg_attr(feature = "serde", serde(default))]
     pub determinism: Determinism,
@@ -133,9 +133,8 @@ pub enum Interpolation {
     /// in a cell: averaged over positions it keeps 97 % of the variance of a wave with 4
     /// grid points per wavelength (bilinear keeps 67 %). 16 taps per cascade and field, and
     /// a prefilter of the height, displacement and slope buffers, computed by the first
-    /// query after each update (about 0.4 ms per 256² cascade on one core, a third of the
-    /// cascade's own update; a step that is never queried does not pay it; see the guide's
-    /// performance section). The default.
+    /// query after each update, so that a step that is never queried does not pay for it
+    /// (its cost is measured in `docs/performance.md`). The default.
     #[default]
     CubicBSpline,
     /// Bilinear between the four surrounding grid points: the cheapest query and no work on

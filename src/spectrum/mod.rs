@@ -269,17 +269,19 @@ impl Spectrum {
     ///
     /// a JONSWAP-like peak at k_p = Ω² g/U10² with a long-wave curvature B_l, and a
     /// short-wave curvature B_h peaking at the gravity–capillary wave number k_m = 370 rad/m,
-    /// set by the friction velocity u* of the wind (from U10 by Wu's 1982 drag law). Its
-    /// mean-square slope follows Cox & Munk's (1954) sun-glitter measurements, which is what
-    /// a renderer's sub-grid roughness needs (see [`Spectrum::slope_variance`]). The
-    /// formulas and their parameters are listed in docs/theory.md.
+    /// set by the friction velocity u* of the wind (from U10 by Wu's 1982 drag law). Its short
+    /// waves end by themselves, so its mean-square slope has no cut-off to choose: 0.0605 at
+    /// 10 m/s, above Cox & Munk's (1954) sun-glitter measurement of 0.054 ± 0.004 (+6 to +12 %
+    /// on their fit from 5 to 15 m/s), which is what a renderer's sub-grid roughness needs (see
+    /// [`Spectrum::slope_variance`]). The formulas and their parameters are listed in
+    /// docs/theory.md.
     ///
     /// ```
     /// # use ocean_fft::inspect::SlopeVariance;
     /// # use ocean_fft::Spectrum;
     /// let spectrum = Spectrum::elfouhaily(10.0, 0.84)?;   // U10 [m/s], Ω
     /// let mss = spectrum.slope_variance(0.0, 1e4).total();
-    /// assert!((mss - 0.054).abs() < 0.01);                 // Cox & Munk: 0.003 + 5.12e-3 U10
+    /// assert!((mss - 0.054).abs() < 0.01);                 // Cox & Munk: 0.003 + 5.12e-3 U10 ± 0.004
     /// # Ok::<(), ocean_fft::Error>(())
     /// ```
     ///
@@ -317,7 +319,7 @@ impl Spectrum {
     ///
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] unless `gamma` is finite and > 0;
-    /// [`Error::NotApplicable`] on a Phillips spectrum.
+    /// [`Error::NotApplicable`] on a Phillips or Elfouhaily spectrum.
     #[must_use = "with_* returns the changed spectrum"]
     pub fn with_gamma(mut self, gamma: f32) -> Result<Self, Error> {
         let gamma = error::positive("gamma", gamma)?;
@@ -427,7 +429,8 @@ impl Spectrum {
     /// Sets the shallow-water depth factor (used only at finite depth).
     ///
     /// # Errors
-    /// [`Error::NotApplicable`] on a Phillips spectrum, which is defined on k directly.
+    /// [`Error::NotApplicable`] for a factor other than [`DepthFactor::None`] on a Phillips or
+    /// Elfouhaily spectrum, which are defined on k directly.
     #[must_use = "with_* returns the changed spectrum"]
     pub fn with_depth_factor(mut self, depth_factor: DepthFactor) -> Result<Self, Error> {
         if !matches!(self.model, Model::Jonswap { .. }) && depth_factor != DepthFactor::None {

@@ -1,5 +1,5 @@
-//! ocean-fft on macroquad: the functions docs/guide.md shows in "Using ocean-fft from Bevy,
-//! wgpu, macroquad and Godot", compiled by CI (never run: CI has no window). The guide quotes
+//! ocean-fft on macroquad: the functions docs/guide/rendering.md shows in "Using ocean-fft
+//! from Bevy, wgpu, macroquad and Godot", compiled by CI (never run: CI has no window). The guide quotes
 //! the code between the `// guide:` markers verbatim; the root crate's test `tests/guide.rs`
 //! fails if the two drift apart.
 

@@ -1,5 +1,5 @@
-//! ocean-fft on wgpu: the functions docs/guide.md shows in "Using ocean-fft from Bevy, wgpu,
-//! macroquad and Godot", compiled by CI (never run: CI has no GPU). The guide quotes the code
+//! ocean-fft on wgpu: the functions docs/guide/rendering.md shows in "Using ocean-fft from
+//! Bevy, wgpu, macroquad and Godot", compiled by CI (never run: CI has no GPU). The guide quotes the code
 //! between the `// guide:` markers verbatim; the root crate's test `tests/guide.rs` fails if
 //! the two drift apart.
 

@@ -1,5 +1,5 @@
-//! The engine-independent side of docs/guide.md's section "Using ocean-fft from Bevy, wgpu,
-//! macroquad and Godot": the functions that section shows, compiled here on glam 0.33 (the
+//! The engine-independent side of docs/guide/rendering.md's section "Using ocean-fft from
+//! Bevy, wgpu, macroquad and Godot": the functions that section shows, compiled here on glam 0.33 (the
 //! glam of Bevy 0.20), so that the calls the Bevy and Godot code makes into ocean-fft are
 //! compiled by CI even though those engines are not. `clients/engines-wgpu` calls them too.
 //!

@@ -5,8 +5,8 @@ use std::ops::Bound::Included;
 use crate::error::{self, Error};
 use crate::spectrum::Spectrum;
 
-/// How whitecaps form, age and move (see docs/theory.md, §15, and the guide's "Foam"
-/// section).
+/// How whitecaps form, age and move (see docs/theory.md, §15, and the guide's chapter
+/// docs/guide/foam.md).
 ///
 /// Waves break where the Jacobian J of the summed displacement of all cascades (at unit
 /// choppiness) falls below a breaking threshold J_b. At every point of the foam grid
@@ -53,7 +53,7 @@ pub struct FoamConfig {
     )]
     pub active_decay: f32,
     /// Lifetime τ_R of residual foam in seconds, from [`MIN_DECAY`](Self::MIN_DECAY) to
-    /// [`MAX_DECAY`](Self::MAX_DECAY) (default: `20.0`, a look setting: the thin foam and
+    /// [`MAX_DECAY`](Self::MAX_DECAY) (default: `15.0`, a look setting: the thin foam and
     /// streaks left behind whitecaps).
     #[cfg_attr(
         feature = "serde",
@@ -71,17 +71,17 @@ pub struct FoamConfig {
     /// How far residual foam spreads along the wind over one `residual_decay`, as a fraction
     /// of the peak wavelength λ_p of the spectrum, from 0 to
     /// [`MAX_STREAK`](Self::MAX_STREAK): the RMS spread √(2K∥τ_R) of a patch, which sets the
-    /// along-wind diffusivity K∥ (default: `0.5`, a look setting: streaks about half a
-    /// dominant wavelength long, 30 m on a 10 m/s sea).
+    /// along-wind diffusivity K∥ (default: `1.0`, a look setting: streaks about one peak
+    /// wavelength long, 61 m on the default sea, JONSWAP at 10 m/s over 100 km).
     #[cfg_attr(
         feature = "serde",
         serde(serialize_with = "crate::serde_impls::finite::streak_length")
     )]
     pub streak_length: f32,
-    /// The same across the wind, from 0 to `streak_length` (default: `0.08`, streaks six
-    /// times longer than wide). Depending on the wind's direction relative to the grid, the
-    /// grid spreads foam across the wind by up to 0.16 `streak_length` of its own (see
-    /// docs/theory.md §15), so narrower settings are not always reached; the default is.
+    /// The same across the wind, from 0 to `streak_length` (default: `0.03`, a look setting:
+    /// streaks far longer than wide, 1.8 m across on the default sea). The foam grid shows
+    /// nothing narrower than its spacing L₀/N (3.9 m on the default ocean), so on most seas
+    /// the grid, not this setting, sets how thin a streak looks.
     #[cfg_attr(
         feature = "serde",
         serde(serialize_with = "crate::serde_impls::finite::streak_width")
