@@ -126,13 +126,9 @@ pub(super) fn zero_blocks(table: EvolutionRow<'_>) -> u64 {
 }
 
 /// Largest N whose evolution writes a block's own values straight into the four upper rows
-/// (see [`evolve_block`]); larger grids stage them on the stack too and copy them out.
-/// Measured in one process against the staged copy (fastest of 30–40 chunks, the two builds'
-/// order alternating): straight writes make the update 4 % faster at 64², 5–7 % at 128² and
-/// 2–6 % at 256², but 2–5 % slower at 512² (beyond the 2–3 % two identical builds differed
-/// by there). Likely why: from N = 512 on a row's four transforms lie 4 KiB or a multiple
-/// apart, so the four streams of stores at the same offset in each fall into the same L1
-/// cache set.
+/// (see [`evolve_block`]); larger grids stage them on the stack and copy them out, because
+/// from N = 512 on a row's four transforms lie a multiple of 4 KiB apart and four streams of
+/// stores at the same offset fall into one L1 cache set (docs/performance.md).
 const STRAIGHT_MAX: usize = 256;
 
 /// Arrays on the stack [`evolve_row_pair`] computes a block's phases and values into before
@@ -264,12 +260,10 @@ pub(super) fn evolve_row_pair(
 ///
 /// A loop on its own with every slice an argument of its own: LLVM knows that reference
 /// arguments do not overlap and keeps that knowledge once this is inlined, so the loop
-/// vectorises at every SIMD level (slices passed in an array lose it, and the loop stayed
-/// scalar: a 64² update took 1.6× as long). The partners always go through the stack
-/// because their columns run backwards: written straight into the lower rows, the loop
-/// stayed scalar once inlined into the AVX-512 kernel and the update took 1.3× as long (tried
-/// again with each lower-row slice an argument of its own: still scalar, 1.2–1.6× as long at
-/// 128² and 256²).
+/// vectorises at every SIMD level (slices passed in an array lose that). The partners always
+/// go through the stack because their columns run backwards: written straight into the lower
+/// rows, even as separate arguments, the loop stays scalar inside the AVX-512 kernel
+/// (docs/performance.md).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn evolve_block(

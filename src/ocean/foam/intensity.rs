@@ -74,9 +74,8 @@ pub(super) fn jacobian_gradient(g: [f32; 3]) -> [f32; 3] {
 }
 
 /// What the first stage of the intensity hands to the others (see [`Params::roots`]). The
-/// stages are functions of plain values: written as one function with a closure over σ, β
-/// and ∇J for the crossing rates, the loop over points ran at 9.7 ns a point under AVX-512 and
-/// stayed scalar under AVX2 (84 ns); as stages, 4.4 and 12 ns.
+/// stages are functions of plain values because a closure over σ, β and ∇J kept the loop over
+/// points from vectorising (docs/performance.md, "The foam").
 #[derive(Clone, Copy)]
 pub(super) struct Roots {
     /// The roots, lo ≤ hi (lo = −∞ where J is linear in x).

@@ -35,11 +35,10 @@ fn moments(cascade: &Cascade, determinism: Determinism) -> GradientMoments {
 /// task.
 const ROWS: usize = ROWS_PER_TASK;
 
-/// Fewest grid points one rayon task of a foam pass works through, so that the smallest
-/// grids (below 64²) do not pay a fork and join per block of a few hundred points. From 64²
-/// on every block of [`ROWS`] rows is a task of its own: at 64² and 128² in a pool of two
-/// threads the default step was 10–25 % faster than with one task per pass at 64² (same
-/// process, fastest of 3 × 5 chunks, shared machine).
+/// Fewest grid points one rayon task of a foam pass works through, so that grids below 64²
+/// do not pay a fork and join per block of a few hundred points; from 64² on every block of
+/// [`ROWS`] rows is its own task, which keeps both threads busy (docs/performance.md, "The
+/// foam").
 const MIN_TASK_POINTS: usize = 1024;
 
 /// Blocks of [`ROWS`] rows one rayon task takes at least, for a grid of side `n`.
