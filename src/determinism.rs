@@ -1,5 +1,7 @@
 //! [`Determinism`]: how far the same inputs give the same bits, and the two sets of
-//! transcendental functions ([`Math`]) the simulation is written against.
+//! transcendental functions ([`Math`]) the simulation is written against; [`with_math`] turns
+//! a mode chosen at run time into one of them. `clippy.toml` bans the standard library's
+//! transcendental methods everywhere else, so no call can bypass the mode.
 //!
 //! Everything that feeds a simulation (spectra, dispersion, spreading, h0, the evolution,
 //! the FFTs, foam and queries) calls its transcendental functions through [`Math`], so one
@@ -67,61 +69,28 @@ pub enum Determinism {
     CrossPlatform,
 }
 
-impl Determinism {
-    /// √(x² + y²) with the functions of this mode (for the few run-time call sites).
-    #[inline]
-    pub(crate) fn hypot(self, x: f64, y: f64) -> f64 {
-        match self {
-            Determinism::SameMachine => Std::hypot(x, y),
-            Determinism::CrossPlatform => Libm::hypot(x, y),
+/// Runs `$body` with `$m` standing for the [`Math`] set of the run-time mode `$mode` (a
+/// [`Determinism`]): the one place where the mode chosen in a config becomes the functions the
+/// simulation is written against.
+///
+/// ```ignore
+/// let k = with_math!(config.determinism, M => dispersion.k_from_omega_with::<M>(omega));
+/// ```
+macro_rules! with_math {
+    ($mode:expr, $m:ident => $body:expr) => {
+        match $mode {
+            $crate::determinism::Determinism::SameMachine => {
+                type $m = $crate::determinism::Std;
+                $body
+            }
+            $crate::determinism::Determinism::CrossPlatform => {
+                type $m = $crate::determinism::Libm;
+                $body
+            }
         }
-    }
-
-    /// eˣ (f64) with the functions of this mode.
-    #[inline]
-    pub(crate) fn exp(self, x: f64) -> f64 {
-        match self {
-            Determinism::SameMachine => Std::exp(x),
-            Determinism::CrossPlatform => Libm::exp(x),
-        }
-    }
-
-    /// ln x with the functions of this mode.
-    #[inline]
-    pub(crate) fn ln(self, x: f64) -> f64 {
-        match self {
-            Determinism::SameMachine => Std::ln(x),
-            Determinism::CrossPlatform => Libm::ln(x),
-        }
-    }
-
-    /// xʸ with the functions of this mode.
-    #[inline]
-    pub(crate) fn powf(self, x: f64, y: f64) -> f64 {
-        match self {
-            Determinism::SameMachine => Std::powf(x, y),
-            Determinism::CrossPlatform => Libm::powf(x, y),
-        }
-    }
-
-    /// atan2(y, x) with the functions of this mode.
-    #[inline]
-    pub(crate) fn atan2(self, y: f64, x: f64) -> f64 {
-        match self {
-            Determinism::SameMachine => Std::atan2(y, x),
-            Determinism::CrossPlatform => Libm::atan2(y, x),
-        }
-    }
-
-    /// (sin x, cos x) with the functions of this mode.
-    #[inline]
-    pub(crate) fn sin_cos(self, x: f64) -> (f64, f64) {
-        match self {
-            Determinism::SameMachine => Std::sin_cos(x),
-            Determinism::CrossPlatform => Libm::sin_cos(x),
-        }
-    }
+    };
 }
+pub(crate) use with_math;
 
 /// `x` to the integer power `n` by binary exponentiation, the algorithm of compiler-rt's
 /// and compiler-builtins' `__powisf2` (which `f32::powi` calls on x86-64 for a run-time
@@ -168,7 +137,8 @@ pub(crate) trait Math: Copy + Send + Sync + 'static {
     fn cbrt(x: f64) -> f64;
 }
 
-/// The standard library's functions: the platform's C library or LLVM's intrinsics.
+/// The standard library's functions: the platform's C library or LLVM's intrinsics. The one
+/// place simulation code may call them (`Determinism::SameMachine` means them).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Std;
 
@@ -176,6 +146,8 @@ pub(crate) struct Std;
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Libm;
 
+// SameMachine is defined as the standard library's functions (clippy.toml bans them elsewhere).
+#[allow(clippy::disallowed_methods)]
 impl Math for Std {
     const MODE: Determinism = Determinism::SameMachine;
     #[inline]
@@ -299,6 +271,8 @@ impl Math for Libm {
 }
 
 #[cfg(test)]
+// The tests compare both sets against the standard library.
+#[allow(clippy::disallowed_methods)]
 mod tests {
     use super::*;
 

@@ -1,7 +1,7 @@
 //! Dispersion relations ω(k) of surface gravity(-capillary) waves, their group-velocity
 //! derivative dω/dk, and the inverse k(ω).
 
-use crate::determinism::{Determinism, Math, Std};
+use crate::determinism::{Math, Std};
 use crate::error::{self, saturate, Error};
 
 /// Gravitational acceleration g, in m/s².
@@ -105,7 +105,7 @@ impl Dispersion {
     /// there.
     #[inline]
     pub fn omega(&self, k: f32) -> f32 {
-        saturate(self.omega_f64(f64::from(k)))
+        saturate(self.omega_with::<Std>(f64::from(k)))
     }
 
     /// Derivative dω/dk in m/s (the group velocity) at wave number `k` in rad/m.
@@ -124,7 +124,7 @@ impl Dispersion {
         if k.is_nan() {
             return 0.0;
         }
-        saturate(self.d_omega_dk_f64(f64::from(k)))
+        saturate(self.d_omega_dk_with::<Std>(f64::from(k)))
     }
 
     /// Wave number k in rad/m of the wave whose angular frequency is `omega` in rad/s: the
@@ -134,12 +134,7 @@ impl Dispersion {
     /// the monotonic ω²(k) converges for every ω > 0 and depth > 0. Outside the domain: 0
     /// for ω ≤ 0 or NaN. Values beyond `f32::MAX` (ω = +∞) saturate there.
     pub fn k_from_omega(&self, omega: f32) -> f32 {
-        saturate(self.k_from_omega_f64(f64::from(omega)))
-    }
-
-    /// [`omega`](Self::omega) in f64.
-    pub(crate) fn omega_f64(&self, k: f64) -> f64 {
-        self.omega_with::<Std>(k)
+        saturate(self.k_from_omega_with::<Std>(f64::from(omega)))
     }
 
     /// [`omega`](Self::omega) in f64 with the functions of `M`.
@@ -148,11 +143,6 @@ impl Dispersion {
             return 0.0;
         }
         self.omega_squared::<M>(k).sqrt()
-    }
-
-    /// [`d_omega_dk`](Self::d_omega_dk) in f64.
-    pub(crate) fn d_omega_dk_f64(&self, k: f64) -> f64 {
-        self.d_omega_dk_with::<Std>(k)
     }
 
     /// [`d_omega_dk`](Self::d_omega_dk) in f64 with the functions of `M`.
@@ -173,19 +163,6 @@ impl Dispersion {
         }
         let omega = self.omega_squared::<M>(k).sqrt();
         self.d_omega_squared::<M>(k) / (2.0 * omega)
-    }
-
-    /// [`k_from_omega`](Self::k_from_omega) in f64.
-    pub(crate) fn k_from_omega_f64(&self, omega: f64) -> f64 {
-        self.k_from_omega_with::<Std>(omega)
-    }
-
-    /// [`k_from_omega`](Self::k_from_omega) in f64 with the functions of a mode.
-    pub(crate) fn k_from_omega_with_mode(&self, omega: f64, determinism: Determinism) -> f64 {
-        match determinism {
-            Determinism::SameMachine => self.k_from_omega_with::<Std>(omega),
-            Determinism::CrossPlatform => self.k_from_omega_with::<crate::determinism::Libm>(omega),
-        }
     }
 
     /// [`k_from_omega`](Self::k_from_omega) in f64 with the functions of `M`.
@@ -300,9 +277,9 @@ mod tests {
         ] {
             let mut omega = 1e-4_f64;
             while omega < 1e3 {
-                let k = dispersion.k_from_omega_f64(omega);
+                let k = dispersion.k_from_omega_with::<Std>(omega);
                 assert!(k > 0.0 && k.is_finite(), "{dispersion:?} ω={omega}: k={k}");
-                let back = dispersion.omega_f64(k);
+                let back = dispersion.omega_with::<Std>(k);
                 assert!(
                     ((back - omega) / omega).abs() < 1e-12,
                     "{dispersion:?} ω={omega}: k={k} gives ω={back}"
@@ -318,9 +295,9 @@ mod tests {
         let shallow = Dispersion::FiniteDepth { depth: 1.0 };
         let k = 1e-3;
         let expect = k * (G * 1.0).sqrt();
-        assert!((shallow.omega_f64(k) / expect - 1.0).abs() < 1e-6);
+        assert!((shallow.omega_with::<Std>(k) / expect - 1.0).abs() < 1e-6);
         let deep = Dispersion::FiniteDepth { depth: 1000.0 };
-        assert!((deep.omega_f64(1.0) / (G * 1.0).sqrt() - 1.0).abs() < 1e-12);
+        assert!((deep.omega_with::<Std>(1.0) / (G * 1.0).sqrt() - 1.0).abs() < 1e-12);
         assert_eq!(Dispersion::Deep.k_from_omega(0.0), 0.0);
         assert_eq!(Dispersion::Deep.omega(-1.0), 0.0);
         assert_eq!(Dispersion::Deep.omega(f32::NAN), 0.0);

@@ -61,6 +61,8 @@ pub(crate) fn exp(x: f32) -> f32 {
 }
 
 #[cfg(test)]
+// References in the standard library\'s maths: tests are not simulation code.
+#[allow(clippy::disallowed_methods)]
 mod tests {
     use super::*;
 

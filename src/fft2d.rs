@@ -234,6 +234,8 @@ impl Fft2d {
 }
 
 #[cfg(test)]
+// References in the standard library\'s maths: tests are not simulation code.
+#[allow(clippy::disallowed_methods)]
 mod tests {
     use super::*;
 

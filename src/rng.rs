@@ -88,6 +88,8 @@ pub(crate) fn box_muller<M: Math>(a: u64, b: u64) -> (f64, f64) {
 }
 
 #[cfg(test)]
+// References in the standard library\'s maths: tests are not simulation code.
+#[allow(clippy::disallowed_methods)]
 mod tests {
     use super::*;
     use crate::determinism::{Libm, Std};

@@ -1,5 +1,7 @@
 //! The cascade's physical conventions: waves travel downwind, the Jacobian is lowest at
 //! crests, a single wave is a Gerstner trochoid with sharp crests, and looping repeats.
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 mod common;
 

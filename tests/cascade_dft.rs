@@ -1,7 +1,8 @@
 //! The cascade's eight fields, its packed transforms and its derived outputs against a naive
 //! O(N⁴) inverse DFT in f64 of `wave_spectrum(t)` times multipliers written out in the test;
 //! `wave_spectrum` itself against the evolution formula computed here from `h0()` and ω.
-
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 // Index loops over several parallel buffers read more plainly than zipped iterators here.
 #![allow(clippy::needless_range_loop)]
 

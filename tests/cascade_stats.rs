@@ -1,5 +1,7 @@
 //! Statistics of the synthesised surface: Parseval, the calibration of var(η) and H_s against
 //! the spectrum over many seeds, resolution-independent seeding and the band limits.
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 mod common;
 

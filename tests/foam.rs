@@ -2,6 +2,8 @@
 //! sweep of winds, the breaking criterion against the Jacobian of the summed surface computed
 //! here from the cascades' public fields, frame-rate independence, streaks along the wind,
 //! pre-roll, queries and determinism across thread counts.
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 use std::f64::consts::TAU;
 

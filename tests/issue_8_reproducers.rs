@@ -1,5 +1,7 @@
 //! The reproducers of issue 8 (the 0.2 public surface), each as it was reported, now an `Err`
 //! or a finite answer; and the memory budget that keeps a typo from aborting the process.
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 use std::f64::consts::TAU;
 use std::ops::Bound;

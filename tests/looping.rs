@@ -1,6 +1,8 @@
 //! Loops without frozen waves: with a repeat period every wave keeps a frequency of at least
 //! one cycle per loop, the fields repeat exactly, and the reported frequency error is what the
 //! wave vectors' frequencies say.
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 use std::f64::consts::TAU;
 

@@ -1,6 +1,8 @@
 //! The mean water level under choppiness: measured as an observer would (the water height at
 //! fixed world points, `heights_at`, over a large area and many frames), it is still water
 //! for any λ, and the correction that makes it so is the expected λ Σ |k| S(k) Δk².
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 use std::f64::consts::TAU;
 

@@ -1,5 +1,7 @@
 //! OceanState: band coverage, foam, world queries, presets — each against an independent
 //! computation.
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 use std::ops::Bound;
 

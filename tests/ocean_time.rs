@@ -1,5 +1,7 @@
 //! Time for networked and saved games: following a given clock, jumping, snapshots and
 //! rollback, cloning; and the world queries added with them (`locate`, `sample_grid`).
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 use std::ops::Bound;
 

@@ -20,6 +20,8 @@
 //! so a single realisation scatters by about ±0.1 around that mean (seen here: from −0.02 to
 //! +0.30, the highest for the narrow, long-crested swell, whose waves two wavelengths apart
 //! are alike whether or not anything repeats).
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 use ocean_fft::{OceanState, SeaState, SurfaceSample};
 

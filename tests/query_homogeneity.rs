@@ -2,6 +2,8 @@
 //! measured transfer function of the interpolation against closed forms, and heave and
 //! slope statistics at random points against those at the grid nodes, for three seas and
 //! several seeds.
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 use std::f64::consts::{PI, TAU};
 

@@ -3,6 +3,8 @@
 //!
 //! Run with `cargo test --release --features serde --test serde`.
 #![cfg(feature = "serde")]
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 use ocean_fft::{
     CascadeConfig, DepthFactor, Dispersion, FoamConfig, Interpolation, OceanConfig, OceanState,

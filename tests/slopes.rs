@@ -1,6 +1,8 @@
 //! Slope variance along and across the wind (`Spectrum::slope_variance`, the sub-grid part
 //! of cascades and oceans) against an independent quadrature, and the Elfouhaily et al.
 //! (1997) spectrum against statements of the paper and Cox & Munk's (1954) measurements.
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 use std::f64::consts::{PI, TAU};
 

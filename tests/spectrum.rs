@@ -1,5 +1,7 @@
 //! Verification of the spectra, spreading functions and dispersion relations against
 //! independent computations: quadrature, closed forms and finite differences.
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 use std::f64::consts::PI;
 

@@ -308,6 +308,8 @@ fn evolve_block(
 }
 
 #[cfg(test)]
+// References in the standard library\'s maths: tests are not simulation code.
+#[allow(clippy::disallowed_methods)]
 mod tests {
     use super::*;
     use std::f64::consts::TAU;

@@ -2,6 +2,7 @@
 
 use num_complex::Complex32;
 
+use crate::determinism::{Math, Std};
 use crate::error;
 
 /// The eight real fields a cascade synthesises, for [`inspect::field`](crate::inspect::field). Each is the inverse
@@ -57,7 +58,7 @@ impl Field {
             return zero;
         }
         let (kx, kz) = (f64::from(k[0]), f64::from(k[1]));
-        let len = kx.hypot(kz);
+        let len = Std::hypot(kx, kz);
         if len == 0.0 {
             return zero;
         }

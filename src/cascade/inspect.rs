@@ -8,6 +8,7 @@ use num_complex::Complex32;
 
 use super::tables::Evolution;
 use super::{check_time, row_stride, Cascade, Field, TRANSFORMS};
+use crate::determinism::{with_math, Math};
 use crate::error::{self, Error};
 use crate::fft2d::transpose_into;
 
@@ -31,7 +32,7 @@ impl Cascade {
             for i in 0..n {
                 let (entry, conjugate) = self.evolution_entry(i, j);
                 let phase = (entry.freq * t).fract() * TAU;
-                let (sin, cos) = self.config.determinism.sin_cos(phase);
+                let (sin, cos) = with_math!(self.config.determinism, M => M::sin_cos(phase));
                 let p = (f64::from(entry.p.re), f64::from(entry.p.im));
                 let q = (f64::from(entry.q.re), f64::from(entry.q.im));
                 let value = Complex32::new(

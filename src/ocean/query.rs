@@ -10,6 +10,7 @@ use rayon::prelude::*;
 use super::spline::{Spline, SplineStencil};
 use super::OceanState;
 use crate::cascade::Cascade;
+use crate::determinism::{with_math, Math};
 use crate::error::{self, Error};
 
 /// The surface at one undisplaced world point, summed over the cascades.
@@ -308,7 +309,8 @@ impl OceanState {
             d = self.displacement_at(x0[0], x0[1], splines);
             let landed = [x0[0] + f64::from(d.x), x0[1] + f64::from(d.y)];
             let residual = [x - landed[0], z - landed[1]];
-            let miss = self.config.determinism.hypot(residual[0], residual[1]) as f32;
+            let miss =
+                with_math!(self.config.determinism, M => M::hypot(residual[0], residual[1])) as f32;
             if miss < best.miss {
                 best = Location {
                     undisplaced: x0,

@@ -344,6 +344,8 @@ pub(crate) fn ln_gamma<M: Math>(x: f64) -> f64 {
 }
 
 #[cfg(test)]
+// References in the standard library\'s maths: tests are not simulation code.
+#[allow(clippy::disallowed_methods)]
 mod tests {
     use super::*;
     use crate::determinism::Std;

@@ -1,7 +1,7 @@
 //! The variance a [`Spectrum`] carries over a band of wave numbers, and H_s, by quadrature.
 
 use super::Spectrum;
-use crate::determinism::Std;
+use crate::determinism::{Math, Std};
 use crate::error::saturate;
 
 impl Spectrum {
@@ -29,14 +29,14 @@ impl Spectrum {
         if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
             return 0.0;
         }
-        let (a, b) = (lo.ln(), hi.ln());
+        let (a, b) = (Std::ln(lo), Std::ln(hi));
         let decades = (b - a) / std::f64::consts::LN_10;
         let intervals = ((decades * 400.0).ceil() as usize)
             .max(2)
             .next_multiple_of(2);
         let h = (b - a) / intervals as f64;
         let f = |u: f64| {
-            let k = u.exp();
+            let k = Std::exp(u);
             self.omni_k::<Std>(k) * k
         };
         let mut sum = f(a) + f(b);

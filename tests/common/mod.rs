@@ -1,7 +1,8 @@
 //! Independent reference computations shared by the cascade tests: a naive O(N⁴) inverse DFT
 //! in f64, the spectral multipliers of the eight fields written out from the table in docs/theory.md,
 //! seeded spectra and statistics in f64. Nothing here calls the crate's own synthesis code.
-
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 #![allow(dead_code)]
 
 use std::f64::consts::TAU;

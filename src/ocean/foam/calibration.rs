@@ -16,12 +16,14 @@
 //! integrated over the remaining two dimensions by the trapezoidal rule.
 
 use super::moments::GradientMoments;
-use crate::determinism::Determinism;
+use std::marker::PhantomData;
+
+use crate::determinism::Math;
 
 /// The whitecap fraction of Monahan & O'Muircheartaigh (1980), W = 3.84·10⁻⁶ U10^3.41, for a
 /// wind speed U10 in m/s.
-pub(crate) fn monahan(d: Determinism, wind_speed: f64) -> f64 {
-    3.84e-6 * d.powf(wind_speed.max(0.0), 3.41)
+pub(crate) fn monahan<M: Math>(wind_speed: f64) -> f64 {
+    3.84e-6 * M::powf(wind_speed.max(0.0), 3.41)
 }
 
 /// Largest target coverage: beyond half the surface whitecaps are no longer separate patches
@@ -92,16 +94,13 @@ pub(crate) struct Settings {
     pub(crate) coverage: f32,
     /// Lifetime τ_A of active foam, s.
     pub(crate) active_decay: f32,
-    /// Whose transcendental functions the calibration uses.
-    pub(crate) determinism: Determinism,
 }
 
 /// Finds the breaking threshold for an ocean whose summed gradient has `moments`.
-pub(crate) fn calibrate(moments: &GradientMoments, settings: Settings) -> FoamCalibration {
-    let d = settings.determinism;
-    let target =
-        (f64::from(settings.coverage) * monahan(d, f64::from(settings.wind_speed))).min(MAX_TARGET);
-    let stats = Statistics::new(moments, d);
+pub(crate) fn calibrate<M: Math>(moments: &GradientMoments, settings: Settings) -> FoamCalibration {
+    let target = (f64::from(settings.coverage) * monahan::<M>(f64::from(settings.wind_speed)))
+        .min(MAX_TARGET);
+    let stats = Statistics::<M>::new(moments);
     let sigma = stats.sigma_t;
     let none = FoamCalibration::none(settings.wind_speed, target as f32, sigma as f32);
     if !(target > 0.0 && sigma > 0.0 && sigma.is_finite()) {
@@ -113,11 +112,11 @@ pub(crate) fn calibrate(moments: &GradientMoments, settings: Settings) -> FoamCa
     };
     // W decreases with the depth u = (1 − J_b)/σ_T of the threshold; solve ln W(u) = ln W*
     // by the Illinois variant of regula falsi on [0, MAX_DEPTH].
-    let goal = d.ln(target);
+    let goal = M::ln(target);
     let f = |u: f64| {
         let w = model.coverage(1.0 - u * sigma).coverage;
         if w > 0.0 {
-            d.ln(w) - goal
+            M::ln(w) - goal
         } else {
             f64::NEG_INFINITY
         }
@@ -205,12 +204,12 @@ struct Prediction {
 /// ```text
 /// W = (p + ν τ_A) / (1 + p + ν τ_A)
 /// ```
-struct Model<'a> {
-    stats: &'a Statistics,
+struct Model<'a, M: Math> {
+    stats: &'a Statistics<M>,
     tau: f64,
 }
 
-impl Model<'_> {
+impl<M: Math> Model<'_, M> {
     fn coverage(&self, threshold: f64) -> Prediction {
         let (fraction, rate) = self.stats.crossing(threshold);
         let x = fraction + rate * self.tau;
@@ -236,7 +235,7 @@ struct Node {
 
 /// The Gaussian statistics of (T, P, C) in the form the integrals use.
 #[derive(Debug, Clone)]
-struct Statistics {
+struct Statistics<M: Math> {
     /// Standard deviation of T.
     sigma_t: f64,
     /// Regression of (P, C) on T.
@@ -247,7 +246,7 @@ struct Statistics {
     /// Covariance of (Ṫ, Ṗ, Ċ), 1/s².
     rate: [[f64; 3]; 3],
     /// Whose transcendental functions the statistics use.
-    d: Determinism,
+    math: PhantomData<M>,
 }
 
 /// Half-width of the trapezoidal grid in standard deviations, and its step: the rule is
@@ -256,8 +255,8 @@ struct Statistics {
 const NODE_RANGE: f64 = 6.5;
 const NODE_STEP: f64 = 0.5;
 
-impl Statistics {
-    fn new(moments: &GradientMoments, d: Determinism) -> Statistics {
+impl<M: Math> Statistics<M> {
+    fn new(moments: &GradientMoments) -> Statistics<M> {
         // (A, B, C) → (T, P, C).
         let m = [[1.0, 1.0, 0.0], [0.5, -0.5, 0.0], [0.0, 0.0, 1.0]];
         let value = transform(&m, &moments.value);
@@ -271,7 +270,7 @@ impl Statistics {
                 a2: 0.0,
                 nodes: Vec::new(),
                 rate,
-                d,
+                math: PhantomData,
             };
         }
         let beta = [value[0][1] / var_t, value[0][2] / var_t];
@@ -286,7 +285,7 @@ impl Statistics {
                 value[2][2] - beta[1] * beta[1] * var_t,
             ],
         ];
-        let (axes, spreads) = eigen_2x2(d, r);
+        let (axes, spreads) = eigen_2x2::<M>(r);
         let scale = value[1][1] + value[2][2];
         let line = |spread: f64| -> Vec<(f64, f64)> {
             if spread <= 1e-12 * scale {
@@ -296,7 +295,7 @@ impl Statistics {
             let mut points: Vec<(f64, f64)> = (0..=count)
                 .map(|k| {
                     let y = -NODE_RANGE + f64::from(k) * NODE_STEP;
-                    (y, d.exp(-0.5 * y * y))
+                    (y, M::exp(-0.5 * y * y))
                 })
                 .collect();
             let total: f64 = points.iter().map(|p| p.1).sum();
@@ -330,7 +329,7 @@ impl Statistics {
             a2,
             nodes,
             rate,
-            d,
+            math: PhantomData,
         }
     }
 
@@ -339,7 +338,7 @@ impl Statistics {
     fn crossing(&self, threshold: f64) -> (f64, f64) {
         let (mut fraction, mut rate) = (0.0, 0.0);
         for node in &self.nodes {
-            let (p, roots, slope) = quadratic_below(self.d, self.a2, node.a1, node.a0 - threshold);
+            let (p, roots, slope) = quadratic_below::<M>(self.a2, node.a1, node.a0 - threshold);
             fraction += node.weight * p;
             for z in roots.into_iter().flatten() {
                 // J̇ = ∇J · (Ṫ, Ṗ, Ċ) with ∇J = (1 + T/2, −2P, −2C); its standard deviation
@@ -355,8 +354,7 @@ impl Statistics {
                     }
                 }
                 // δ(J − J_b) = δ(z − root)/|dJ/dz|, z standard normal.
-                rate +=
-                    node.weight * normal_pdf(self.d, z) * s2.max(0.0).sqrt() / (TAU_SQRT * slope);
+                rate += node.weight * normal_pdf::<M>(z) * s2.max(0.0).sqrt() / (TAU_SQRT * slope);
             }
         }
         (fraction, rate)
@@ -382,28 +380,28 @@ fn transform(m: &[[f64; 3]; 3], s: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
 }
 
 /// Unit eigenvectors (rows) and eigenvalues (clamped at 0) of a symmetric 2×2 matrix.
-fn eigen_2x2(d: Determinism, m: [[f64; 2]; 2]) -> ([[f64; 2]; 2], [f64; 2]) {
+fn eigen_2x2<M: Math>(m: [[f64; 2]; 2]) -> ([[f64; 2]; 2], [f64; 2]) {
     let (a, b, c) = (m[0][0], 0.5 * (m[0][1] + m[1][0]), m[1][1]);
     let mean = 0.5 * (a + c);
-    let radius = d.hypot(0.5 * (a - c), b);
+    let radius = M::hypot(0.5 * (a - c), b);
     let (l1, l2) = (mean + radius, mean - radius);
-    let angle = 0.5 * d.atan2(2.0 * b, a - c);
-    let (sin, cos) = d.sin_cos(angle);
+    let angle = 0.5 * M::atan2(2.0 * b, a - c);
+    let (sin, cos) = M::sin_cos(angle);
     ([[cos, sin], [-sin, cos]], [l1.max(0.0), l2.max(0.0)])
 }
 
 /// For z standard normal: P(a2 z² + a1 z + c < 0), the crossing points (roots), and |q'| at
 /// them (√discriminant, or |a1| for a linear q).
-fn quadratic_below(d: Determinism, a2: f64, a1: f64, c: f64) -> (f64, [Option<f64>; 2], f64) {
+fn quadratic_below<M: Math>(a2: f64, a1: f64, c: f64) -> (f64, [Option<f64>; 2], f64) {
     if a2 == 0.0 {
         if a1 == 0.0 {
             return (if c < 0.0 { 1.0 } else { 0.0 }, [None, None], 0.0);
         }
         let root = -c / a1;
         let p = if a1 > 0.0 {
-            normal_cdf(d, root)
+            normal_cdf::<M>(root)
         } else {
-            normal_cdf(d, -root)
+            normal_cdf::<M>(-root)
         };
         return (p, [Some(root), None], a1.abs());
     }
@@ -416,29 +414,29 @@ fn quadratic_below(d: Determinism, a2: f64, a1: f64, c: f64) -> (f64, [Option<f6
     let (r1, r2) = (q / a2, c / q);
     let (lo, hi) = if r1 < r2 { (r1, r2) } else { (r2, r1) };
     let p = if a2 > 0.0 {
-        normal_between(d, lo, hi)
+        normal_between::<M>(lo, hi)
     } else {
-        normal_cdf(d, lo) + normal_cdf(d, -hi)
+        normal_cdf::<M>(lo) + normal_cdf::<M>(-hi)
     };
     (p, [Some(lo), Some(hi)], sq)
 }
 
 /// φ(z), the standard normal density.
-fn normal_pdf(d: Determinism, z: f64) -> f64 {
-    d.exp(-0.5 * z * z) / TAU_SQRT
+fn normal_pdf<M: Math>(z: f64) -> f64 {
+    M::exp(-0.5 * z * z) / TAU_SQRT
 }
 
 /// Φ(z), with full relative accuracy in the lower tail.
-fn normal_cdf(d: Determinism, z: f64) -> f64 {
-    0.5 * erfc(d, -z * std::f64::consts::FRAC_1_SQRT_2)
+fn normal_cdf<M: Math>(z: f64) -> f64 {
+    0.5 * erfc::<M>(-z * std::f64::consts::FRAC_1_SQRT_2)
 }
 
 /// Φ(hi) − Φ(lo) for lo ≤ hi, accurate in either tail.
-fn normal_between(d: Determinism, lo: f64, hi: f64) -> f64 {
+fn normal_between<M: Math>(lo: f64, hi: f64) -> f64 {
     if lo >= 0.0 {
-        normal_cdf(d, -lo) - normal_cdf(d, -hi)
+        normal_cdf::<M>(-lo) - normal_cdf::<M>(-hi)
     } else {
-        normal_cdf(d, hi) - normal_cdf(d, lo)
+        normal_cdf::<M>(hi) - normal_cdf::<M>(lo)
     }
     .max(0.0)
 }
@@ -450,21 +448,21 @@ const SERIES_LIMIT: f64 = 2.0;
 /// The complementary error function, to about 1e-13 relative: for |x| < 2 from the series
 /// erf x = (2x/√π) e^{−x²} Σ (2x²)ⁿ/(1·3·…·(2n+1)) (positive terms, no cancellation), beyond
 /// from the continued fraction of e^{x²} erfc x (Abramowitz & Stegun 1964, 7.1.6 and 7.1.14).
-pub(crate) fn erfc(d: Determinism, x: f64) -> f64 {
+pub(crate) fn erfc<M: Math>(x: f64) -> f64 {
     if x.is_nan() {
         return x;
     }
     if x < 0.0 {
-        return 2.0 - erfc(d, -x);
+        return 2.0 - erfc::<M>(-x);
     }
     if x < SERIES_LIMIT {
-        1.0 - erf_series(d, x)
+        1.0 - erf_series::<M>(x)
     } else {
-        erfcx_fraction(x) * d.exp(-x * x)
+        erfcx_fraction(x) * M::exp(-x * x)
     }
 }
 
-fn erf_series(d: Determinism, x: f64) -> f64 {
+fn erf_series<M: Math>(x: f64) -> f64 {
     let two_x2 = 2.0 * x * x;
     let mut term = 1.0;
     let mut sum = 1.0;
@@ -474,7 +472,7 @@ fn erf_series(d: Determinism, x: f64) -> f64 {
         term *= two_x2 / (2.0 * n + 1.0);
         sum += term;
     }
-    2.0 * x / std::f64::consts::PI.sqrt() * d.exp(-x * x) * sum
+    2.0 * x / std::f64::consts::PI.sqrt() * M::exp(-x * x) * sum
 }
 
 /// e^{x²} erfc x = (1/√π) / (x + (1/2)/(x + 1/(x + (3/2)/(x + …)))), evaluated backwards from
@@ -489,10 +487,12 @@ fn erfcx_fraction(x: f64) -> f64 {
 }
 
 #[cfg(test)]
-// Matrix arithmetic reads best with its indices.
-#[allow(clippy::needless_range_loop)]
+// Matrix arithmetic reads best with its indices; the references use the standard library's
+// maths (tests are not simulation code).
+#[allow(clippy::needless_range_loop, clippy::disallowed_methods)]
 mod tests {
     use super::*;
+    use crate::determinism::Std;
     use rand::{Rng, SeedableRng};
     use rand_distr::StandardNormal;
 
@@ -512,15 +512,15 @@ mod tests {
             (-1.0, 1.842_700_792_949_715),
         ];
         for (x, expected) in cases {
-            let got = erfc(Determinism::SameMachine, x);
+            let got = erfc::<Std>(x);
             assert!(
                 ((got - expected) / expected).abs() < 2e-13,
-                "erfc(Determinism::SameMachine, {x}) = {got}, expected {expected}"
+                "erfc::<Std>({x}) = {got}, expected {expected}"
             );
         }
         // Continuity where the two methods meet.
-        let below = erfc(Determinism::SameMachine, SERIES_LIMIT - 1e-12);
-        let above = erfc(Determinism::SameMachine, SERIES_LIMIT + 1e-12);
+        let below = erfc::<Std>(SERIES_LIMIT - 1e-12);
+        let above = erfc::<Std>(SERIES_LIMIT + 1e-12);
         assert!(((below - above) / above).abs() < 1e-10);
     }
 
@@ -540,7 +540,7 @@ mod tests {
         ];
         let rate = [[0.9, 0.3, 0.1], [0.3, 0.6, 0.12], [0.1, 0.12, 0.3]];
         let moments = GradientMoments { value, rate };
-        let stats = Statistics::new(&moments, Determinism::SameMachine);
+        let stats = Statistics::<Std>::new(&moments);
         let threshold = 0.7;
         let (fraction, crossing) = stats.crossing(threshold);
         let chol = |m: [[f64; 3]; 3]| {
@@ -595,11 +595,11 @@ mod tests {
         let mut moments = GradientMoments::default();
         moments.value[0][0] = var;
         moments.rate[0][0] = var_rate;
-        let stats = Statistics::new(&moments, Determinism::SameMachine);
+        let stats = Statistics::<Std>::new(&moments);
         for threshold in [0.9, 0.75, 0.6] {
             let (p, nu) = stats.crossing(threshold);
             let u = (1.0 - threshold) / var.sqrt();
-            let expected_p = normal_cdf(Determinism::SameMachine, -u);
+            let expected_p = normal_cdf::<Std>(-u);
             let expected_nu =
                 (var_rate / var).sqrt() / std::f64::consts::TAU * (-0.5 * u * u).exp();
             assert!((p / expected_p - 1.0).abs() < 1e-9, "{p} vs {expected_p}");

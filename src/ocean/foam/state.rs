@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use std::ops::Bound::Included;
 
 use crate::cascade::Cascade;
-use crate::determinism::{Determinism, Libm, Std};
+use crate::determinism::{with_math, Determinism, Math};
 use crate::error::{self, Error};
 use crate::exp::exp;
 use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
@@ -20,14 +20,6 @@ use super::moments::GradientMoments;
 use super::rows::{pack_rows, repack_halves, total_row, unpack_halves};
 use super::transport::Transport;
 use super::{FoamCalibration, FoamConfig, FoamCoverage};
-
-/// The [`GradientMoments`] of `cascade` with the functions of `determinism`.
-fn moments(cascade: &Cascade, determinism: Determinism) -> GradientMoments {
-    match determinism {
-        Determinism::SameMachine => GradientMoments::of::<Std>(cascade),
-        Determinism::CrossPlatform => GradientMoments::of::<Libm>(cascade),
-    }
-}
 
 /// Rows of the foam grid one parallel task handles in every pass (the split depends only on
 /// N, never on the number of threads): as many as a task of the transforms' second pass
@@ -84,6 +76,8 @@ pub(crate) struct Foam {
     /// cascade (cascade 0) at the current time, written by its update
     /// ([`update_source`](Self::update_source)).
     pub(super) gradient: Vec<[f32; 3]>,
+    /// The determinism mode of the ocean, whose functions the transport's tables use.
+    pub(super) determinism: Determinism,
     /// The SIMD level of the element loops.
     pub(super) simd: Simd,
 }
@@ -118,25 +112,34 @@ impl Foam {
         config: &FoamConfig,
         spectrum: &crate::spectrum::Spectrum,
     ) -> Result<Foam, Error> {
+        let determinism = cascades[0].config().determinism;
+        with_math!(determinism, M => Self::new_with::<M>(cascades, config, spectrum))
+    }
+
+    /// [`Foam::new`] with the functions of `M`, the determinism mode of the cascades.
+    fn new_with<M: Math>(
+        cascades: &mut [Cascade],
+        config: &FoamConfig,
+        spectrum: &crate::spectrum::Spectrum,
+    ) -> Result<Foam, Error> {
         let wind_speed = config.wind_speed_for(spectrum);
         let first = &cascades[0];
         let determinism = first.config().determinism;
         let n = first.size();
         let length = first.length();
-        let resolved = moments(first, determinism);
+        let resolved = GradientMoments::of::<M>(first);
         let mut unresolved = GradientMoments::default();
         for cascade in &cascades[1..] {
-            unresolved.add(&moments(cascade, determinism));
+            unresolved.add(&GradientMoments::of::<M>(cascade));
         }
         let mut total = resolved;
         total.add(&unresolved);
-        let calibration = calibrate(
+        let calibration = calibrate::<M>(
             &total,
             Settings {
                 wind_speed,
                 coverage: config.coverage,
                 active_decay: config.active_decay,
-                determinism,
             },
         );
         let floor = 0.05 * calibration.compression_std;
@@ -151,19 +154,18 @@ impl Foam {
         // Spreads over a residual lifetime, √(2Kτ_R) = streak·λ_p, give the diffusivities.
         let peak = spectrum
             .dispersion()
-            .k_from_omega_with_mode(f64::from(spectrum.peak_omega()), determinism);
+            .k_from_omega_with::<M>(f64::from(spectrum.peak_omega()));
         let wavelength = std::f64::consts::TAU / peak;
         let diffusivity = |streak: f32| {
             let spread = f64::from(streak) * wavelength;
             spread * spread / (2.0 * f64::from(config.residual_decay))
         };
-        let transport = Transport::new(
+        let transport = Transport::new::<M>(
             f64::from(spectrum.wind_direction()),
             f64::from(config.drift) * f64::from(wind_speed),
             diffusivity(config.streak_length),
             diffusivity(config.streak_width),
             f64::from(length),
-            determinism,
         );
         let points = n * n;
         let fft = RowFft::new(n, determinism);
@@ -186,6 +188,7 @@ impl Foam {
             fft,
             row_sums: error::try_vec(n, [0.0; 3])?,
             gradient: error::try_vec(points, [0.0; 3])?,
+            determinism,
             simd: Simd::detect(),
         };
         cascades[0].fill_gradient(&mut foam.gradient);
@@ -248,7 +251,8 @@ impl Foam {
             // A game steps by the same dt frame after frame: the tables (2N sines and cosines
             // in f64, a few per cent of the foam at 64²) are a function of dt alone.
             if dt.to_bits() != self.tables_dt.to_bits() {
-                self.transport.fill_tables(dt, n, &mut self.tables);
+                let (transport, tables) = (&self.transport, &mut self.tables);
+                with_math!(self.determinism, M => transport.fill_tables::<M>(dt, n, tables));
                 self.tables_dt = dt;
             }
         }

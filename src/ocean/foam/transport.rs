@@ -18,7 +18,7 @@ use std::f64::consts::TAU;
 
 use num_complex::Complex32;
 
-use crate::determinism::Determinism;
+use crate::determinism::Math;
 
 /// The transport of an ocean's residual foam.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,22 +29,20 @@ pub(crate) struct Transport {
     pub(crate) tensor: [f64; 3],
     /// Δk = 2π/L of the grid, rad/m.
     dk: f64,
-    /// Whose sine and cosine the drift tables use.
-    determinism: Determinism,
 }
 
 impl Transport {
     /// The transport for a drift of `drift` m/s along the wind direction `wind` (rad) and
-    /// diffusivities `along` and `across` the wind (m²/s), on a grid of side `length` m.
-    pub(crate) fn new(
+    /// diffusivities `along` and `across` the wind (m²/s), on a grid of side `length` m, with
+    /// the functions of `M`.
+    pub(crate) fn new<M: Math>(
         wind: f64,
         drift: f64,
         along: f64,
         across: f64,
         length: f64,
-        determinism: Determinism,
     ) -> Self {
-        let (sin, cos) = determinism.sin_cos(wind);
+        let (sin, cos) = M::sin_cos(wind);
         Transport {
             drift: [drift * cos, drift * sin],
             tensor: [
@@ -53,7 +51,6 @@ impl Transport {
                 along * sin * sin + across * cos * cos,
             ],
             dk: TAU / length,
-            determinism,
         }
     }
 
@@ -63,14 +60,15 @@ impl Transport {
     }
 
     /// The drift factors over `dt` seconds on an N grid: `tables[..N]` holds
-    /// exp(−i dt u_x k_x) for k_x = Δk·m(i), `tables[N..2N]` the same for z.
-    pub(crate) fn fill_tables(&self, dt: f64, n: usize, tables: &mut [Complex32]) {
+    /// exp(−i dt u_x k_x) for k_x = Δk·m(i), `tables[N..2N]` the same for z, with the
+    /// functions of `M`.
+    pub(crate) fn fill_tables<M: Math>(&self, dt: f64, n: usize, tables: &mut [Complex32]) {
         for (axis, table) in tables.chunks_mut(n).take(2).enumerate() {
             for (i, value) in table.iter_mut().enumerate() {
                 let k = self.dk * f64::from(crate::grid::wave_index(i, n));
                 // The phase reduced to whole turns first, so that long steps stay accurate.
                 let turns = (dt * self.drift[axis] * k / TAU).rem_euclid(1.0);
-                let (s, c) = self.determinism.sin_cos(TAU * turns);
+                let (s, c) = M::sin_cos(TAU * turns);
                 *value = Complex32::new(c as f32, -s as f32);
             }
         }
@@ -85,8 +83,11 @@ impl Transport {
 }
 
 #[cfg(test)]
+// The test checks the tensor against the standard library's sine and cosine.
+#[allow(clippy::disallowed_methods)]
 mod tests {
     use super::*;
+    use crate::determinism::Std;
 
     /// The tensor has the wind as a principal axis with K∥ along it and K⊥ across, and the
     /// drift points downwind, in every direction.
@@ -94,7 +95,7 @@ mod tests {
     fn tensor_and_drift_follow_the_wind() {
         for degree in (-180..180).step_by(7) {
             let theta = f64::from(degree).to_radians();
-            let t = Transport::new(theta, 0.3, 4.0, 0.5, 100.0, Determinism::SameMachine);
+            let t = Transport::new::<Std>(theta, 0.3, 4.0, 0.5, 100.0);
             let (w, n) = ([theta.cos(), theta.sin()], [-theta.sin(), theta.cos()]);
             let form = |a: [f64; 2], b: [f64; 2]| {
                 a[0] * t.tensor[0] * b[0]
