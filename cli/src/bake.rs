@@ -93,12 +93,12 @@ impl Captured {
         Ok(match format {
             Format::Exr => {
                 let mut texels = Texels::new(size);
-                texels.capture(ocean, cascade, &mut vec![[f16::ZERO; 4]; size * size])?;
+                texels.capture(ocean, cascade)?;
                 Captured::Exr(texels)
             }
             Format::Png => {
                 let mut texels = Texels::new(size);
-                texels.capture(ocean, cascade, &mut vec![[0.0; 4]; size * size])?;
+                texels.capture(ocean, cascade)?;
                 Captured::Png(texels)
             }
         })

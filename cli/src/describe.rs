@@ -278,8 +278,7 @@ pub fn info(sea: &Sea, ocean: &OceanState, convergence: Option<LoopConvergence>)
         );
     }
     let points: usize = ocean.cascades().iter().map(|c| c.size().pow(2)).sum();
-    // A frame in flight: two RGBA buffers per texel (and a third while packing), f16 for
-    // EXR, f32 for PNG.
+    // A frame in flight: two RGBA buffers per texel, f16 for EXR, f32 for PNG.
     let _ = writeln!(
         s,
         "memory: ocean {}, plus about {} per frame in flight while baking EXR ({} for PNG)",

@@ -93,38 +93,22 @@ impl<T: Component> Texels<T> {
         }
     }
 
-    /// Packs every channel of cascade `cascade` into these buffers; `scratch` (N² long)
-    /// receives the [`TexelLayout::DisplacementJacobian`] texels the Jacobian is taken from.
+    /// Packs every channel of cascade `cascade` into these buffers.
     ///
     /// # Errors
     /// Only on a bug (wrong buffer sizes).
-    pub fn capture(
-        &mut self,
-        ocean: &OceanState,
-        cascade: usize,
-        scratch: &mut [[T; 4]],
-    ) -> Result<(), CliError> {
+    pub fn capture(&mut self, ocean: &OceanState, cascade: usize) -> Result<(), CliError> {
         let internal =
             |e: ocean_fft::Error| CliError::new(crate::error::Kind::Internal, e.to_string());
-        T::pack(
-            ocean,
-            cascade,
-            TexelLayout::DisplacementFoam,
-            &mut self.displacement_foam,
-        )
-        .map_err(internal)?;
-        T::pack(
-            ocean,
-            cascade,
-            TexelLayout::Normal,
-            &mut self.normal_jacobian,
-        )
-        .map_err(internal)?;
-        T::pack(ocean, cascade, TexelLayout::DisplacementJacobian, scratch).map_err(internal)?;
-        for (texel, dj) in self.normal_jacobian.iter_mut().zip(scratch.iter()) {
+        // The Jacobian passes through the displacement buffer, which the displacement and
+        // foam then overwrite.
+        let (df, nj) = (&mut self.displacement_foam, &mut self.normal_jacobian);
+        T::pack(ocean, cascade, TexelLayout::DisplacementJacobian, df).map_err(internal)?;
+        T::pack(ocean, cascade, TexelLayout::Normal, nj).map_err(internal)?;
+        for (texel, dj) in nj.iter_mut().zip(df.iter()) {
             texel[3] = dj[3];
         }
-        Ok(())
+        T::pack(ocean, cascade, TexelLayout::DisplacementFoam, df).map_err(internal)
     }
 }
 
