@@ -116,8 +116,9 @@ fn check_loop(sea: &Sea, ocean: &OceanState) -> Option<Warning> {
 }
 
 /// What the tiles of a config hold of a spectrum, from the spectrum's integrals over each
-/// cascade's band (the grid's sums follow them closely; being independent of the grid's
-/// random draw and cheap, they also judge a suggested config without building it).
+/// cascade's band (the grid's sums, `Cascade::expected_variance`, agree with them to a few
+/// percent from 64² up; cheap and free of the grid, they also judge a suggested config
+/// without building it).
 #[derive(Debug, Clone, PartialEq)]
 pub struct TileFit {
     /// Height variance of each cascade's band in m².
@@ -137,7 +138,7 @@ pub struct TileFit {
 
 impl TileFit {
     /// Integrates `spectrum` over the bands of `config`; `None` for a config the library
-    /// refuses.
+    /// refuses (or a spectrum without variance, which nothing would fit).
     pub fn new(spectrum: &Spectrum, config: &OceanConfig) -> Option<TileFit> {
         let mut bands = config.bands().ok()?;
         // Cascade 0's grid holds no wave longer than its tile: its lowest wave vectors are
@@ -153,12 +154,16 @@ impl TileFit {
             .iter()
             .map(|&(lo, hi)| f64::from(spectrum.slope_variance(lo, hi).total()))
             .collect();
+        let sea_height = f64::from(spectrum.band_variance(0.0, f32::INFINITY));
+        if !(sea_height > 0.0 && sea_height.is_finite()) {
+            return None;
+        }
         let top = bands[bands.len() - 1].1;
         let k_peak = spectrum.dispersion().k_from_omega(spectrum.peak_omega());
         Some(TileFit {
             height,
             slope,
-            sea_height: f64::from(spectrum.band_variance(0.0, f32::INFINITY)),
+            sea_height,
             below: f64::from(spectrum.band_variance(0.0, bands[0].0)),
             above: f64::from(spectrum.band_variance(top, f32::INFINITY)),
             peak_wavelength: std::f64::consts::TAU / f64::from(k_peak),
