@@ -3,8 +3,52 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use ocean_fft::{CascadeConfig, OceanConfig, SeaState};
 
 use crate::frames::FrameList;
+
+/// Accepted frames per second.
+pub const FPS_RANGE: (f64, f64) = (0.1, 1000.0);
+/// Accepted foam tolerances.
+pub const TOLERANCE_RANGE: (f64, f64) = (1e-6, 0.1);
+/// Accepted numbers of encoder threads.
+pub const ENCODERS_RANGE: (usize, usize) = (1, 256);
+
+/// The accepted range of an option as its `--help` and its error both state it:
+/// "`min` to `max`".
+pub fn range_text(min: impl std::fmt::Display, max: impl std::fmt::Display) -> String {
+    format!("{min} to {max}")
+}
+
+/// `--size`'s range: what the library accepts.
+pub fn size_range() -> String {
+    format!(
+        "even, {}",
+        range_text(CascadeConfig::MIN_SIZE, CascadeConfig::MAX_SIZE)
+    )
+}
+
+/// `--loop`'s range in seconds: the library's repeat periods.
+pub fn loop_range() -> String {
+    range_text(
+        CascadeConfig::MIN_REPEAT_PERIOD,
+        CascadeConfig::MAX_REPEAT_PERIOD,
+    )
+}
+
+/// `--lengths`' rule: the library's checks of `OceanConfig::lengths`.
+pub fn lengths_rule() -> String {
+    format!(
+        "{} tile sides in metres, each {}, largest first, strictly decreasing",
+        range_text(1, OceanConfig::MAX_CASCADES),
+        range_text(CascadeConfig::MIN_LENGTH, CascadeConfig::MAX_LENGTH)
+    )
+}
+
+/// The preset names, for clap's value check and its `--help`.
+pub fn preset_names() -> clap::builder::PossibleValuesParser {
+    clap::builder::PossibleValuesParser::new(SeaState::ALL.map(SeaState::name))
+}
 
 /// The exit codes, as `--help` lists them.
 pub const EXIT_CODES: &str = "\
@@ -15,8 +59,8 @@ Exit codes:
   3  bad sea configuration: the --config file cannot be read or parsed, or a parameter in it
      (or one an override produced) is out of range
   4  an output file or directory could not be written (permissions, disk full)
-  5  --out holds a bake with other parameters (its sidecar JSON differs); use another
-     directory, or --overwrite to replace it";
+  5  --out holds a bake with other parameters (its sidecar JSON differs; the message names
+     the parameters that differ); use another directory, or --overwrite to replace it";
 
 /// Bakes an FFT ocean (ocean-fft) into texture sequences for tools, engines and render farms.
 ///
@@ -49,7 +93,7 @@ pub enum Command {
 #[group(id = "source", required = true, multiple = false)]
 pub struct Source {
     /// A named sea state: calm, moderate_breeze, fresh_breeze, storm, swell, shallow_bay.
-    #[arg(long, value_name = "NAME", value_parser = crate::setup::preset_names())]
+    #[arg(long, value_name = "NAME", value_parser = preset_names())]
     pub preset: Option<String>,
     /// A JSON file with the keys "spectrum" and "config" (as ocean-fft's serde writes them;
     /// a bake's sidecar JSON is such a file).
@@ -82,34 +126,62 @@ pub struct SeaArgs {
         help_heading = "Overrides"
     )]
     pub direction_deg: Option<f32>,
-    /// Override: grid size N of every cascade (even, 16 to 4096; presets use 256).
-    #[arg(long, value_name = "N", help_heading = "Overrides")]
+    /// Override: grid size N of every cascade ([`size_range`]).
+    #[arg(long, value_name = "N", help_heading = "Overrides", help = format!(
+        "Override: grid size N of every cascade ({}; presets use 256; at 4096² the default \
+         memory limit, 4 GiB, admits one cascade)",
+        size_range()
+    ))]
     pub size: Option<usize>,
+    /// Override: the cascades' tile sides in metres ([`lengths_rule`]).
+    #[arg(
+        long,
+        value_name = "L0,L1,…",
+        value_delimiter = ',',
+        help_heading = "Overrides",
+        help = format!(
+            "Override: the cascades' tiles, comma-separated ({}; presets use three, the \
+             largest about 12 peak wavelengths)",
+            lengths_rule()
+        )
+    )]
+    pub lengths: Option<Vec<f32>>,
     /// Override: choppiness λ ≥ 0 (horizontal displacement; presets use 0.8 to 1.2).
     #[arg(long, value_name = "L", help_heading = "Overrides")]
     pub choppiness: Option<f32>,
     /// Override: the random seed (cascade c uses seed + c).
     #[arg(long, value_name = "S", help_heading = "Overrides")]
     pub seed: Option<u64>,
-    /// Frames per second: frame f shows time t = f / fps.
-    #[arg(long, value_name = "F", default_value_t = 30.0)]
+    /// Frames per second: frame f shows time t = f / fps ([`FPS_RANGE`]).
+    #[arg(long, value_name = "F", default_value_t = 30.0, help = format!(
+        "Frames per second: frame f shows time t = f / fps ({})",
+        range_text(FPS_RANGE.0, FPS_RANGE.1)
+    ))]
     pub fps: f64,
-    /// Make a seamless loop of this many seconds (a whole number of frames at --fps): frame
-    /// f shows the same as frame f + loop·fps, foam included.
-    #[arg(long = "loop", value_name = "SECONDS")]
+    /// Make a seamless loop of this many seconds ([`loop_range`]).
+    #[arg(long = "loop", value_name = "SECONDS", help = format!(
+        "Make a seamless loop of this many seconds ({}, a whole number of frames at --fps; \
+         at least twice the sea's peak period looks natural): frame f shows the same as \
+         frame f + loop·fps, foam included",
+        loop_range()
+    ))]
     pub loop_seconds: Option<f64>,
-    /// Foam pre-roll tolerance: how far the foam may be from that of an ocean simulated
-    /// forever (the pre-roll is long enough for its decay to reach this; 1e-6 to 0.1).
+    /// Foam pre-roll tolerance ([`TOLERANCE_RANGE`]).
     #[arg(
         long,
         value_name = "EPS",
         default_value_t = 1e-3,
-        help_heading = "Foam pre-roll"
+        help_heading = "Foam pre-roll",
+        help = format!(
+            "Foam pre-roll tolerance: how far the foam may be from that of an ocean simulated \
+             forever (the pre-roll is long enough for its decay to reach this; {})",
+            range_text(TOLERANCE_RANGE.0, TOLERANCE_RANGE.1)
+        )
     )]
     pub foam_tolerance: f64,
-    /// Foam anchors: the foam of frame f is simulated from the anchor frame a ≤ f (a
-    /// multiple of this) minus the pre-roll, so a farm chunk that starts on an anchor pays
-    /// one pre-roll. Ignored for loops.
+    /// Foam anchors (at least 1): the foam of frame f is simulated from the anchor frame
+    /// a ≤ f (a multiple of this) minus the pre-roll, so a farm chunk that starts on an
+    /// anchor pays one pre-roll. Ignored for loops.
     #[arg(
         long,
         value_name = "FRAMES",
@@ -152,8 +224,11 @@ pub struct BakeArgs {
     /// Base of the file names (default: the preset's name, or the config file's stem).
     #[arg(long, value_name = "NAME")]
     pub name: Option<String>,
-    /// Encoder threads (default: the number of CPUs).
-    #[arg(long, value_name = "N")]
+    /// Encoder threads ([`ENCODERS_RANGE`]; default: the number of CPUs).
+    #[arg(long, value_name = "N", help = format!(
+        "Encoder threads ({}; default: the number of CPUs)",
+        range_text(ENCODERS_RANGE.0, ENCODERS_RANGE.1)
+    ))]
     pub encoders: Option<usize>,
 }
 

@@ -7,15 +7,24 @@ use std::sync::mpsc;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
-use crate::args::{BakeArgs, Format};
+use half::f16;
+use serde_json::Value;
+
+use crate::args::{self, BakeArgs, Format, ENCODERS_RANGE};
 use crate::describe;
 use crate::encode::{self, PngScale};
 use crate::error::{CliError, Kind};
 use crate::setup::{self, Sea};
-use crate::sim::{self, LoopConvergence, Simulator, Texels};
+use crate::sim::{LoopConvergence, Simulator, Texels};
+use crate::warnings;
 
-/// Told about every file as it is written.
+/// Told what the bake is about to do, and about every file as it is written.
 pub trait Progress {
+    /// A warning or a notice for the user, before the bake starts (default: a line on
+    /// stderr).
+    fn note(&mut self, text: &str) {
+        eprintln!("{text}");
+    }
     /// The number of files the bake will write (after skipping existing ones).
     fn start(&mut self, files: u64);
     /// One file is on disk under its final name.
@@ -28,6 +37,7 @@ pub trait Progress {
 pub struct Silent;
 
 impl Progress for Silent {
+    fn note(&mut self, _: &str) {}
     fn start(&mut self, _: u64) {}
     fn written(&mut self, _: &Path) {}
 }
@@ -37,6 +47,10 @@ impl Progress for Silent {
 pub struct Report {
     /// The files written, in the order they were finished.
     pub written: Vec<PathBuf>,
+    /// Their bytes.
+    pub bytes: u64,
+    /// The bound on those bytes announced before the bake (see [`disk_size`]).
+    pub bound: u64,
     /// Files that existed and were skipped.
     pub skipped: usize,
     /// The sidecar's path.
@@ -62,56 +76,267 @@ pub struct Report {
 /// The files of one cascade to write at a frame: (cascade, paths).
 type CascadeFiles = (usize, Vec<PathBuf>);
 
+/// One cascade of one frame as the library packed it: f16 for EXR, f32 for PNG.
+enum Captured {
+    Exr(Texels<f16>),
+    Png(Texels<f32>),
+}
+
+impl Captured {
+    /// Packs cascade `cascade` of `ocean` for `format`.
+    fn new(
+        format: Format,
+        ocean: &ocean_fft::OceanState,
+        cascade: usize,
+    ) -> Result<Captured, CliError> {
+        let size = ocean.cascades()[cascade].size();
+        Ok(match format {
+            Format::Exr => {
+                let mut texels = Texels::new(size);
+                texels.capture(ocean, cascade)?;
+                Captured::Exr(texels)
+            }
+            Format::Png => {
+                let mut texels = Texels::new(size);
+                texels.capture(ocean, cascade)?;
+                Captured::Png(texels)
+            }
+        })
+    }
+}
+
 /// One cascade of one frame, to encode.
 struct Job {
     paths: Vec<PathBuf>,
     cascade: usize,
-    texels: Texels,
+    texels: Captured,
 }
 
 /// What an encoder sends back.
 struct Done {
     paths: Vec<PathBuf>,
+    bytes: u64,
     time: Duration,
     clamped: u64,
 }
 
 /// Encodes `job` and writes its files atomically.
-fn encode_job(job: &Job, format: Format, scales: &[PngScale]) -> Result<Done, CliError> {
+fn encode_job(job: &Job, scales: &[PngScale]) -> Result<Done, CliError> {
     let start = Instant::now();
-    let (files, clamped) = match format {
-        Format::Exr => (vec![encode::encode_exr(&job.texels)], 0),
-        Format::Png => {
-            let (files, clamped) = encode::encode_png(&job.texels, scales[job.cascade])
-                .map_err(|e| CliError::new(Kind::Internal, e))?;
-            (files.into_iter().map(Ok).collect(), clamped)
+    let internal = |e: String| CliError::new(Kind::Internal, e);
+    let (files, clamped) = match &job.texels {
+        Captured::Exr(texels) => (vec![encode::encode_exr(texels).map_err(internal)?], 0),
+        Captured::Png(texels) => {
+            encode::encode_png(texels, scales[job.cascade]).map_err(internal)?
         }
     };
+    let mut written = 0;
     for (bytes, path) in files.into_iter().zip(&job.paths) {
-        let bytes = bytes.map_err(|e| CliError::new(Kind::Internal, e))?;
         encode::write_atomic(path, &bytes)
             .map_err(|e| CliError::output(format!("writing {}: {e}", path.display())))?;
+        written += bytes.len() as u64;
     }
     Ok(Done {
         paths: job.paths.clone(),
+        bytes: written,
         time: start.elapsed(),
         clamped,
     })
 }
 
+/// The uncompressed pixel bytes of one file of an N×N cascade: 8 half floats a texel for
+/// EXR, 4 16-bit values a texel and a filter byte a row for each PNG.
+pub fn file_raw(format: Format, size: usize) -> u64 {
+    let pixels = (size * size) as u64;
+    match format {
+        Format::Exr => 16 * pixels,
+        Format::Png => 8 * pixels + size as u64,
+    }
+}
+
+/// An upper bound on the bytes of one file of an N×N cascade: [`file_raw`] plus 1/64 of it
+/// and 1 KiB for headers, offset tables and the worst case of compression (ZIP and PNG's
+/// deflate store data they cannot shrink, at a few bytes per block).
+pub fn file_bound(format: Format, size: usize) -> u64 {
+    let raw = file_raw(format, size);
+    raw + raw / 64 + 1024
+}
+
+/// The share of [`file_raw`] a file typically takes: ZIP and deflate compress the presets'
+/// frames to 68–74 % (EXR) and 84–90 % (PNG) of it at 64² to 512² (calm, fresh breeze,
+/// storm and swell, frames with foam).
+pub fn typical_share(format: Format) -> f64 {
+    match format {
+        Format::Exr => 0.72,
+        Format::Png => 0.88,
+    }
+}
+
+/// The bytes of the files a bake writes, `count` files of each N×N cascade in `files`:
+/// (typical, at most) by [`typical_share`] and [`file_bound`].
+pub fn disk_size(format: Format, files: &[(usize, u64)]) -> (u64, u64) {
+    let sum = |f: &dyn Fn(usize) -> f64| -> u64 {
+        files
+            .iter()
+            .map(|&(size, count)| (count as f64 * f(size)) as u64)
+            .sum()
+    };
+    (
+        sum(&|size| file_raw(format, size) as f64 * typical_share(format)),
+        sum(&|size| file_bound(format, size) as f64),
+    )
+}
+
+/// Bytes in binary units: "755.0 MiB".
+pub fn bytes_text(bytes: u64) -> String {
+    let units = ["bytes", "KiB", "MiB", "GiB", "TiB"];
+    let mut value = bytes as f64;
+    let mut unit = 0;
+    while value >= 1024.0 && unit + 1 < units.len() {
+        value /= 1024.0;
+        unit += 1;
+    }
+    if unit == 0 {
+        format!("{bytes} bytes")
+    } else {
+        format!("{value:.1} {}", units[unit])
+    }
+}
+
+/// The sidecar fields that the options set (a prefix of a field's path), with the option, in
+/// the order a conflict lists them. The other fields (H_s, the cascades' bands, the channel
+/// table, …) follow from these.
+const PARAMETERS: [(&str, &str); 17] = [
+    ("version", "the ocean-fft version"),
+    ("spectrum.wind_speed", "--wind"),
+    ("spectrum.fetch", "--fetch"),
+    ("spectrum.dispersion", "--depth"),
+    ("spectrum.depth_factor", "--depth"),
+    ("spectrum.wind_direction", "--direction-deg"),
+    ("spectrum", "the spectrum (--preset or --config)"),
+    ("config.size", "--size"),
+    ("config.lengths", "--lengths"),
+    ("config.choppiness", "--choppiness"),
+    ("config.seed", "--seed"),
+    ("config.repeat_period", "--loop"),
+    ("config", "the config (--preset or --config)"),
+    ("fps", "--fps"),
+    ("files.encoding.format", "--format"),
+    ("foam_preroll.tolerance", "--foam-tolerance"),
+    ("foam_preroll.anchor_every_frames", "--anchor-every"),
+];
+
+/// The index in [`PARAMETERS`] of the option that sets the field at `path`.
+fn parameter_of(path: &str) -> Option<usize> {
+    PARAMETERS.iter().position(|(prefix, _)| {
+        path == *prefix
+            || path
+                .strip_prefix(prefix)
+                .is_some_and(|rest| rest.starts_with(['.', '[']))
+    })
+}
+
+/// The leaves where two JSON values differ: (path, old, new). Arrays of other lengths are
+/// one leaf.
+fn differing(path: &str, old: &Value, new: &Value, out: &mut Vec<(String, String, String)>) {
+    let join = |key: &str| {
+        if path.is_empty() {
+            key.to_string()
+        } else {
+            format!("{path}.{key}")
+        }
+    };
+    match (old, new) {
+        (Value::Object(a), Value::Object(b)) => {
+            let mut keys: Vec<&String> = a.keys().chain(b.keys()).collect();
+            keys.sort();
+            keys.dedup();
+            for key in keys {
+                let (x, y) = (
+                    a.get(key).unwrap_or(&Value::Null),
+                    b.get(key).unwrap_or(&Value::Null),
+                );
+                differing(&join(key), x, y, out);
+            }
+        }
+        (Value::Array(a), Value::Array(b)) if a.len() == b.len() => {
+            for (i, (x, y)) in a.iter().zip(b).enumerate() {
+                differing(&format!("{path}[{i}]"), x, y, out);
+            }
+        }
+        _ if old != new => out.push((path.to_string(), old.to_string(), new.to_string())),
+        _ => {}
+    }
+}
+
+/// What differs between the sidecar in `--out` (`existing`) and this bake's (`text`): each
+/// option behind a difference, with its field's values there and here.
+pub fn conflict_message(path: &Path, existing: &str, text: &str) -> String {
+    let head = format!(
+        "--out: {} describes a bake with other parameters",
+        path.display()
+    );
+    let tail = "use another --out directory, or --overwrite to replace that bake";
+    let (Ok(old), Ok(new)) = (
+        serde_json::from_str::<Value>(existing),
+        serde_json::from_str::<Value>(text),
+    ) else {
+        return format!("{head} (it is not a sidecar JSON); {tail}");
+    };
+    let mut all = Vec::new();
+    differing("", &old, &new, &mut all);
+    // The first differing field of each option.
+    let mut by_option: Vec<Option<&(String, String, String)>> = vec![None; PARAMETERS.len()];
+    for difference in &all {
+        if let Some(i) = parameter_of(&difference.0) {
+            by_option[i].get_or_insert(difference);
+        }
+    }
+    let index = |prefix: &str| {
+        PARAMETERS
+            .iter()
+            .position(|(p, _)| *p == prefix)
+            .expect("listed")
+    };
+    // What another difference explains: a changed wind, fetch or depth rebuilds the
+    // spectrum's model, and a loop drops the anchors.
+    if (index("spectrum.wind_speed")..index("spectrum")).any(|i| by_option[i].is_some()) {
+        by_option[index("spectrum")] = None;
+    }
+    if by_option[index("config.repeat_period")].is_some() {
+        by_option[index("foam_preroll.anchor_every_frames")] = None;
+    }
+    let mut parts: Vec<String> = by_option
+        .iter()
+        .enumerate()
+        .filter_map(|(i, d)| d.map(|d| (i, d)))
+        .map(|(i, (field, there, here))| {
+            format!(
+                "{} ({field} is {there} there, {here} here)",
+                PARAMETERS[i].1
+            )
+        })
+        .collect();
+    if parts.is_empty() {
+        // No option explains it (a hand-edited sidecar): the first fields that differ.
+        parts = all
+            .iter()
+            .take(3)
+            .map(|(field, there, here)| format!("{field} is {there} there, {here} here"))
+            .collect();
+    }
+    format!("{head}: {}; {tail}", parts.join(", "))
+}
+
 /// Writes the sidecar unless the same one is there; refuses another bake's unless
-/// `overwrite`.
+/// `overwrite`, naming the parameters that differ.
 fn write_sidecar(path: &Path, text: &str, overwrite: bool) -> Result<(), CliError> {
     match std::fs::read_to_string(path) {
         Ok(existing) if existing == text => return Ok(()),
-        Ok(_) if !overwrite => {
+        Ok(existing) if !overwrite => {
             return Err(CliError::new(
                 Kind::Conflict,
-                format!(
-                    "--out: {} describes a bake with other parameters; use another --out \
-                     directory, or --overwrite to replace that bake",
-                    path.display()
-                ),
+                conflict_message(path, &existing, text),
             ))
         }
         _ => {}
@@ -136,15 +361,19 @@ pub fn bake(args: &BakeArgs, progress: &mut dyn Progress) -> Result<Report, CliE
     let encoders = args
         .encoders
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(2, |n| n.get()));
-    if !(1..=256).contains(&encoders) {
+    if !(ENCODERS_RANGE.0..=ENCODERS_RANGE.1).contains(&encoders) {
         return Err(CliError::usage(format!(
-            "--encoders {encoders}: expected 1 to 256 threads"
+            "--encoders {encoders}: expected {}",
+            args::range_text(ENCODERS_RANGE.0, ENCODERS_RANGE.1)
         )));
     }
     let start = Instant::now();
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::output(format!("--out {}: {e}", args.out.display())))?;
     let mut simulator = Simulator::new(&sea)?;
+    for warning in warnings::check(&sea, simulator.ocean()) {
+        progress.note(&warning.to_string());
+    }
     let scales = encode::png_scales(simulator.ocean());
     let sea_named = Sea {
         name: name.clone(),
@@ -159,9 +388,11 @@ pub fn bake(args: &BakeArgs, progress: &mut dyn Progress) -> Result<Report, CliE
     let mut plan: Vec<(u32, Vec<CascadeFiles>)> = Vec::new();
     let mut skipped = 0;
     let mut files = 0u64;
+    // Files to write per cascade, for the disk bound.
+    let mut per_cascade = vec![0u64; cascades];
     for &frame in args.frames.frames() {
         let mut jobs = Vec::new();
-        for c in 0..cascades {
+        for (c, count) in per_cascade.iter_mut().enumerate() {
             let paths: Vec<PathBuf> = encode::file_names(&name, args.format, c, frame)
                 .into_iter()
                 .map(|f| args.out.join(f))
@@ -170,6 +401,7 @@ pub fn bake(args: &BakeArgs, progress: &mut dyn Progress) -> Result<Report, CliE
                 skipped += paths.len();
             } else {
                 files += paths.len() as u64;
+                *count += paths.len() as u64;
                 jobs.push((c, paths));
             }
         }
@@ -177,12 +409,34 @@ pub fn bake(args: &BakeArgs, progress: &mut dyn Progress) -> Result<Report, CliE
             plan.push((frame, jobs));
         }
     }
+    let sizes: Vec<(usize, u64)> = simulator
+        .ocean()
+        .cascades()
+        .iter()
+        .zip(&per_cascade)
+        .map(|(cascade, &count)| (cascade.size(), count))
+        .collect();
+    let (typical, bound) = disk_size(args.format, &sizes);
+    progress.note(&format!(
+        "bake: {files} files ({} frames × {cascades} cascades{}) into {}: about {} (at most {} \
+         uncompressed)",
+        plan.len(),
+        if skipped > 0 {
+            format!("; {skipped} existing files skipped")
+        } else {
+            String::new()
+        },
+        args.out.display(),
+        bytes_text(typical),
+        bytes_text(bound),
+    ));
     progress.start(files);
 
     let mut report = Report {
         skipped,
         sidecar,
         encoders,
+        bound,
         ..Report::default()
     };
     let (job_tx, job_rx) = mpsc::sync_channel::<Job>(encoders);
@@ -201,7 +455,7 @@ pub fn bake(args: &BakeArgs, progress: &mut dyn Progress) -> Result<Report, CliE
                 if failed.load(Ordering::Relaxed) {
                     continue;
                 }
-                let result = encode_job(&job, format, scales);
+                let result = encode_job(&job, scales);
                 if result.is_err() {
                     failed.store(true, Ordering::Relaxed);
                 }
@@ -220,6 +474,7 @@ pub fn bake(args: &BakeArgs, progress: &mut dyn Progress) -> Result<Report, CliE
                         progress.written(path);
                     }
                     report.encode += done.time;
+                    report.bytes += done.bytes;
                     report.clamped += done.clamped;
                     report.written.extend(done.paths);
                 }
@@ -235,12 +490,13 @@ pub fn bake(args: &BakeArgs, progress: &mut dyn Progress) -> Result<Report, CliE
             }
             let mut captured = Vec::with_capacity(jobs.len());
             for (c, paths) in jobs {
-                let size = simulator.ocean().cascades()[*c].size();
-                let mut texels = Texels::new(size);
-                if let Err(e) = sim::capture(simulator.ocean(), *c, &mut texels) {
-                    first_error.get_or_insert(e);
-                    break 'frames;
-                }
+                let texels = match Captured::new(format, simulator.ocean(), *c) {
+                    Ok(texels) => texels,
+                    Err(e) => {
+                        first_error.get_or_insert(e);
+                        break 'frames;
+                    }
+                };
                 captured.push(Job {
                     paths: paths.clone(),
                     cascade: *c,
@@ -282,10 +538,11 @@ pub fn summary(report: &Report) -> String {
     let simulate = report.simulate.as_secs_f64();
     let encode = report.encode.as_secs_f64();
     let mut s = format!(
-        "{} files written, {} skipped (existed), {} frames in {:.2} s: {:.2} frames/s; {} \
+        "{} files written ({}), {} skipped (existed), {} frames in {:.2} s: {:.2} frames/s; {} \
          simulation steps (pre-roll included) took {:.2} s on the main thread, encoding and \
          writing {:.2} s over {} encoder threads ({:.0} % of the busy time)",
         report.written.len(),
+        bytes_text(report.bytes),
         report.skipped,
         report.frames,
         wall,

@@ -244,11 +244,13 @@ pub fn info(sea: &Sea, ocean: &OceanState, convergence: Option<LoopConvergence>)
         calibration.wind_speed
     );
     let bands = config.bands().unwrap_or_default();
+    let fit = crate::warnings::TileFit::new(spectrum, config);
     let _ = writeln!(
         s,
-        "cascades ({} of {}²):",
+        "cascades ({} of {}²; peak wavelength {:.2} m):",
         ocean.cascades().len(),
-        config.size
+        config.size,
+        fit.as_ref().map_or(f64::NAN, |f| f.peak_wavelength)
     );
     for (c, cascade) in ocean.cascades().iter().enumerate() {
         let (lo, hi) = bands.get(c).copied().unwrap_or((0.0, 0.0));
@@ -257,9 +259,16 @@ pub fn info(sea: &Sea, ocean: &OceanState, convergence: Option<LoopConvergence>)
         } else {
             "the tile".into()
         };
+        let shares = fit.as_ref().map_or(String::new(), |f| {
+            format!(
+                " ({:.2} % of the height variance, {:.1} % of the slope variance)",
+                100.0 * f.height_share(c),
+                100.0 * f.slope_share(c)
+            )
+        });
         let _ = writeln!(
             s,
-            "  {c}: tile {} m, texel {:.4} m, band {:.4}–{:.3} rad/m (wavelengths {} down to {:.3} m), Hs {:.3} m",
+            "  {c}: tile {} m, texel {:.4} m, band {:.4}–{:.3} rad/m (wavelengths {} down to {:.3} m), Hs {:.3} m{shares}",
             cascade.length(),
             f64::from(cascade.length()) / cascade.size() as f64,
             lo,
@@ -270,11 +279,13 @@ pub fn info(sea: &Sea, ocean: &OceanState, convergence: Option<LoopConvergence>)
         );
     }
     let points: usize = ocean.cascades().iter().map(|c| c.size().pow(2)).sum();
+    // A frame in flight: two RGBA buffers per texel, f16 for EXR, f32 for PNG.
     let _ = writeln!(
         s,
-        "memory: ocean {}, plus about {} per frame in flight while baking (f32 copies of every channel)",
+        "memory: ocean {}, plus about {} per frame in flight while baking EXR ({} for PNG)",
         mib(config.memory_bytes()),
-        mib(points * 36)
+        mib(points * 16),
+        mib(points * 32)
     );
     let _ = writeln!(s, "frames: {} fps; {}", sea.fps, frame_time(sea));
     match sea.looping {

@@ -151,36 +151,27 @@ pub fn file_patterns(format: Format) -> Vec<&'static str> {
     }
 }
 
-/// Largest finite f16.
-const F16_MAX: f32 = 65504.0;
-
-/// `value` to the nearest f16 (ties to even), saturated to ±65504.
-#[allow(clippy::manual_clamp)] // max/min: never NaN
-fn to_f16(value: f32) -> f16 {
-    f16::from_f32(value.max(-F16_MAX).min(F16_MAX))
-}
-
-/// The EXR file of one cascade at one frame: half floats, ZIP (16 scan lines a block),
-/// increasing line order, row 0 (z = 0) first, the channels of [`EXR_CHANNELS`].
+/// The EXR file of one cascade at one frame: half floats (the library's f16 packing:
+/// nearest, ±65504 saturated), ZIP (16 scan lines a block), increasing line order, row 0
+/// (z = 0) first, the channels of [`EXR_CHANNELS`].
 ///
 /// # Errors
 /// The encoder's message (it does not fail on valid buffers).
-pub fn encode_exr(t: &Texels) -> Result<Vec<u8>, String> {
+pub fn encode_exr(t: &Texels<f16>) -> Result<Vec<u8>, String> {
     use exr::prelude::*;
-    let plane = |f: &dyn Fn(usize) -> f32| -> FlatSamples {
-        FlatSamples::F16((0..t.size * t.size).map(|i| to_f16(f(i))).collect())
+    let plane = |texels: &[[f16; 4]], c: usize| -> FlatSamples {
+        FlatSamples::F16(texels.iter().map(|texel| texel[c]).collect())
     };
-    let dj = &t.displacement_jacobian;
-    let n = &t.normal;
+    let (df, nj) = (&t.displacement_foam, &t.normal_jacobian);
     let channels: Vec<AnyChannel<FlatSamples>> = vec![
-        AnyChannel::new("R", plane(&|i| dj[i][0])),
-        AnyChannel::new("G", plane(&|i| dj[i][1])),
-        AnyChannel::new("B", plane(&|i| dj[i][2])),
-        AnyChannel::new("A", plane(&|i| t.foam[i])),
-        AnyChannel::new("normal.X", plane(&|i| n[i][0])),
-        AnyChannel::new("normal.Y", plane(&|i| n[i][1])),
-        AnyChannel::new("normal.Z", plane(&|i| n[i][2])),
-        AnyChannel::new("jacobian.Y", plane(&|i| dj[i][3])),
+        AnyChannel::new("R", plane(df, 0)),
+        AnyChannel::new("G", plane(df, 1)),
+        AnyChannel::new("B", plane(df, 2)),
+        AnyChannel::new("A", plane(df, 3)),
+        AnyChannel::new("normal.X", plane(nj, 0)),
+        AnyChannel::new("normal.Y", plane(nj, 1)),
+        AnyChannel::new("normal.Z", plane(nj, 2)),
+        AnyChannel::new("jacobian.Y", plane(nj, 3)),
     ];
     let layer = Layer::new(
         (t.size, t.size),
@@ -210,17 +201,23 @@ pub struct PngScale {
     pub jacobian_scale: f64,
 }
 
-/// `x` rounded up to three significant digits (so the sidecar shows a short number).
-fn round_up_3(x: f64) -> f64 {
+/// `x` > 0 to three significant digits by `round` (`f64::ceil` to round up, `f64::round`
+/// to the nearest), so that the sidecar and the messages show short numbers.
+pub fn three_digits(x: f64, round: fn(f64) -> f64) -> f64 {
     let e = x.log10().floor() as i32 - 2;
     if e < 0 {
         // Divide by an exact power of ten rather than multiply by an inexact 10^e.
         let inverse = 10f64.powi(-e);
-        (x * inverse).ceil() / inverse
+        round(x * inverse) / inverse
     } else {
         let step = 10f64.powi(e);
-        (x / step).ceil() * step
+        round(x / step) * step
     }
+}
+
+/// `x` rounded up to three significant digits.
+fn round_up_3(x: f64) -> f64 {
+    three_digits(x, f64::ceil)
 }
 
 /// The PNG decode scales of every cascade: a function of the sea alone (never of the frames
@@ -305,27 +302,25 @@ fn png_rgba16(size: usize, pixels: &[[u16; 4]]) -> Result<Vec<u8>, String> {
 ///
 /// # Errors
 /// The encoder's message (it does not fail on valid buffers).
-pub fn encode_png(t: &Texels, scale: PngScale) -> Result<(Vec<Vec<u8>>, u64), String> {
+pub fn encode_png(t: &Texels<f32>, scale: PngScale) -> Result<(Vec<Vec<u8>>, u64), String> {
     let mut clamped = 0;
     let sd = scale.displacement_scale;
     let disp: Vec<[u16; 4]> = t
-        .displacement_jacobian
+        .displacement_foam
         .iter()
-        .zip(&t.foam)
-        .map(|(d, &f)| {
+        .map(|d| {
             let [x, y, z] = [d[0], d[1], d[2]].map(|v| unorm16(f64::from(v) / sd, &mut clamped));
-            let foam = (f64::from(f).clamp(0.0, 1.0) * 65535.0).round() as u16;
+            let foam = (f64::from(d[3]).clamp(0.0, 1.0) * 65535.0).round() as u16;
             [x, y, z, foam]
         })
         .collect();
     let sj = scale.jacobian_scale;
     let normal: Vec<[u16; 4]> = t
-        .normal
+        .normal_jacobian
         .iter()
-        .zip(&t.displacement_jacobian)
-        .map(|(n, d)| {
+        .map(|n| {
             let [x, y, z] = [n[0], n[1], n[2]].map(|v| unorm16(f64::from(v), &mut clamped));
-            [x, y, z, unorm16((f64::from(d[3]) - 1.0) / sj, &mut clamped)]
+            [x, y, z, unorm16((f64::from(n[3]) - 1.0) / sj, &mut clamped)]
         })
         .collect();
     Ok((
@@ -409,6 +404,13 @@ mod tests {
         assert_eq!(std::fs::read(&path).unwrap(), b"whole");
         assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn three_digits_rounds_to_nearest() {
+        assert_eq!(three_digits(90.123, f64::round), 90.1);
+        assert_eq!(three_digits(4.5678, f64::round), 4.57);
+        assert_eq!(three_digits(4012.0, f64::round), 4010.0);
     }
 
     #[test]

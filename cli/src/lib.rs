@@ -12,6 +12,7 @@ pub mod frames;
 pub mod progress;
 pub mod setup;
 pub mod sim;
+pub mod warnings;
 
 use args::{Cli, Command};
 use error::CliError;
@@ -31,6 +32,9 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Command::Info(args) => {
             let sea = setup::build(&args.sea)?;
             let mut simulator = sim::Simulator::new(&sea)?;
+            for warning in warnings::check(&sea, simulator.ocean()) {
+                eprintln!("{warning}");
+            }
             if sea.looping.is_some() && args.measure_foam {
                 // The loop's foam pre-roll, to report how it converged.
                 simulator.advance_to(0)?;

@@ -5,18 +5,8 @@ use std::path::Path;
 
 use ocean_fft::{CascadeConfig, OceanConfig, SeaState, Spectrum};
 
-use crate::args::SeaArgs;
+use crate::args::{self, SeaArgs, FPS_RANGE, TOLERANCE_RANGE};
 use crate::error::CliError;
-
-/// Accepted frames per second.
-pub const FPS_RANGE: (f64, f64) = (0.1, 1000.0);
-/// Accepted foam tolerances.
-pub const TOLERANCE_RANGE: (f64, f64) = (1e-6, 0.1);
-
-/// The preset names, for clap's value check and its `--help`.
-pub fn preset_names() -> clap::builder::PossibleValuesParser {
-    clap::builder::PossibleValuesParser::new(SeaState::ALL.map(SeaState::name))
-}
 
 /// A seamless loop.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -25,6 +15,8 @@ pub struct Looping {
     pub period: f32,
     /// Frames per loop, T·fps (a whole number).
     pub frames: u32,
+    /// Where T came from, as the user wrote it: `--loop` or `repeat_period (in --config)`.
+    pub parameter: &'static str,
 }
 
 /// How the foam's history is made a pure function of the frame number (see
@@ -68,6 +60,12 @@ pub struct Sea {
     pub looping: Option<Looping>,
     /// The foam pre-roll.
     pub preroll: Preroll,
+    /// Where the tiles (the cascades' lengths) came from: "from preset `storm`", "from
+    /// --config FILE" or "given with --lengths".
+    pub tiles_from: String,
+    /// The overrides that changed the waves or the grids after the tiles were chosen, as
+    /// the user gave them: "--wind 3 changed the sea", "--size 32 changed the grids".
+    pub overrides: Vec<String>,
 }
 
 impl Sea {
@@ -160,16 +158,33 @@ fn override_spectrum(base: Spectrum, args: &SeaArgs) -> Result<Spectrum, CliErro
     Ok(spectrum)
 }
 
-/// A number in a closed range, or an error naming `name`.
-fn in_range(name: &str, value: f64, (min, max): (f64, f64)) -> Result<f64, CliError> {
+/// A number in a closed range, or an error naming `name` that states the range as
+/// `text`, the words of the option's `--help`.
+fn in_range(name: &str, value: f64, (min, max): (f64, f64), text: &str) -> Result<f64, CliError> {
     if value.is_finite() && (min..=max).contains(&value) {
         Ok(value)
     } else {
-        Err(CliError::usage(format!(
-            "{name} {value}: expected {min} ≤ {} ≤ {max}",
-            name.trim_start_matches('-')
-        )))
+        Err(CliError::usage(format!("{name} {value}: expected {text}")))
     }
+}
+
+/// `--lengths`, checked as the library checks `OceanConfig::lengths`, the error naming the
+/// flag.
+fn check_lengths(lengths: &[f32]) -> Result<(), CliError> {
+    let count_ok = (1..=OceanConfig::MAX_CASCADES).contains(&lengths.len());
+    let each_ok = lengths
+        .iter()
+        .all(|l| (CascadeConfig::MIN_LENGTH..=CascadeConfig::MAX_LENGTH).contains(l));
+    let decreasing = lengths.windows(2).all(|w| w[1] < w[0]);
+    if count_ok && each_ok && decreasing {
+        return Ok(());
+    }
+    let text: Vec<String> = lengths.iter().map(f32::to_string).collect();
+    Err(CliError::usage(format!(
+        "--lengths {}: expected {}",
+        text.join(","),
+        args::lengths_rule()
+    )))
 }
 
 /// Builds the sea from the arguments.
@@ -179,39 +194,58 @@ fn in_range(name: &str, value: f64, (min, max): (f64, f64)) -> Result<f64, CliEr
 /// tolerance; of kind `Config` for an unreadable or invalid `--config` file or a config the
 /// library refuses.
 pub fn build(args: &SeaArgs) -> Result<Sea, CliError> {
-    let (spectrum, mut config, name) = match (&args.source.preset, &args.source.config) {
-        (Some(preset), _) => {
-            let state = SeaState::ALL
-                .into_iter()
-                .find(|s| s.name() == preset)
-                .ok_or_else(|| CliError::usage(format!("--preset {preset}: unknown preset")))?;
-            let (spectrum, config) = state.build();
-            (spectrum, config, state.name().to_string())
-        }
-        (None, Some(path)) => {
-            let (spectrum, config) = read_config(path)?;
-            let stem = path
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_else(|| "ocean".into());
-            (spectrum, config, stem)
-        }
-        (None, None) => {
-            return Err(CliError::usage(
-                "give the sea with --preset NAME or --config FILE.json",
-            ))
-        }
-    };
+    let (spectrum, mut config, name, mut tiles_from) =
+        match (&args.source.preset, &args.source.config) {
+            (Some(preset), _) => {
+                let state = SeaState::ALL
+                    .into_iter()
+                    .find(|s| s.name() == preset)
+                    .ok_or_else(|| CliError::usage(format!("--preset {preset}: unknown preset")))?;
+                let (spectrum, config) = state.build();
+                let name = state.name().to_string();
+                let tiles = format!("from preset `{name}`");
+                (spectrum, config, name, tiles)
+            }
+            (None, Some(path)) => {
+                let (spectrum, config) = read_config(path)?;
+                let stem = path
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_else(|| "ocean".into());
+                let tiles = format!("from --config {}", path.display());
+                (spectrum, config, stem, tiles)
+            }
+            (None, None) => {
+                return Err(CliError::usage(
+                    "give the sea with --preset NAME or --config FILE.json",
+                ))
+            }
+        };
     let spectrum = override_spectrum(spectrum, args)?;
+    let mut overrides = Vec::new();
+    for (flag, value) in [
+        ("--wind", args.wind),
+        ("--fetch", args.fetch),
+        ("--depth", args.depth),
+    ] {
+        if let Some(v) = value {
+            overrides.push(format!("{flag} {v} changed the sea"));
+        }
+    }
     if let Some(size) = args.size {
         if !(CascadeConfig::MIN_SIZE..=CascadeConfig::MAX_SIZE).contains(&size) || size % 2 != 0 {
             return Err(CliError::usage(format!(
-                "--size {size}: expected an even grid size from {} to {}",
-                CascadeConfig::MIN_SIZE,
-                CascadeConfig::MAX_SIZE
+                "--size {size}: expected {}",
+                args::size_range()
             )));
         }
         config.size = size;
+        overrides.push(format!("--size {size} changed the grids"));
+    }
+    if let Some(lengths) = &args.lengths {
+        check_lengths(lengths)?;
+        config.lengths.clone_from(lengths);
+        tiles_from = "given with --lengths".into();
     }
     if let Some(choppiness) = args.choppiness {
         if !(choppiness.is_finite() && choppiness >= 0.0) {
@@ -224,8 +258,18 @@ pub fn build(args: &SeaArgs) -> Result<Sea, CliError> {
     if let Some(seed) = args.seed {
         config.seed = seed;
     }
-    let fps = in_range("--fps", args.fps, FPS_RANGE)?;
-    let tolerance = in_range("--foam-tolerance", args.foam_tolerance, TOLERANCE_RANGE)?;
+    let fps = in_range(
+        "--fps",
+        args.fps,
+        FPS_RANGE,
+        &args::range_text(FPS_RANGE.0, FPS_RANGE.1),
+    )?;
+    let tolerance = in_range(
+        "--foam-tolerance",
+        args.foam_tolerance,
+        TOLERANCE_RANGE,
+        &args::range_text(TOLERANCE_RANGE.0, TOLERANCE_RANGE.1),
+    )?;
     if args.anchor_every == 0 {
         return Err(CliError::usage(
             "--anchor-every 0: expected at least 1 frame",
@@ -233,7 +277,7 @@ pub fn build(args: &SeaArgs) -> Result<Sea, CliError> {
     }
 
     // The loop: from --loop, else from the config file's repeat period.
-    let (period, flag_name) = match (args.loop_seconds, config.repeat_period) {
+    let (period, parameter) = match (args.loop_seconds, config.repeat_period) {
         (Some(t), _) => (Some(t), "--loop"),
         (None, Some(t)) => (Some(f64::from(t)), "repeat_period (in --config)"),
         (None, None) => (None, ""),
@@ -245,12 +289,12 @@ pub fn build(args: &SeaArgs) -> Result<Sea, CliError> {
                 f64::from(CascadeConfig::MIN_REPEAT_PERIOD),
                 f64::from(CascadeConfig::MAX_REPEAT_PERIOD),
             );
-            let t = in_range(flag_name, t, range)?;
+            let t = in_range(parameter, t, range, &args::loop_range())?;
             let frames = t * fps;
             let whole = frames.round();
             if whole < 1.0 || (frames - whole).abs() > 1e-6 * whole || whole > f64::from(u32::MAX) {
                 return Err(CliError::usage(format!(
-                    "{flag_name} {t}: a loop must last a whole number of frames at --fps {fps} \
+                    "{parameter} {t}: a loop must last a whole number of frames at --fps {fps} \
                      ({t} s × {fps} fps = {frames} frames)"
                 )));
             }
@@ -258,6 +302,7 @@ pub fn build(args: &SeaArgs) -> Result<Sea, CliError> {
             Some(Looping {
                 period: t as f32,
                 frames: whole as u32,
+                parameter,
             })
         }
     };
@@ -301,5 +346,7 @@ pub fn build(args: &SeaArgs) -> Result<Sea, CliError> {
         fps,
         looping,
         preroll,
+        tiles_from,
+        overrides,
     })
 }

@@ -22,68 +22,95 @@
 //!   within ε of the loop's periodic steady state, and it meets the end of the loop within
 //!   q·ε(1 − q) — frame F (= frame 0) follows frame F − 1 as continuously as any two frames.
 
+use half::f16;
 use ocean_fft::gpu::TexelLayout;
 use ocean_fft::{OceanSnapshot, OceanState};
 
 use crate::error::CliError;
 use crate::setup::Sea;
 
-/// Every channel of one cascade at one frame, as the bake writes it (texel (i, j) at index
-/// j·N + i, the library's conventions).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Texels {
-    /// Grid size N.
-    pub size: usize,
-    /// `[D_x, η, D_z, J]` per texel ([`TexelLayout::DisplacementJacobian`]).
-    pub displacement_jacobian: Vec<[f32; 4]>,
-    /// `[n_x, n_y, n_z, 0]` per texel ([`TexelLayout::Normal`]).
-    pub normal: Vec<[f32; 4]>,
-    /// Foam coverage in [0, 1] per texel.
-    pub foam: Vec<f32>,
+/// A texel component the library packs: f32 ([`OceanState::pack_texels`]) or f16
+/// ([`OceanState::pack_texels_f16`], which rounds to nearest and saturates to ±65504).
+pub trait Component: Copy + Default + Send + 'static {
+    /// Packs cascade `cascade` of `ocean` in `layout` into `out` (N² texels).
+    ///
+    /// # Errors
+    /// The library's, on a wrong cascade index or buffer length (a bug here).
+    fn pack(
+        ocean: &OceanState,
+        cascade: usize,
+        layout: TexelLayout,
+        out: &mut [[Self; 4]],
+    ) -> Result<(), ocean_fft::Error>;
 }
 
-impl Texels {
+impl Component for f32 {
+    fn pack(
+        ocean: &OceanState,
+        cascade: usize,
+        layout: TexelLayout,
+        out: &mut [[f32; 4]],
+    ) -> Result<(), ocean_fft::Error> {
+        ocean.pack_texels(cascade, layout, out)
+    }
+}
+
+impl Component for f16 {
+    fn pack(
+        ocean: &OceanState,
+        cascade: usize,
+        layout: TexelLayout,
+        out: &mut [[f16; 4]],
+    ) -> Result<(), ocean_fft::Error> {
+        ocean.pack_texels_f16(cascade, layout, out)
+    }
+}
+
+/// Every channel of one cascade at one frame, as the library packs them (texel (i, j) at
+/// index j·N + i, the library's conventions), in f16 for the EXR files and f32 for the PNGs.
+/// The tool decides nothing about the values: which cascade carries the foam, and how f16
+/// rounds and saturates, is the library's packing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Texels<T> {
+    /// Grid size N.
+    pub size: usize,
+    /// `[D_x, η, D_z, foam]` per texel ([`TexelLayout::DisplacementFoam`]: the foam is the
+    /// ocean's on cascade 0 and 0 on the others).
+    pub displacement_foam: Vec<[T; 4]>,
+    /// `[n_x, n_y, n_z, J]` per texel: RGB of [`TexelLayout::Normal`], A the Jacobian, the A
+    /// of [`TexelLayout::DisplacementJacobian`] (the normal layout's own A, the cascade's
+    /// sub-grid mean-square slope σ², is one number per cascade and not baked).
+    pub normal_jacobian: Vec<[T; 4]>,
+}
+
+impl<T: Component> Texels<T> {
     /// Zeroed buffers for an N×N cascade.
-    pub fn new(size: usize) -> Texels {
+    pub fn new(size: usize) -> Texels<T> {
         let points = size * size;
         Texels {
             size,
-            displacement_jacobian: vec![[0.0; 4]; points],
-            normal: vec![[0.0; 4]; points],
-            foam: vec![0.0; points],
+            displacement_foam: vec![[T::default(); 4]; points],
+            normal_jacobian: vec![[T::default(); 4]; points],
         }
     }
-}
 
-/// The foam of cascade `cascade` on its grid, into `out` (N² long). **The one place the
-/// tool reads foam**: the ocean's one foam field lives on cascade 0's grid, so cascade 0's
-/// texels carry it and the others' are 0, as the library's packed layouts do.
-pub fn foam_texels(ocean: &OceanState, cascade: usize, out: &mut [f32]) -> Result<(), CliError> {
-    if cascade == 0 {
-        out.copy_from_slice(ocean.foam());
-    } else {
-        out.fill(0.0);
+    /// Packs every channel of cascade `cascade` into these buffers.
+    ///
+    /// # Errors
+    /// Only on a bug (wrong buffer sizes).
+    pub fn capture(&mut self, ocean: &OceanState, cascade: usize) -> Result<(), CliError> {
+        let internal =
+            |e: ocean_fft::Error| CliError::new(crate::error::Kind::Internal, e.to_string());
+        // The Jacobian passes through the displacement buffer, which the displacement and
+        // foam then overwrite.
+        let (df, nj) = (&mut self.displacement_foam, &mut self.normal_jacobian);
+        T::pack(ocean, cascade, TexelLayout::DisplacementJacobian, df).map_err(internal)?;
+        T::pack(ocean, cascade, TexelLayout::Normal, nj).map_err(internal)?;
+        for (texel, dj) in nj.iter_mut().zip(df.iter()) {
+            texel[3] = dj[3];
+        }
+        T::pack(ocean, cascade, TexelLayout::DisplacementFoam, df).map_err(internal)
     }
-    Ok(())
-}
-
-/// Copies every channel of cascade `cascade` into `out`.
-///
-/// # Errors
-/// Only on a bug (wrong buffer sizes).
-pub fn capture(ocean: &OceanState, cascade: usize, out: &mut Texels) -> Result<(), CliError> {
-    let internal = |e: ocean_fft::Error| CliError::new(crate::error::Kind::Internal, e.to_string());
-    ocean
-        .pack_texels(
-            cascade,
-            TexelLayout::DisplacementJacobian,
-            &mut out.displacement_jacobian,
-        )
-        .map_err(internal)?;
-    ocean
-        .pack_texels(cascade, TexelLayout::Normal, &mut out.normal)
-        .map_err(internal)?;
-    foam_texels(ocean, cascade, &mut out.foam)
 }
 
 /// Where the simulator stands.
@@ -230,11 +257,8 @@ impl<'a> Simulator<'a> {
         let preroll = self.sea.preroll;
         self.ocean.set_time(0.0).map_err(internal)?;
         self.ocean.clear_foam();
-        let cascades = self.ocean.cascades().len();
-        let mut before: Vec<Vec<f32>> = (0..cascades)
-            .map(|c| vec![0.0; self.ocean.cascades()[c].size().pow(2)])
-            .collect();
-        let mut after = before.clone();
+        // The ocean's one foam field (cascade 0's texels carry it, the others carry none).
+        let mut before = self.ocean.foam().to_vec();
         let mut loops = 0;
         let mut change = f64::INFINITY;
         let needed = self.sea.config.foam.coverage > 0.0;
@@ -246,12 +270,9 @@ impl<'a> Simulator<'a> {
             self.ocean.set_time(0.0).map_err(internal)?;
             loops += 1;
             change = 0.0;
-            for (c, (b, a)) in before.iter_mut().zip(&mut after).enumerate() {
-                foam_texels(&self.ocean, c, a)?;
-                for (x, y) in b.iter().zip(a.iter()) {
-                    change = change.max(f64::from((x - y).abs()));
-                }
-                std::mem::swap(b, a);
+            for (b, &a) in before.iter_mut().zip(self.ocean.foam()) {
+                change = change.max(f64::from((*b - a).abs()));
+                *b = a;
             }
         }
         if !needed {

@@ -4,33 +4,17 @@
 //! exit with their documented codes.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 
-use clap::Parser;
 use ocean_fft::{OceanConfig, OceanState, Spectrum};
-use ocean_fft_cli::args::{BakeArgs, Cli, Command as Sub};
 use ocean_fft_cli::bake::{bake, Report, Silent};
 use ocean_fft_cli::error::Kind;
 use ocean_fft_cli::setup;
 use ocean_fft_cli::sim::Simulator;
 
-/// A fresh directory under the target dir's temporary space.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ocean-fft-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn parse(args: &[&str]) -> BakeArgs {
-    let mut full = vec!["ocean-fft", "bake"];
-    full.extend_from_slice(args);
-    match Cli::try_parse_from(full).unwrap().command {
-        Sub::Bake(b) => b,
-        Sub::Info(_) => unreachable!(),
-    }
-}
+mod common;
+use common::{bake_args as parse, binary, scratch};
 
 fn run(args: &[&str]) -> Report {
     bake(&parse(args), &mut Silent).unwrap()
@@ -380,7 +364,8 @@ fn a_loop_closes_in_every_channel_with_the_foam_in_its_periodic_steady_state() {
                 );
                 foam_seen = foam_seen.max(want);
             }
-            // The waves too: the time 40 s differs from 0 s by whole periods of every wave.
+            // The waves too: 200 s differs from 0 s by whole loops, so by whole periods of
+            // every wave.
             let height = ocean.cascades()[c].height();
             for (&got, &want) in file["G"].iter().zip(height) {
                 assert!((got - want).abs() <= want.abs() * 2f32.powi(-11) + 1e-4);
@@ -393,18 +378,6 @@ fn a_loop_closes_in_every_channel_with_the_foam_in_its_periodic_steady_state() {
     assert!(convergence.last_change <= 1e-4, "{convergence:?}");
     assert!(convergence.seam_bound <= 1e-4 * (-1.0f64 / 2.5).exp() * 1.000001);
     std::fs::remove_dir_all(dir).unwrap();
-}
-
-/// Runs the binary; its exit code and stderr.
-fn binary(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_ocean-fft"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
 }
 
 #[test]
