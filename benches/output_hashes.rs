@@ -13,23 +13,18 @@
 //! The hashes depend on the CPU (rustfft picks its own SIMD path) and on the Rust version, so
 //! none is committed: compare two runs on the same machine.
 
-use std::hash::{DefaultHasher, Hasher};
-
 use ocean_fft::inspect;
-use ocean_fft::inspect::Field;
+use ocean_fft::inspect::{BitHash, Field};
 use ocean_fft::{Cascade, CascadeConfig, OceanConfig, OceanState, Spectrum, Spreading};
 
-/// FNV-like fold of the bit patterns through `DefaultHasher` (SipHash with fixed keys, so
-/// the same bits give the same hash on every run).
+/// The crate's own bit hash of the values whose bit patterns are `bits` (the same as the
+/// golden tests use).
 fn hash_bits(bits: impl IntoIterator<Item = u32>) -> u64 {
-    let mut hasher = DefaultHasher::new();
-    let mut count = 0usize;
+    let mut hash = BitHash::new();
     for b in bits {
-        hasher.write_u32(b);
-        count += 1;
+        hash.bytes(&b.to_le_bytes());
     }
-    hasher.write_usize(count);
-    hasher.finish()
+    hash.finish()
 }
 
 fn flat<const K: usize>(values: &[[f32; K]]) -> impl Iterator<Item = u32> + '_ {

@@ -27,9 +27,8 @@
 //!
 //! Shading: a low sun from the upper left on the surface normal (hill shading, which shows
 //! the slopes of small and large seas alike), a tint that brightens crests by η/H_s of that
-//! preset, residual foam as a pale veil and active whitecaps in white (the ocean's foam
-//! field, `OceanState::active_foam` and `residual_foam`, interpolated from the largest
-//! cascade's grid). Each preset is built at size 256 (its default) and shown at t = 24 s,
+//! preset, residual foam as a pale veil and active whitecaps in white (the ocean's foam at
+//! each point, `OceanState::foam_at`, interpolated from the largest cascade's grid). Each preset is built at size 256 (its default) and shown at t = 24 s,
 //! its foam pre-rolled over the 15 s before (`OceanState::pre_roll`).
 //!
 //! Options: `--tile PIXELS` (side of each tile, default 240); `--palette`: write an indexed
@@ -44,7 +43,7 @@ use ocean_fft::{Error, OceanState, SeaState, SurfaceSample};
 use plotters::prelude::*;
 
 use common::plot::{draw_on, metres, scale_bar, FONT};
-use common::{foam_grid_at, out_dir, save_indexed, save_rgb8, Args, Result};
+use common::{out_dir, save_indexed, save_rgb8, Args, Result};
 
 /// Samples per pixel along each axis (averaged).
 const SUPER: usize = 2;
@@ -144,13 +143,9 @@ fn main() -> Result<()> {
         let repeat = repeat_correlation(&ocean, window, wavelength, 160)?;
         repeats.push((state.name(), window, repeat, tile_config.lengths.len()));
 
-        let (foam_size, foam_length) = (
-            ocean.cascades()[0].size(),
-            f64::from(ocean.cascades()[0].length()),
-        );
-        let foam = |values: &[f32], p: usize| {
+        let foam = |p: usize| {
             let (i, j) = ((p % fine) as f64 + 0.5, (p / fine) as f64 + 0.5);
-            foam_grid_at(values, foam_size, foam_length, i * spacing, j * spacing).clamp(0.0, 1.0)
+            ocean.foam_at(i * spacing, j * spacing)
         };
         let x0 = PAD + (index % COLUMNS) * (tile_px + PAD);
         let y0 = PAD + (index / COLUMNS) * (tile_px + label + PAD) + label;
@@ -160,9 +155,8 @@ fn main() -> Result<()> {
                 for dj in 0..SUPER {
                     for di in 0..SUPER {
                         let p = (j * SUPER + dj) * fine + i * SUPER + di;
-                        let (active, residual) =
-                            (foam(ocean.active_foam(), p), foam(ocean.residual_foam(), p));
-                        sum += shade(&samples[p], sun, hs, active, residual);
+                        let foam = foam(p)?;
+                        sum += shade(&samples[p], sun, hs, foam.active, foam.residual);
                     }
                 }
                 let colour = to_srgb(sum / (SUPER * SUPER) as f32);

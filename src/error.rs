@@ -60,6 +60,10 @@ pub enum Error {
         name: &'static str,
         /// The size that was given.
         size: usize,
+        /// Smallest valid size.
+        min: usize,
+        /// Largest valid size.
+        max: usize,
     },
     /// A count (of cascades, of transforms, a range end) lay outside `min ..= max`.
     CountOutOfRange {
@@ -145,11 +149,14 @@ impl fmt::Display for Error {
                 )?;
                 write_range(f, name, min, max)
             }
-            Error::InvalidSize { name, size } => write!(
+            Error::InvalidSize {
+                name,
+                size,
+                min,
+                max,
+            } => write!(
                 f,
-                "grid size `{name}` = {size} is invalid: expected an even number from {} to {}",
-                crate::grid::MIN_SIZE,
-                crate::grid::MAX_SIZE
+                "grid size `{name}` = {size} is invalid: expected an even number from {min} to {max}"
             ),
             Error::CountOutOfRange {
                 name,

@@ -13,7 +13,12 @@ pub(crate) const MAX_SIZE: usize = 4096;
 /// Checks a grid size `name`: even, [`MIN_SIZE`] ≤ N ≤ [`MAX_SIZE`].
 pub(crate) fn check_size(name: &'static str, size: usize) -> Result<usize, Error> {
     if !(MIN_SIZE..=MAX_SIZE).contains(&size) || !size.is_multiple_of(2) {
-        return Err(Error::InvalidSize { name, size });
+        return Err(Error::InvalidSize {
+            name,
+            size,
+            min: MIN_SIZE,
+            max: MAX_SIZE,
+        });
     }
     Ok(size)
 }

@@ -9,6 +9,8 @@
 //! - Diagnostics a few methods return: [`LoopError`] (how far a repeat period moved the
 //!   frequencies), [`FoamCalibration`] (the whitecap threshold and what the sea's statistics
 //!   predict), [`SlopeVariance`] (the slope variance the grids cannot show).
+//! - [`BitHash`]: a hash of numbers' bit patterns that is the same on every platform and
+//!   release, to check that two runs computed the same bits.
 //! - The physical constants of the capillary dispersion, [`SURFACE_TENSION`] and
 //!   [`WATER_DENSITY`] (the gravity [`GRAVITY`](crate::GRAVITY) is at the crate root).
 //!
@@ -75,4 +77,93 @@ pub fn field(cascade: &Cascade, field: Field) -> Vec<f32> {
 /// [`Error::IndexOutOfRange`] unless `transform` < 4.
 pub fn packed_transform(cascade: &Cascade, transform: usize) -> Result<Vec<Complex32>, Error> {
     cascade.packed_transform(transform)
+}
+
+/// A 64-bit FNV-1a hash (Fowler, Noll & Vo) of numbers' bit patterns, fed as little-endian
+/// bytes: the same value on every platform, toolchain and release, unlike std's
+/// `DefaultHasher`. For checking that two runs computed the same bits — two thread counts,
+/// two machines in [`Determinism::CrossPlatform`](crate::Determinism::CrossPlatform), a
+/// server and its clients in lockstep, a replay against the original. It detects change; it
+/// is no defence against someone forging a collision.
+///
+/// ```
+/// use ocean_fft::inspect::BitHash;
+/// use ocean_fft::{OceanConfig, OceanState, Spectrum};
+///
+/// let config = OceanConfig { size: 16, ..OceanConfig::default() };
+/// let mut ocean = OceanState::new(Spectrum::jonswap(10.0, 100_000.0)?, config)?;
+/// ocean.step(0.5)?;
+/// let mut hash = BitHash::new();
+/// for cascade in ocean.cascades() {
+///     hash.f32s(cascade.height().iter().copied());
+/// }
+/// let mine = hash.finish();                 // send to the server, compare with its own
+/// assert_ne!(mine, BitHash::new().finish());
+/// # Ok::<(), ocean_fft::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct BitHash(u64);
+
+impl Default for BitHash {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl BitHash {
+    /// The hash of nothing (FNV-1a's offset basis).
+    pub fn new() -> Self {
+        BitHash(0xcbf2_9ce4_8422_2325)
+    }
+
+    /// Feeds `bytes`.
+    pub fn bytes(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 ^= u64::from(b);
+            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+
+    /// Feeds the bit patterns of `values` (4 little-endian bytes each).
+    pub fn f32s(&mut self, values: impl IntoIterator<Item = f32>) {
+        for v in values {
+            self.bytes(&v.to_bits().to_le_bytes());
+        }
+    }
+
+    /// Feeds the bit patterns of `values` (8 little-endian bytes each).
+    pub fn f64s(&mut self, values: impl IntoIterator<Item = f64>) {
+        for v in values {
+            self.bytes(&v.to_bits().to_le_bytes());
+        }
+    }
+
+    /// The hash of everything fed so far.
+    pub fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::BitHash;
+
+    /// The published FNV-1a 64-bit test vectors (Fowler, Noll & Vo; IETF draft
+    /// draft-eastlake-fnv): "" → cbf29ce484222325, "a" → af63dc4c8601ec8c,
+    /// "foobar" → 85944171f73967e8.
+    #[test]
+    fn bit_hash_is_fnv_1a_64() {
+        let of = |bytes: &[u8]| {
+            let mut hash = BitHash::new();
+            hash.bytes(bytes);
+            hash.finish()
+        };
+        assert_eq!(of(b""), 0xcbf2_9ce4_8422_2325);
+        assert_eq!(of(b"a"), 0xaf63_dc4c_8601_ec8c);
+        assert_eq!(of(b"foobar"), 0x8594_4171_f739_67e8);
+        // A value's bit pattern goes in as its little-endian bytes.
+        let mut value = BitHash::new();
+        value.f32s([1.0]);
+        assert_eq!(value.finish(), of(&1.0f32.to_bits().to_le_bytes()));
+    }
 }

@@ -103,7 +103,12 @@ fn invalid_sizes() {
         let result = build(CascadeConfig { size, ..small() });
         assert_eq!(
             result.err(),
-            Some(Error::InvalidSize { name: "size", size }),
+            Some(Error::InvalidSize {
+                name: "size",
+                size,
+                min: CascadeConfig::MIN_SIZE,
+                max: MAX_SIZE
+            }),
             "size {size}"
         );
     }
@@ -559,7 +564,8 @@ fn fft2d_wrong_length_is_an_error() {
         Fft2d::new(7, 1),
         Err(Error::InvalidSize {
             name: "size",
-            size: 7
+            size: 7,
+            ..
         })
     ));
     for count in [0, Fft2d::MAX_COUNT + 1] {

@@ -441,20 +441,3 @@ pub fn save_indexed(path: &Path, width: usize, height: usize, pixels: &[u8]) -> 
     encoder.write_header()?.write_image_data(&indices)?;
     Ok(())
 }
-
-/// Bilinear interpolation at the undisplaced world point (x, z) of a field on the ocean's foam
-/// grid (`OceanState::foam`, `active_foam`, `residual_foam`: `size`² points, grid point (i, j)
-/// at (i, j)·`length`/`size`, periodic with `length`).
-pub fn foam_grid_at(values: &[f32], size: usize, length: f64, x: f64, z: f64) -> f32 {
-    let cells = size as f64 / length;
-    let split = |v: f64| {
-        let g = v.rem_euclid(length) * cells;
-        let cell = g.floor();
-        ((cell as usize) % size, (g - cell) as f32)
-    };
-    let ((ix, fx), (iz, fz)) = (split(x), split(z));
-    let (ix1, iz1) = ((ix + 1) % size, (iz + 1) % size);
-    let v = |i: usize, j: usize| values[j * size + i];
-    (1.0 - fz) * ((1.0 - fx) * v(ix, iz) + fx * v(ix1, iz))
-        + fz * ((1.0 - fx) * v(ix, iz1) + fx * v(ix1, iz1))
-}

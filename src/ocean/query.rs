@@ -115,6 +115,12 @@ impl Stencil {
     }
 }
 
+/// Periodic bilinear interpolation of `values`, a field on an N×N grid of side `length` m
+/// (grid point (i, j) at (i, j)·`length`/N, index j·N + i), at world (x, z).
+pub(crate) fn periodic_bilinear(values: &[f32], n: usize, length: f64, x: f64, z: f64) -> f32 {
+    Stencil::new(cell(x, z, length, n), n).scalar(values)
+}
+
 /// Integer cell and fraction of grid coordinate `g` in [0, n]; rounding can give exactly n,
 /// which wraps to cell 0.
 fn split(g: f64, n: usize) -> (usize, f32) {

@@ -53,6 +53,42 @@ impl OceanState {
         Ok(self.foam.breaking_at(x, z))
     }
 
+    /// The foam at the undisplaced world point (`x`, `z`) (any finite coordinates: the foam
+    /// grid wraps with cascade 0's period), interpolated bilinearly from the foam grid: the
+    /// active whitecaps a, the residual foam not under them r·(1 − a), and all foam
+    /// ([`foam`](Self::foam); the same value as [`sample`](Self::sample)'s `foam`), each a
+    /// fraction of the surface there, as [`foam_coverage`](Self::foam_coverage) gives them for
+    /// the whole ocean. To draw fresh whitecaps apart from older foam, or for a point of the
+    /// displaced surface after [`locate`](Self::locate).
+    ///
+    /// ```
+    /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
+    /// let config = OceanConfig { size: 32, ..OceanConfig::default() };
+    /// let mut ocean = OceanState::new(Spectrum::jonswap(20.0, 300_000.0)?, config)?;
+    /// ocean.pre_roll(20.0, 0.1)?;
+    /// let foam = ocean.foam_at(40.0, -12.0)?;
+    /// assert!((foam.active + foam.residual - foam.total).abs() < 1e-6);
+    /// assert_eq!(foam.total, ocean.sample(40.0, -12.0)?.foam);
+    /// # Ok::<(), ocean_fft::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
+    pub fn foam_at(&self, x: f64, z: f64) -> Result<FoamCoverage, Error> {
+        for (name, value) in [("x", x), ("z", z)] {
+            if !value.is_finite() {
+                return Err(Error::NonFinite { name });
+            }
+        }
+        let active = self.foam.active_at(x, z);
+        let total = self.foam.foam_at(x, z);
+        Ok(FoamCoverage {
+            active,
+            residual: (total - active).max(0.0),
+            total,
+        })
+    }
+
     /// The area fractions covered by active whitecaps, residual foam and all foam (summed in
     /// a fixed order over the foam grid when the foam last changed; costs nothing here).
     pub fn foam_coverage(&self) -> FoamCoverage {

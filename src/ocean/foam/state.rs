@@ -556,24 +556,16 @@ impl Foam {
         self.interpolate(&self.breaking, x, z)
     }
 
-    /// Periodic bilinear interpolation of `values` (a foam-grid buffer) at world (x, z); the
-    /// wrap in f64.
+    /// Periodic bilinear interpolation of `values` (a foam-grid buffer) at world (x, z), at
+    /// least 0.
     fn interpolate(&self, values: &[f32], x: f64, z: f64) -> f32 {
-        let n = self.n;
         let length = f64::from(self.length);
-        let cells = n as f64 / length;
-        let split = |v: f64| {
-            let g = v.rem_euclid(length) * cells;
-            let cell = g.floor();
-            ((cell as usize) % n, (g - cell) as f32)
-        };
-        let (ix, fx) = split(x);
-        let (iz, fz) = split(z);
-        let (ix1, iz1) = ((ix + 1) % n, (iz + 1) % n);
-        let v = |i: usize, j: usize| values[j * n + i];
-        let value = (1.0 - fz) * ((1.0 - fx) * v(ix, iz) + fx * v(ix1, iz))
-            + fz * ((1.0 - fx) * v(ix, iz1) + fx * v(ix1, iz1));
-        value.max(0.0)
+        crate::ocean::query::periodic_bilinear(values, self.n, length, x, z).max(0.0)
+    }
+
+    /// Active foam a at undisplaced world (x, z), in [0, 1].
+    pub(crate) fn active_at(&self, x: f64, z: f64) -> f32 {
+        self.interpolate(&self.active, x, z).min(1.0)
     }
 
     /// The total foam at undisplaced world (x, z), in [0, 1].
