@@ -4,25 +4,92 @@
 
 use num_complex::Complex32;
 
+use super::moments::GradientMoments;
 use crate::exp::exp;
 
 /// Points of a row the foam's element loops handle at once, through arrays on the stack.
 pub(super) const BLOCK: usize = 64;
 
 /// The per-point constants of the foam update.
+///
+/// The intensity works on the gradient scaled by `unit` = c (a power of two, 1 unless the sea
+/// is extreme), with c in place of the 1 of J = (1 + D_xx)(1 + D_zz) − D_xz²: every quantity of
+/// the intensity is then its unscaled value times a power of c, so in f32's normal range the
+/// result has the same bits as unscaled. The unscaled sums reach the fourth power of the
+/// gradient and the square of its rate, which overflow f32 on seas the cascades accept (a
+/// gradient of 1e15 at most); scaled, the gradient's standard deviation is at most
+/// [`SCALE_LIMIT`] and so is its rate's (in 1/s, after a scale d of its own, undone in
+/// `crossing_scale`).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Params {
-    /// The breaking threshold J_b (−∞: nothing breaks).
+    /// The breaking threshold J_b (−∞: nothing breaks), times c².
     pub(super) threshold: f32,
-    /// Covariance of the unresolved gradient (cascades 1 and up) as (AA, BB, CC, AB, AC, BC).
+    /// The scale c of the gradient, a power of two in (0, 1].
+    pub(super) unit: f32,
+    /// Covariance of the unresolved gradient (cascades 1 and up) as (AA, BB, CC, AB, AC, BC),
+    /// times c².
     pub(super) unresolved: [f32; 6],
-    /// Covariance of the rate of the whole gradient, the same way, in 1/s².
+    /// Covariance of the rate of the whole gradient, the same way, in 1/s², times (cd)².
     pub(super) rate: [f32; 6],
-    /// Variance added to the unresolved part everywhere, (0.05 σ_T)²: keeps a one-cascade
-    /// ocean's intensity a smooth function of J.
+    /// Variance added to the unresolved part everywhere, (0.05 σ_T)² times c⁴: keeps a
+    /// one-cascade ocean's intensity a smooth function of J.
     pub(super) floor: f32,
+    /// 1/(√(2π) d): Rice's rate's constant with the rate's scale d undone.
+    pub(super) crossing_scale: f32,
     pub(super) inv_active: f32,
     pub(super) inv_residual: f32,
+}
+
+/// Largest standard deviation, after scaling, of the gradient (dimensionless) and of its rate
+/// (1/s) the intensity works at. A point's gradient is within √2·N standard deviations of 0
+/// (its fields are sums over N² wave vectors; Cauchy–Schwarz), N ≤ 4096, so the intensity's
+/// largest sums (σ², the discriminant and the rate's quadratic form, of order |∇J|²·|U|²)
+/// stay below 2⁶⁴, far inside f32; the smallest that matters, the floor, stays above 2⁻⁸⁴ for
+/// any sea the cascades accept (a gradient of at most 1e15).
+const SCALE_LIMIT: f64 = 256.0;
+
+/// The power of two 2⁻ᵉ (e ≥ 0, the smallest) that brings `deviation` down to at most
+/// [`SCALE_LIMIT`]; 1 for a deviation that is not finite.
+fn scale_for(deviation: f64) -> f64 {
+    let mut scale = 1.0;
+    if deviation.is_finite() {
+        // Exact halvings; at most 1017 for f64::MAX.
+        while deviation * scale > SCALE_LIMIT {
+            scale *= 0.5;
+        }
+    }
+    scale
+}
+
+impl Params {
+    /// The constants of the foam update: the breaking `threshold` and the compression's
+    /// standard deviation `compression_std` of the calibration, the moments of the gradient
+    /// of the unresolved cascades and of all of them, and the lifetimes of active and
+    /// residual foam in seconds.
+    pub(super) fn new(
+        threshold: f32,
+        compression_std: f32,
+        unresolved: &GradientMoments,
+        total: &GradientMoments,
+        active_decay: f32,
+        residual_decay: f32,
+    ) -> Params {
+        let trace = |m: &[[f64; 3]; 3]| m[0][0] + m[1][1] + m[2][2];
+        let c = scale_for(trace(&total.value).max(0.0).sqrt());
+        let d = scale_for(c * trace(&total.rate).max(0.0).sqrt());
+        let c2 = (c * c) as f32;
+        let floor = 0.05 * compression_std * c2;
+        Params {
+            threshold: threshold * c2,
+            unit: c as f32,
+            unresolved: packed(&unresolved.value, c * c),
+            rate: packed(&total.rate, (c * d) * (c * d)),
+            floor: (floor * floor).max(f32::MIN_POSITIVE),
+            crossing_scale: INV_SQRT_TAU / d as f32,
+            inv_active: 1.0 / active_decay,
+            inv_residual: 1.0 / residual_decay,
+        }
+    }
 }
 
 /// gᵀ M g for a symmetric M stored as (AA, BB, CC, AB, AC, BC).
@@ -34,9 +101,9 @@ pub(super) fn quadratic_form(m: &[f32; 6], g: [f32; 3]) -> f32 {
         + 2.0 * (m[3] * g[0] * g[1] + m[4] * g[0] * g[2] + m[5] * g[1] * g[2])
 }
 
-/// The symmetric 3×3 `m` as (AA, BB, CC, AB, AC, BC), in f32.
-pub(super) fn packed(m: &[[f64; 3]; 3]) -> [f32; 6] {
-    [m[0][0], m[1][1], m[2][2], m[0][1], m[0][2], m[1][2]].map(|v| v as f32)
+/// The symmetric 3×3 `m` times `scale` as (AA, BB, CC, AB, AC, BC), in f32.
+fn packed(m: &[[f64; 3]; 3], scale: f64) -> [f32; 6] {
+    [m[0][0], m[1][1], m[2][2], m[0][1], m[0][2], m[1][2]].map(|v| (v * scale) as f32)
 }
 
 /// 1/√(2π).
@@ -66,11 +133,12 @@ pub(super) fn normal_at(x: f32) -> (f32, f32) {
     )
 }
 
-/// ∇J of the Jacobian J = (1 + D_xx)(1 + D_zz) − D_xz² with respect to (D_xx, D_zz, D_xz).
+/// ∇J of the Jacobian J = (u + D_xx)(u + D_zz) − D_xz² with respect to (D_xx, D_zz, D_xz),
+/// for the gradient and the 1 scaled by `unit` = u.
 #[inline(always)]
-pub(super) fn jacobian_gradient(g: [f32; 3]) -> [f32; 3] {
+pub(super) fn jacobian_gradient(g: [f32; 3], unit: f32) -> [f32; 3] {
     let [xx, zz, xz] = g;
-    [1.0 + zz, 1.0 + xx, -2.0 * xz]
+    [unit + zz, unit + xx, -2.0 * xz]
 }
 
 /// What the first stage of the intensity hands to the others (see [`Params::roots`]). The
@@ -99,29 +167,32 @@ impl Params {
     /// (Gaussian, covariance Σ_u): J ≈ J_R + w + κ(w² − σ²) with w = ∇J_R·U (standard deviation
     /// σ, σ² = ∇Jᵀ Σ_u ∇J) and κ w² the mean of U's own quadratic term given w. With
     /// f = P(J < J_b) and Rice's rate ν of new breaking there, s = ν + f/τ_A (docs/theory.md
-    /// §15). For a finite threshold (the caller handles J_b = −∞).
+    /// §15). For a finite threshold (the caller handles J_b = −∞), with the gradient and the
+    /// 1 of J scaled by `unit` (the caller passes [`Params::unit`], or the constant 1 when it
+    /// is 1, which then costs nothing).
     ///
     /// Branch-free, so that a loop over points vectorises: both roots are computed whatever
     /// their number, and selects pick the result. J − J_b = a2·x² + σx + c in x; where a2 = 0
     /// (J linear in x) the root the stable formula gives first is set to −∞, where φ = 0 and
     /// Φ = 0, which leaves P(J < J_b) = Φ(x₁) and one crossing.
     #[inline(always)]
-    pub(super) fn intensity(&self, g: [f32; 3]) -> f32 {
-        let r = self.roots(g);
+    pub(super) fn intensity(&self, g: [f32; 3], unit: f32) -> f32 {
+        let g = g.map(|v| v * unit);
+        let r = self.roots(g, unit);
         let (cdf_lo, density_lo) = normal_at(r.lo);
         let (cdf_hi, density_hi) = normal_at(r.hi);
-        let episodes = self.crossing_rate(r.lo, density_lo, r.sigma, g, r.beta)
-            + self.crossing_rate(r.hi, density_hi, r.sigma, g, r.beta);
+        let episodes = self.crossing_rate(r.lo, density_lo, r.sigma, g, unit, r.beta)
+            + self.crossing_rate(r.hi, density_hi, r.sigma, g, unit, r.beta);
         self.combine(r.a2, r.disc, r.slope, cdf_lo, cdf_hi, episodes)
     }
 
     /// The first stage of [`intensity`](Self::intensity): σ, β, the quadratic in x and its
-    /// roots.
+    /// roots, for the scaled gradient `g`.
     #[inline(always)]
-    fn roots(&self, g: [f32; 3]) -> Roots {
+    fn roots(&self, g: [f32; 3], unit: f32) -> Roots {
         let [xx, zz, xz] = g;
-        let jacobian = (1.0 + xx) * (1.0 + zz) - xz * xz;
-        let gradient = jacobian_gradient(g);
+        let jacobian = (unit + xx) * (unit + zz) - xz * xz;
+        let gradient = jacobian_gradient(g, unit);
         let u = &self.unresolved;
         // Σ_u ∇J, then σ² and the regression β = Σ_u ∇J/σ² of U on w.
         let su = [
@@ -159,8 +230,16 @@ impl Params {
     /// φ(x)·|J̇| at a root x of [`intensity`](Self::intensity) (φ = `density`): J̇ = ∇J·ġ
     /// with ∇J where the surface crosses J_b, U at its mean given w = σx.
     #[inline(always)]
-    fn crossing_rate(&self, x: f32, density: f32, sigma: f32, g: [f32; 3], beta: [f32; 3]) -> f32 {
-        let gradient = jacobian_gradient(g);
+    fn crossing_rate(
+        &self,
+        x: f32,
+        density: f32,
+        sigma: f32,
+        g: [f32; 3],
+        unit: f32,
+        beta: [f32; 3],
+    ) -> f32 {
+        let gradient = jacobian_gradient(g, unit);
         let w = sigma * x;
         let at = [
             gradient[0] + beta[1] * w,
@@ -195,7 +274,7 @@ impl Params {
         } else {
             (cdf_lo + 1.0 - cdf_hi).min(1.0)
         };
-        let crossing = episodes * INV_SQRT_TAU / slope + fraction * self.inv_active;
+        let crossing = episodes * self.crossing_scale / slope + fraction * self.inv_active;
         // No crossing (disc ≤ 0): J is above J_b everywhere if it opens upward, below if
         // downward.
         let uniform = if a2 < 0.0 { self.inv_active } else { 0.0 };
@@ -216,8 +295,16 @@ impl Params {
             out.fill(0.0);
             return;
         }
-        for (g, s) in gradient.iter().zip(out.iter_mut()) {
-            *s = self.intensity(*g);
+        // An ordinary sea (c = 1) runs the loop with the scale a constant, which the compiler
+        // folds away: the scaling costs it nothing.
+        if self.unit == 1.0 {
+            for (g, s) in gradient.iter().zip(out.iter_mut()) {
+                *s = self.intensity(*g, 1.0);
+            }
+        } else {
+            for (g, s) in gradient.iter().zip(out.iter_mut()) {
+                *s = self.intensity(*g, self.unit);
+            }
         }
     }
 

@@ -15,7 +15,7 @@ use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
 use crate::simd::Simd;
 
 use super::calibration::{calibrate, Settings};
-use super::intensity::{packed, Params};
+use super::intensity::Params;
 use super::moments::GradientMoments;
 use super::rows::{pack_rows, repack_halves, total_row, unpack_halves};
 use super::transport::Transport;
@@ -142,15 +142,14 @@ impl Foam {
                 active_decay: config.active_decay,
             },
         );
-        let floor = 0.05 * calibration.compression_std;
-        let params = Params {
-            threshold: calibration.threshold,
-            unresolved: packed(&unresolved.value),
-            rate: packed(&total.rate),
-            floor: (floor * floor).max(f32::MIN_POSITIVE),
-            inv_active: 1.0 / config.active_decay,
-            inv_residual: 1.0 / config.residual_decay,
-        };
+        let params = Params::new(
+            calibration.threshold,
+            calibration.compression_std,
+            &unresolved,
+            &total,
+            config.active_decay,
+            config.residual_decay,
+        );
         // Spreads over a residual lifetime, √(2Kτ_R) = streak·λ_p, give the diffusivities.
         let peak = spectrum
             .dispersion()

@@ -295,3 +295,57 @@ fn transport_steps_compose() {
         assert!(worst < 1e-5, "{worst}");
     }
 }
+
+/// The intensity works on the gradient scaled by c and on its rate scaled by d, powers of two
+/// that are 1 on ordinary seas (`Params::new`): every quantity is then its unscaled value
+/// times a power of two, so with any c and d that keep them in f32's normal range the
+/// intensity has the same bits as unscaled, on the scaled path and at every SIMD level. On a
+/// 15 m/s sea at 64², with c and d from 1 to 2⁻²⁰ (its sums then stay above 1e-35).
+#[test]
+fn scaling_the_intensity_by_powers_of_two_keeps_its_bits() {
+    let spectrum = Spectrum::jonswap(15.0, 300_000.0)
+        .and_then(|s| s.with_wind_direction(0.7))
+        .unwrap();
+    let config = OceanConfig {
+        size: 64,
+        choppiness: 1.5,
+        ..OceanConfig::default()
+    };
+    let mut ocean = OceanState::new(spectrum, config).unwrap();
+    ocean.step(2.5).unwrap();
+    let foam = &ocean.foam;
+    let (n, p) = (foam.n, foam.params);
+    assert_eq!(
+        (p.unit, p.crossing_scale),
+        (1.0, super::intensity::INV_SQRT_TAU)
+    );
+    let mut unscaled = vec![0.0f32; n * n];
+    Simd::Baseline.run(|| p.intensity_row(&foam.gradient, &mut unscaled));
+    assert!(unscaled.iter().filter(|&&s| s > 0.1 * p.inv_active).count() > 20);
+    for (c, d) in [(0, 3), (1, 0), (5, 2), (12, 7), (20, 9)] {
+        let (c, d) = (0.5f32.powi(c), 0.5f32.powi(d));
+        let scaled = super::intensity::Params {
+            threshold: p.threshold * c * c,
+            unit: c,
+            unresolved: p.unresolved.map(|v| v * c * c),
+            rate: p.rate.map(|v| v * (c * d) * (c * d)),
+            floor: p.floor * (c * c) * (c * c),
+            crossing_scale: p.crossing_scale / d,
+            ..p
+        };
+        for simd in Simd::available() {
+            let mut out = vec![f32::NAN; n * n];
+            simd.run(
+                #[inline(always)]
+                || scaled.intensity_row(&foam.gradient, &mut out),
+            );
+            for (k, (a, b)) in out.iter().zip(&unscaled).enumerate() {
+                assert_eq!(
+                    a.to_bits(),
+                    b.to_bits(),
+                    "c {c}, d {d}, {simd:?}, point {k}: {a} {b}"
+                );
+            }
+        }
+    }
+}

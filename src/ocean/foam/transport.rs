@@ -20,6 +20,12 @@ use num_complex::Complex32;
 
 use crate::determinism::Math;
 
+/// Largest exponent dt·K·Δk² of a diffusivity K over a step, per squared grid wave index along
+/// its axis: capped there, every wave vector with a component of 0.01 index or more along that
+/// axis is still damped to exactly 0 in f32 (by e^{−105} or less), as by any larger K, and the
+/// exponent at the grid's corner, 2·(N/2)²·2²⁰ ≤ 2⁴³, stays finite.
+const EXPONENT_LIMIT: f64 = 1_048_576.0;
+
 /// The transport of an ocean's residual foam.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Transport {
@@ -27,6 +33,10 @@ pub(crate) struct Transport {
     pub(crate) drift: [f64; 2],
     /// Diffusion tensor (K_xx, K_xz, K_zz) in m²/s.
     pub(crate) tensor: [f64; 3],
+    /// Its eigenvalues, the diffusivities (K∥, K⊥) along and across the wind, in m²/s.
+    diffusivities: [f64; 2],
+    /// The wind direction ŵ = (cos θ_w, sin θ_w), its eigenvector of K∥.
+    wind: [f64; 2],
     /// Δk = 2π/L of the grid, rad/m.
     dk: f64,
 }
@@ -50,6 +60,8 @@ impl Transport {
                 (along - across) * cos * sin,
                 along * sin * sin + across * cos * cos,
             ],
+            diffusivities: [along, across],
+            wind: [cos, sin],
             dk: TAU / length,
         }
     }
@@ -75,10 +87,25 @@ impl Transport {
     }
 
     /// The coefficients (a, b, c) of the Gaussian exponent −(a·m_x² + 2b·m_x·m_z + c·m_z²)
-    /// over `dt` seconds, in grid wave indices m: a = dt·K_xx·Δk² and so on.
+    /// over `dt` seconds, in grid wave indices m: a = dt·K_xx·Δk² and so on, with each
+    /// diffusivity's share at most [`EXPONENT_LIMIT`].
     pub(crate) fn exponent(&self, dt: f64) -> [f32; 3] {
         let scale = dt * self.dk * self.dk;
-        self.tensor.map(|k| (scale * k) as f32)
+        let [along, across] = self.diffusivities;
+        if scale * along.max(across) <= EXPONENT_LIMIT {
+            return self.tensor.map(|k| (scale * k) as f32);
+        }
+        // A diffusivity so strong that its exponent would overflow f32 (and make ∞·0 = NaN at
+        // m = 0): capped where it already damps everything along its axis to 0.
+        let [cos, sin] = self.wind;
+        let along = (scale * along).min(EXPONENT_LIMIT);
+        let across = (scale * across).min(EXPONENT_LIMIT);
+        [
+            along * cos * cos + across * sin * sin,
+            (along - across) * cos * sin,
+            along * sin * sin + across * cos * cos,
+        ]
+        .map(|k| k as f32)
     }
 }
 
@@ -107,6 +134,30 @@ mod tests {
             assert!(form(w, n).abs() < 1e-12);
             assert!((t.drift[0] - 0.3 * w[0]).abs() < 1e-12);
             assert!((t.drift[1] - 0.3 * w[1]).abs() < 1e-12);
+        }
+    }
+
+    /// Diffusivities whose exponent overflows f32 (a peak wavelength of 6e41 m, from
+    /// ω_p = 1e-20 rad/s) give finite coefficients: the exponent, evaluated as the step does,
+    /// is 0 at m = 0 and beyond the exponential's range (87) at every other wave vector of a
+    /// 64² grid.
+    #[test]
+    fn huge_diffusivities_give_a_finite_exponent() {
+        for wind in [0.0, 0.7, -2.1] {
+            let t = Transport::new::<Std>(wind, 0.3, 1e82, 1e79, 100.0);
+            let [a, b, c] = t.exponent(0.5);
+            assert!([a, b, c].iter().all(|v| v.is_finite()), "{:?}", [a, b, c]);
+            for mx in -32i16..32 {
+                for mz in -32i16..32 {
+                    let (x, z) = (f32::from(mx), f32::from(mz));
+                    let e = a * x * x + z * (2.0 * b * x + c * z);
+                    if (mx, mz) == (0, 0) {
+                        assert_eq!(e, 0.0);
+                    } else {
+                        assert!(e > 87.0, "{wind} ({mx}, {mz}): {e}");
+                    }
+                }
+            }
         }
     }
 }
