@@ -5,6 +5,7 @@ mod config;
 mod evolve;
 mod field;
 mod inspect;
+mod live;
 mod outputs;
 mod tables;
 #[cfg(test)]
@@ -97,6 +98,8 @@ pub struct Cascade {
     slope: Vec<[f32; 2]>,
     normal: Vec<[f32; 3]>,
     jacobian: Vec<f32>,
+    /// A live change of amplitudes (empty buffers until the first).
+    change: live::AmplitudeChange,
 }
 
 impl std::fmt::Debug for Cascade {
@@ -268,6 +271,7 @@ impl Cascade {
             slope: error::try_vec(points, [0.0; 2])?,
             normal: error::try_vec(points, [0.0, 1.0, 0.0])?,
             jacobian: error::try_vec(points, 1.0)?,
+            change: live::AmplitudeChange::default(),
         };
         cascade.update(0.0)?;
         Ok(cascade)

@@ -122,64 +122,96 @@ pub(super) struct Amplitudes {
     pub(super) amplitude_bound: f64,
 }
 
+/// Draws h0(k) = ½(ξ_r + iξ_i)·√S(k)·Δk for the grid rows (z index j) of `rows`, into `h0`
+/// (those rows of an N×N buffer in the grid's FFT order) and each row's Σ S(k)Δk² into
+/// `variance` (one value per row of `rows`): every wave vector of the band
+/// `k_min` ≤ |k| < `k_max` (zero elsewhere, and on k = 0 and the Nyquist row and column), ξ
+/// standard normals drawn from (seed, m_x, m_z). Rows in parallel; each value depends only on
+/// its wave vector, so any split of the rows gives the same amplitudes.
+pub(super) fn draw_rows<M: Math>(
+    spectrum: &Spectrum,
+    config: &CascadeConfig,
+    rows: std::ops::Range<usize>,
+    h0: &mut [Complex32],
+    variance: &mut [f64],
+) {
+    let n = config.size;
+    let dk64 = TAU / f64::from(config.length);
+    let params = spectrum.spreading_params();
+    let first = rows.start;
+    h0[first * n..rows.end * n]
+        .par_chunks_mut(n)
+        .zip(variance.par_iter_mut())
+        .enumerate()
+        .for_each(|(r, (row, variance))| {
+            let j = first + r;
+            *variance = 0.0;
+            for (i, value) in row.iter_mut().enumerate() {
+                *value = Complex32::default();
+                let Some((kx, kz)) = in_band::<M>(config, i, j) else {
+                    continue;
+                };
+                let s = spectrum.density_with::<M>(kx, kz, &params);
+                if s <= 0.0 {
+                    continue;
+                }
+                *variance += s * dk64 * dk64;
+                let (xr, xi) =
+                    rng::gaussian_pair::<M>(config.seed, wave_index(i, n), wave_index(j, n));
+                let amplitude = 0.5 * s.sqrt() * dk64;
+                *value = Complex32::new((xr * amplitude) as f32, (xi * amplitude) as f32);
+            }
+        });
+}
+
+/// The wave vector (k_x, k_z) in rad/m of grid index (i, j) when it lies in the config's band
+/// (`k_min` ≤ |k| < `k_max`, not k = 0, not on the Nyquist row or column).
+fn in_band<M: Math>(config: &CascadeConfig, i: usize, j: usize) -> Option<(f64, f64)> {
+    let n = config.size;
+    if i == n / 2 || j == n / 2 {
+        return None;
+    }
+    let dk64 = TAU / f64::from(config.length);
+    let kx = f64::from(wave_index(i, n)) * dk64;
+    let kz = f64::from(wave_index(j, n)) * dk64;
+    let k = M::hypot(kx, kz);
+    (k > 0.0 && k >= f64::from(config.k_min) && k < f64::from(config.k_max)).then_some((kx, kz))
+}
+
+/// Σ 2|h0| · max(1, k_grid_max) of amplitudes `h0` on the config's grid: a bound on every
+/// synthesised field's magnitude (see [`check_amplitude`]).
+pub(super) fn amplitude_bound<M: Math>(h0: &[Complex32], config: &CascadeConfig) -> f64 {
+    let n = config.size;
+    let dk64 = TAU / f64::from(config.length);
+    let abs_sum: f64 = h0
+        .iter()
+        .map(|c| M::hypot(f64::from(c.re), f64::from(c.im)))
+        .sum();
+    let k_grid_max = dk64 * (n as f64 / 2.0) * std::f64::consts::SQRT_2;
+    2.0 * abs_sum * k_grid_max.max(1.0)
+}
+
 impl Amplitudes {
-    /// Draws h0(k) = ½(ξ_r + iξ_i)·√S(k)·Δk for every wave vector of the grid with
-    /// `k_min` ≤ |k| < `k_max` (zero elsewhere, and on k = 0 and the Nyquist row and column),
-    /// ξ standard normals drawn from (seed, m_x, m_z). Errors with [`Error::EmptyBand`] when
-    /// the band holds no wave vector of the grid.
+    /// Draws every row's amplitudes (see [`draw_rows`]). Errors with [`Error::EmptyBand`]
+    /// when the band holds no wave vector of the grid.
     pub(super) fn draw<M: Math>(
         spectrum: &Spectrum,
         config: &CascadeConfig,
     ) -> Result<Self, Error> {
         let n = config.size;
-        let dk64 = TAU / f64::from(config.length);
-        let k_min = f64::from(config.k_min);
-        let k_max = f64::from(config.k_max);
-        let in_band = |i: usize, j: usize| -> Option<(f64, f64)> {
-            if i == n / 2 || j == n / 2 {
-                return None;
-            }
-            let kx = f64::from(wave_index(i, n)) * dk64;
-            let kz = f64::from(wave_index(j, n)) * dk64;
-            let k = M::hypot(kx, kz);
-            (k > 0.0 && k >= k_min && k < k_max).then_some((kx, kz))
-        };
-        let band_has_vectors = (0..n).any(|j| (0..n).any(|i| in_band(i, j).is_some()));
+        let band_has_vectors = (0..n).any(|j| (0..n).any(|i| in_band::<M>(config, i, j).is_some()));
         if !band_has_vectors {
-            return Err(Error::EmptyBand { k_min, k_max });
+            return Err(Error::EmptyBand {
+                k_min: f64::from(config.k_min),
+                k_max: f64::from(config.k_max),
+            });
         }
-
-        // h0 in natural order, rows in parallel; each value depends only on its wave vector.
-        let params = spectrum.spreading_params();
         let mut h0 = error::try_vec(n * n, Complex32::default())?;
         let mut variance_rows = vec![0.0f64; n];
-        h0.par_chunks_mut(n)
-            .zip(variance_rows.par_iter_mut())
-            .enumerate()
-            .for_each(|(j, (row, variance))| {
-                for (i, value) in row.iter_mut().enumerate() {
-                    let Some((kx, kz)) = in_band(i, j) else {
-                        continue;
-                    };
-                    let s = spectrum.density_with::<M>(kx, kz, &params);
-                    if s <= 0.0 {
-                        continue;
-                    }
-                    *variance += s * dk64 * dk64;
-                    let (xr, xi) =
-                        rng::gaussian_pair::<M>(config.seed, wave_index(i, n), wave_index(j, n));
-                    let amplitude = 0.5 * s.sqrt() * dk64;
-                    *value = Complex32::new((xr * amplitude) as f32, (xi * amplitude) as f32);
-                }
-            });
+        draw_rows::<M>(spectrum, config, 0..n, &mut h0, &mut variance_rows);
         // Summed in a fixed order: the same result whatever the thread count.
         let expected_variance: f64 = variance_rows.iter().sum();
-        let abs_sum: f64 = h0
-            .iter()
-            .map(|c| M::hypot(f64::from(c.re), f64::from(c.im)))
-            .sum();
-        let k_grid_max = dk64 * (n as f64 / 2.0) * std::f64::consts::SQRT_2;
-        let amplitude_bound = 2.0 * abs_sum * k_grid_max.max(1.0);
+        let amplitude_bound = amplitude_bound::<M>(&h0, config);
         Ok(Amplitudes {
             h0,
             expected_variance,
@@ -209,25 +241,54 @@ impl EvolutionTable {
             .enumerate()
             .for_each(|(i, row)| {
                 for (j, entry) in row.iter_mut().enumerate() {
-                    let a = h0[j * n + i];
-                    let b = h0[((n - j) % n) * n + (n - i) % n].conj();
+                    let (p, q) = evolved_pair(h0, n, i, j);
                     let kx = f64::from(wave_index(i, n)) * dk;
                     let kz = f64::from(wave_index(j, n)) * dk;
                     let k = M::hypot(kx, kz);
                     let omega = dispersion.omega_with::<M>(k);
                     let freq = frequency(omega, looping);
                     let inv_k = if k > 0.0 { (1.0 / k) as f32 } else { 0.0 };
-                    *entry = (
-                        Evolution {
-                            p: a + b,
-                            q: Complex32::i() * (b - a),
-                            freq,
-                        },
-                        inv_k,
-                    );
+                    *entry = (Evolution { p, q, freq }, inv_k);
                 }
             });
         EvolutionTable::from_entries(&evolution)
+    }
+}
+
+/// (p, q) of the table entry (i, j) (i < N/2) from the amplitudes `h0` (N×N, FFT order):
+/// p = h0(k) + conj(h0(−k)), q = i (conj(h0(−k)) − h0(k)).
+#[inline]
+fn evolved_pair(h0: &[Complex32], n: usize, i: usize, j: usize) -> (Complex32, Complex32) {
+    let a = h0[j * n + i];
+    let b = h0[((n - j) % n) * n + (n - i) % n].conj();
+    (a + b, Complex32::i() * (b - a))
+}
+
+impl EvolutionTable {
+    /// Replaces every p and q with those of the amplitudes `h0` (N×N, FFT order), keeping
+    /// the frequencies and 1/|k|: the table [`EvolutionTable::new`] builds from `h0`.
+    pub(super) fn set_amplitudes(&mut self, h0: &[Complex32], n: usize) {
+        let EvolutionTable {
+            p_re,
+            p_im,
+            q_re,
+            q_im,
+            ..
+        } = self;
+        (
+            p_re.par_chunks_mut(n),
+            p_im.par_chunks_mut(n),
+            q_re.par_chunks_mut(n),
+            q_im.par_chunks_mut(n),
+        )
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(i, (p_re, p_im, q_re, q_im))| {
+                for j in 0..n {
+                    let (p, q) = evolved_pair(h0, n, i, j);
+                    (p_re[j], p_im[j], q_re[j], q_im[j]) = (p.re, p.im, q.re, q.im);
+                }
+            });
     }
 }
 

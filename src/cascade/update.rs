@@ -114,26 +114,25 @@ pub(super) struct RowPruning {
 impl RowPruning {
     /// The pruning of every table row of an N grid.
     pub(super) fn of(evolution: &EvolutionTable, n: usize) -> Vec<RowPruning> {
+        (0..n / 2).map(|i| Self::of_row(evolution, i, n)).collect()
+    }
+
+    /// The pruning of table row `i` of an N grid.
+    pub(super) fn of_row(evolution: &EvolutionTable, i: usize, n: usize) -> RowPruning {
         let blocks = column_blocks(n).count();
         let all = if blocks == 64 {
             u64::MAX
         } else {
             (1u64 << blocks) - 1
         };
-        (0..n / 2)
-            .map(|i| {
-                let row = evolution.get_row(i, n);
-                let zero_blocks = zero_blocks(row);
-                let column0 = row.p_re[0] == 0.0
-                    && row.p_im[0] == 0.0
-                    && row.q_re[0] == 0.0
-                    && row.q_im[0] == 0.0;
-                RowPruning {
-                    zero_blocks,
-                    empty: column0 && zero_blocks == all,
-                }
-            })
-            .collect()
+        let row = evolution.get_row(i, n);
+        let zero_blocks = zero_blocks(row);
+        let column0 =
+            row.p_re[0] == 0.0 && row.p_im[0] == 0.0 && row.q_re[0] == 0.0 && row.q_im[0] == 0.0;
+        RowPruning {
+            zero_blocks,
+            empty: column0 && zero_blocks == all,
+        }
     }
 }
 

@@ -3,6 +3,7 @@
 
 mod config;
 mod foam;
+mod live;
 mod query;
 mod snapshot;
 mod spline;
@@ -47,6 +48,8 @@ pub struct OceanState {
     /// The choppiness the cascades' buffers were last computed with (a new choppiness takes
     /// effect at the next update).
     pub(crate) applied_choppiness: f32,
+    /// A change of weather in progress ([`OceanState::set_spectrum`]).
+    pub(crate) change: Option<live::Change>,
 }
 
 impl OceanState {
@@ -85,6 +88,7 @@ impl OceanState {
             foam,
             splines,
             time: 0.0,
+            change: None,
         })
     }
 

@@ -141,6 +141,7 @@ impl OceanState {
         // the other cascades' statistics), so the roll moves cascade 0 alone and the others
         // once at the end: the same bits as moving all of them at every step.
         rayon::scope(|_| {
+            self.finish_drawing(end);
             self.foam.clear_state();
             self.advance(start, FoamMotion::Jump, Scope::FoamSource);
             let mut previous = start;
@@ -164,6 +165,7 @@ impl OceanState {
     /// pool.
     pub(super) fn advance(&mut self, t: f64, foam: FoamMotion, scope: Scope) {
         rayon::scope(|_| {
+            self.advance_change(t);
             self.update_cascades(t, scope);
             match foam {
                 FoamMotion::Integrate(dt) => self.foam.advance(dt),

@@ -143,9 +143,4 @@ impl FoamConfig {
         range("foam.streak_width", self.streak_width, self.streak_length)?;
         Ok(())
     }
-
-    /// The wind speed U10 in m/s the foam answers to on a sea of `spectrum`.
-    pub(crate) fn wind_speed_for(&self, spectrum: &Spectrum) -> f32 {
-        self.wind_speed.unwrap_or(spectrum.wind_speed())
-    }
 }

@@ -5,6 +5,7 @@
 
 mod api;
 mod calibration;
+mod change;
 mod config;
 mod intensity;
 mod moments;

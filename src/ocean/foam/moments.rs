@@ -4,6 +4,8 @@
 
 use std::f64::consts::TAU;
 
+use num_complex::Complex32;
+
 use crate::cascade::Cascade;
 use crate::determinism::Math;
 
@@ -20,12 +22,12 @@ pub(crate) struct GradientMoments {
 }
 
 impl GradientMoments {
-    /// The moments of `cascade`'s realised amplitudes (with the frequencies it evolves them
-    /// with, quantised when looping), with the functions of `M`. Serial, in index order.
-    pub(crate) fn of<M: Math>(cascade: &Cascade) -> GradientMoments {
+    /// The moments of amplitudes `h0` (the cascade's own, or new ones of a change of weather)
+    /// on `cascade`'s grid, with the frequencies it evolves them with (quantised when
+    /// looping), with the functions of `M`. Serial, in index order.
+    pub(crate) fn of_amplitudes<M: Math>(cascade: &Cascade, h0: &[Complex32]) -> GradientMoments {
         let n = cascade.size();
         let dk = f64::from(cascade.delta_k());
-        let h0 = cascade.h0();
         let mut moments = GradientMoments::default();
         for j in 0..n {
             let kz = f64::from(crate::grid::wave_index(j, n)) * dk;
@@ -52,6 +54,18 @@ impl GradientMoments {
             }
         }
         moments
+    }
+
+    /// (1 − w)·`self` + w·`other`: the moments of the energy blend of two sets of amplitudes
+    /// (they are sums of energies).
+    pub(crate) fn blend(&self, other: &GradientMoments, w: f64) -> GradientMoments {
+        let lerp = |a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]| {
+            std::array::from_fn(|i| std::array::from_fn(|j| (1.0 - w) * a[i][j] + w * b[i][j]))
+        };
+        GradientMoments {
+            value: lerp(&self.value, &other.value),
+            rate: lerp(&self.rate, &other.rate),
+        }
     }
 
     /// The moments of a sum of independent fields (cascades with their own seeds and
@@ -116,7 +130,7 @@ mod tests {
         };
         let mut cascade = Cascade::new(&spectrum, config).unwrap();
         let mut gradient = vec![[0.0f32; 3]; 16 * 16];
-        let moments = GradientMoments::of::<Std>(&cascade);
+        let moments = GradientMoments::of_amplitudes::<Std>(&cascade, cascade.h0());
         let mut sums = [[0.0f64; 3]; 3];
         let times = 4000;
         for step in 0..times {

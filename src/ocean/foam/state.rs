@@ -14,9 +14,8 @@ use crate::exp::exp;
 use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
 use crate::simd::Simd;
 
-use super::calibration::{calibrate, Settings};
+use super::change::{FoamChange, FoamSea, Model};
 use super::intensity::Params;
-use super::moments::GradientMoments;
 use super::rows::{pack_rows, repack_halves, total_row, unpack_halves};
 use super::transport::Transport;
 use super::{FoamCalibration, FoamConfig, FoamCoverage};
@@ -76,6 +75,12 @@ pub(crate) struct Foam {
     /// cascade (cascade 0) at the current time, written by its update
     /// ([`update_source`](Self::update_source)).
     pub(super) gradient: Vec<[f32; 3]>,
+    /// The settings the foam was built or last set with.
+    pub(super) config: FoamConfig,
+    /// What the foam's model reads from the sea (a blend during a change of weather).
+    pub(super) sea: FoamSea,
+    /// A change of weather in progress.
+    pub(super) change: Option<FoamChange>,
     /// The determinism mode of the ocean, whose functions the transport's tables use.
     pub(super) determinism: Determinism,
     /// The SIMD level of the element loops.
@@ -122,50 +127,16 @@ impl Foam {
         config: &FoamConfig,
         spectrum: &crate::spectrum::Spectrum,
     ) -> Result<Foam, Error> {
-        let wind_speed = config.wind_speed_for(spectrum);
         let first = &cascades[0];
         let determinism = first.config().determinism;
         let n = first.size();
         let length = first.length();
-        let resolved = GradientMoments::of::<M>(first);
-        let mut unresolved = GradientMoments::default();
-        for cascade in &cascades[1..] {
-            unresolved.add(&GradientMoments::of::<M>(cascade));
-        }
-        let mut total = resolved;
-        total.add(&unresolved);
-        let calibration = calibrate::<M>(
-            &total,
-            Settings {
-                wind_speed,
-                coverage: config.coverage,
-                active_decay: config.active_decay,
-            },
-        );
-        let params = Params::new(
-            calibration.threshold,
-            calibration.compression_std,
-            &unresolved,
-            &total,
-            config.active_decay,
-            config.residual_decay,
-        );
-        // Spreads over a residual lifetime, √(2Kτ_R) = streak·λ_p, give the diffusivities.
-        let peak = spectrum
-            .dispersion()
-            .k_from_omega_with::<M>(f64::from(spectrum.peak_omega()));
-        let wavelength = std::f64::consts::TAU / peak;
-        let diffusivity = |streak: f32| {
-            let spread = f64::from(streak) * wavelength;
-            spread * spread / (2.0 * f64::from(config.residual_decay))
-        };
-        let transport = Transport::new::<M>(
-            f64::from(spectrum.wind_direction()),
-            f64::from(config.drift) * f64::from(wind_speed),
-            diffusivity(config.streak_length),
-            diffusivity(config.streak_width),
-            f64::from(length),
-        );
+        let sea = FoamSea::of::<M>(cascades, |c| c.h0(), spectrum);
+        let Model {
+            calibration,
+            params,
+            transport,
+        } = Model::new::<M>(&sea, config, length);
         let points = n * n;
         let fft = RowFft::new(n, determinism);
         let mut foam = Foam {
@@ -187,6 +158,9 @@ impl Foam {
             fft,
             row_sums: error::try_vec(n, [0.0; 3])?,
             gradient: error::try_vec(points, [0.0; 3])?,
+            config: *config,
+            sea,
+            change: None,
             determinism,
             simd: Simd::detect(),
         };

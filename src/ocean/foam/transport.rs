@@ -66,6 +66,19 @@ impl Transport {
         }
     }
 
+    /// The transport (1 − w)·`self` + w·`other` (0 ≤ w ≤ 1): drift and tensor linear, the cap's
+    /// diffusivities the larger of each pair and its axes those of the side weighted more.
+    pub(crate) fn blend(&self, other: &Transport, w: f64) -> Transport {
+        let lerp = |a: f64, b: f64| (1.0 - w) * a + w * b;
+        Transport {
+            drift: [0, 1].map(|i| lerp(self.drift[i], other.drift[i])),
+            tensor: [0, 1, 2].map(|i| lerp(self.tensor[i], other.tensor[i])),
+            diffusivities: [0, 1].map(|i| self.diffusivities[i].max(other.diffusivities[i])),
+            wind: if w < 0.5 { self.wind } else { other.wind },
+            dk: self.dk,
+        }
+    }
+
     /// Whether foam moves at all.
     pub(crate) fn is_active(&self) -> bool {
         self.drift.iter().chain(&self.tensor).any(|&v| v != 0.0)

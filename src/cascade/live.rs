@@ -1,0 +1,290 @@
+//! A live change of a cascade's amplitudes (see `OceanState::set_spectrum`): the new
+//! spectrum's amplitudes drawn a few rows at a time as `Cascade::new` draws them, then blended
+//! with the old ones by energy, every wave keeping its random phase, and installed exactly at
+//! the end.
+
+use num_complex::Complex32;
+use rayon::prelude::*;
+
+use super::tables::{self, check_amplitude, LoopError};
+use super::update::RowPruning;
+use super::{mean_level_per_choppiness, row_stride, Cascade};
+use crate::determinism::{with_math, Math};
+use crate::error::{self, Error};
+use crate::spectrum::{SlopeVariance, Spectrum};
+
+/// What a cascade knows about one set of amplitudes besides the amplitudes themselves.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct AmplitudeStats {
+    /// Σ S(k) Δk², m².
+    pub(crate) expected_variance: f64,
+    /// 2 Σ |k| |h0|², m (the mean-level correction per unit choppiness).
+    pub(crate) mean_level: f64,
+    /// The spectrum's slope variance above the band.
+    pub(crate) subgrid_slope: SlopeVariance,
+}
+
+impl AmplitudeStats {
+    /// The statistics of the energy blend (1 − w)·`self` + w·`other`: all three are sums of
+    /// energies.
+    fn blend(&self, other: &AmplitudeStats, w: f64) -> AmplitudeStats {
+        let lerp = |a: f64, b: f64| (1.0 - w) * a + w * b;
+        let lerp32 = |a: f32, b: f32| lerp(f64::from(a), f64::from(b)) as f32;
+        AmplitudeStats {
+            expected_variance: lerp(self.expected_variance, other.expected_variance),
+            mean_level: lerp(self.mean_level, other.mean_level),
+            subgrid_slope: SlopeVariance {
+                along: lerp32(self.subgrid_slope.along, other.subgrid_slope.along),
+                across: lerp32(self.subgrid_slope.across, other.subgrid_slope.across),
+            },
+        }
+    }
+}
+
+/// The new amplitudes once every row is drawn, with everything `Cascade::new` derives from
+/// them.
+#[derive(Debug, Clone, Copy)]
+struct Drawn {
+    stats: AmplitudeStats,
+    amplitude_bound: f64,
+    loop_error: Option<LoopError>,
+}
+
+/// A change of amplitudes in progress (the buffers are kept between changes).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct AmplitudeChange {
+    /// Whether a change is in progress.
+    active: bool,
+    /// The amplitudes the blend starts from (N×N, FFT order).
+    from: Vec<Complex32>,
+    from_stats: Option<AmplitudeStats>,
+    /// The new amplitudes, rows `0..rows_drawn` drawn so far.
+    target: Vec<Complex32>,
+    /// Σ S(k)Δk² of each drawn row.
+    variance_rows: Vec<f64>,
+    rows_drawn: usize,
+    drawn: Option<Drawn>,
+}
+
+impl Cascade {
+    /// Allocates the buffers of a change of amplitudes (16 bytes a point) if this cascade has
+    /// none yet.
+    ///
+    /// # Errors
+    /// [`Error::OutOfMemory`] if the system refuses them.
+    pub(crate) fn reserve_change(&mut self) -> Result<(), Error> {
+        let points = self.n * self.n;
+        if self.change.from.len() != points {
+            self.change.from = error::try_vec(points, Complex32::default())?;
+            self.change.target = error::try_vec(points, Complex32::default())?;
+            self.change.variance_rows = error::try_vec(self.n, 0.0)?;
+        }
+        Ok(())
+    }
+
+    /// Starts a change to new amplitudes (after [`reserve_change`](Self::reserve_change)):
+    /// the current ones (a blend, if a change was in progress) become those the blend starts
+    /// from, and none of the new ones is drawn yet.
+    pub(crate) fn begin_change(&mut self) {
+        let change = &mut self.change;
+        change.from.copy_from_slice(&self.h0);
+        change.from_stats = Some(AmplitudeStats {
+            expected_variance: self.expected_variance,
+            mean_level: self.mean_level,
+            subgrid_slope: self.subgrid_slope,
+        });
+        change.rows_drawn = 0;
+        change.drawn = None;
+        change.active = true;
+    }
+
+    /// Checks that `spectrum`'s amplitudes would keep this cascade's fields within f32 at the
+    /// current choppiness, as [`Cascade::new`] checks. A bound from the band's variance
+    /// settles it for any sea a million times below the limit in variance (by Cauchy–Schwarz,
+    /// Σ|h0| ≤ ½·max|ξ|·√(N²·Σ S Δk²), with max|ξ| ≤ 40 for every draw the generators can
+    /// make, and the grid's sum taken as at most a million times the band's integral); beyond
+    /// that the amplitudes are drawn (into a buffer of their own) and checked exactly.
+    ///
+    /// # Errors
+    /// [`Error::AmplitudeTooLarge`] as [`Cascade::new`]; [`Error::OutOfMemory`] if the exact
+    /// check's buffer is refused.
+    pub(crate) fn check_amplitudes_for(&self, spectrum: &Spectrum) -> Result<(), Error> {
+        let n = self.n;
+        let config = &self.config;
+        let variance = spectrum.band_variance_f64(f64::from(config.k_min), f64::from(config.k_max));
+        let points = (n * n) as f64;
+        let dk64 = std::f64::consts::TAU / f64::from(config.length);
+        let k_grid_max = dk64 * (n as f64 / 2.0) * std::f64::consts::SQRT_2;
+        let bound = 2.0 * 20.0 * (points * variance * 1e6).sqrt() * k_grid_max.max(1.0);
+        if check_amplitude(bound, config.choppiness).is_ok() {
+            return Ok(());
+        }
+        with_math!(config.determinism, M => {
+            let mut h0 = error::try_vec(n * n, Complex32::default())?;
+            let mut variance_rows = vec![0.0; n];
+            tables::draw_rows::<M>(spectrum, config, 0..n, &mut h0, &mut variance_rows);
+            check_amplitude(tables::amplitude_bound::<M>(&h0, config), config.choppiness)
+        })
+    }
+
+    /// Whether a change begun with [`begin_change`](Self::begin_change) has all its new
+    /// amplitudes.
+    pub(crate) fn change_drawn(&self) -> bool {
+        self.change.drawn.is_some()
+    }
+
+    /// Draws the next rows of the new amplitudes of `spectrum`, about `budget` wave vectors
+    /// of the band (at least one row; a deterministic amount, whatever the machine), and once
+    /// every row is drawn derives what [`Cascade::new`] derives from them. Returns how many
+    /// grid points it went through (the work done, for the caller's budget).
+    pub(crate) fn draw_change<M: Math>(&mut self, spectrum: &Spectrum, budget: usize) -> usize {
+        let n = self.n;
+        let change = &mut self.change;
+        if !change.active || change.drawn.is_some() {
+            return 0;
+        }
+        let start = change.rows_drawn;
+        let end = start.saturating_add(budget.div_ceil(n).max(1)).min(n);
+        tables::draw_rows::<M>(
+            spectrum,
+            &self.config,
+            start..end,
+            &mut change.target,
+            &mut change.variance_rows[start..end],
+        );
+        change.rows_drawn = end;
+        let mut work = (end - start) * n;
+        if end == n {
+            let h0 = &change.target;
+            let dk64 = std::f64::consts::TAU / f64::from(self.config.length);
+            let looping = self.config.repeat_period.map(f64::from);
+            let nyquist = std::f64::consts::PI * n as f64 / f64::from(self.config.length);
+            let band_top = f64::from(self.config.k_max).min(nyquist);
+            change.drawn = Some(Drawn {
+                stats: AmplitudeStats {
+                    expected_variance: change.variance_rows.iter().sum(),
+                    mean_level: mean_level_per_choppiness::<M>(h0, n, dk64),
+                    subgrid_slope: spectrum.slope_variance_with::<M>(
+                        band_top,
+                        f64::from(SlopeVariance::DEFAULT_CUTOFF),
+                    ),
+                },
+                amplitude_bound: tables::amplitude_bound::<M>(h0, &self.config),
+                loop_error: looping
+                    .map(|period| LoopError::new::<M>(h0, n, dk64, spectrum.dispersion(), period)),
+            });
+            work += n * n;
+        }
+        work
+    }
+
+    /// Checks that the new amplitudes, all drawn, keep the fields within f32 at the current
+    /// choppiness (see [`Cascade::MAX_AMPLITUDE`]).
+    ///
+    /// # Errors
+    /// [`Error::AmplitudeTooLarge`] if they do not.
+    pub(crate) fn check_change(&self) -> Result<(), Error> {
+        match self.change.drawn {
+            Some(drawn) => check_amplitude(drawn.amplitude_bound, self.config.choppiness),
+            None => Ok(()),
+        }
+    }
+
+    /// The new amplitudes once all are drawn.
+    pub(crate) fn change_target(&self) -> Option<&[Complex32]> {
+        self.change.drawn.map(|_| &self.change.target[..])
+    }
+
+    /// Abandons the change in progress, keeping the amplitudes as they are.
+    pub(crate) fn cancel_change(&mut self) {
+        self.change.active = false;
+    }
+
+    /// Sets the amplitudes to the energy blend of the change's old and new ones with weight
+    /// `w` in [0, 1] on the new (all drawn): every wave keeps its phase (old and new share
+    /// their random draw) and |h0|² = (1 − w)|h0_old|² + w|h0_new|², so the variance, the
+    /// mean level and every second moment move linearly from the old sea's to the new sea's.
+    /// At w = 1 the new amplitudes are installed exactly, with everything `Cascade::new`
+    /// derives from them, and the change ends: the cascade is then the one `Cascade::new`
+    /// builds for the new spectrum. Allocates nothing.
+    pub(crate) fn blend_change(&mut self, w: f64) {
+        let n = self.n;
+        let Some(drawn) = self.change.drawn else {
+            return;
+        };
+        let from_stats = self.change.from_stats.unwrap_or(drawn.stats);
+        let stats = if w >= 1.0 {
+            self.h0.copy_from_slice(&self.change.target);
+            self.amplitude_bound = drawn.amplitude_bound;
+            self.loop_error = drawn.loop_error;
+            self.change.active = false;
+            drawn.stats
+        } else {
+            let (from, target) = (&self.change.from, &self.change.target);
+            self.h0
+                .par_chunks_mut(n)
+                .zip(from.par_chunks(n).zip(target.par_chunks(n)))
+                .for_each(|(h0, (from, target))| {
+                    for ((h, &a), &b) in h0.iter_mut().zip(from).zip(target) {
+                        *h = energy_blend(a, b, w);
+                    }
+                });
+            // The blend of two bounds is within their larger (each |h0| is).
+            self.amplitude_bound = self.amplitude_bound.max(drawn.amplitude_bound);
+            from_stats.blend(&drawn.stats, w)
+        };
+        self.expected_variance = stats.expected_variance;
+        self.mean_level = stats.mean_level;
+        self.subgrid_slope = stats.subgrid_slope;
+        self.evolution.set_amplitudes(&self.h0, n);
+        self.update_pruning();
+    }
+
+    /// Recomputes the band pruning from the evolution table, and zeroes the spectral rows
+    /// the update stops writing (it writes only live rows and relies on the others staying
+    /// zero). Allocates nothing.
+    fn update_pruning(&mut self) {
+        let n = self.n;
+        let stride = row_stride(n);
+        // Which row pairs the update wrote so far, one bit each (N/2 ≤ 2048).
+        let mut written = [0u64; 32];
+        for i in 1..n / 2 {
+            if i <= self.live_pairs && !self.pruning[i].empty {
+                written[i / 64] |= 1 << (i % 64);
+            }
+        }
+        for i in 0..n / 2 {
+            self.pruning[i] = RowPruning::of_row(&self.evolution, i, n);
+        }
+        let live = (1..n / 2)
+            .rev()
+            .find(|&i| !self.pruning[i].empty)
+            .unwrap_or(0);
+        for i in 1..n / 2 {
+            let was_written = written[i / 64] & (1 << (i % 64)) != 0;
+            if was_written && (i > live || self.pruning[i].empty) {
+                for row in [i, n - i] {
+                    self.spectral[row * stride..(row + 1) * stride].fill(Complex32::default());
+                }
+            }
+        }
+        self.live_pairs = live;
+    }
+}
+
+/// The amplitude with phase of `a` and `b` (which share it: the same random draw times two
+/// non-negative real amplitudes) and energy (1 − w)|a|² + w|b|², in f64.
+#[inline]
+fn energy_blend(a: Complex32, b: Complex32, w: f64) -> Complex32 {
+    let (na, nb) = (f64::from(a.norm_sqr()), f64::from(b.norm_sqr()));
+    let energy = (1.0 - w) * na + w * nb;
+    let (reference, norm) = if na >= nb { (a, na) } else { (b, nb) };
+    if norm == 0.0 {
+        return Complex32::default();
+    }
+    let scale = (energy / norm).sqrt();
+    Complex32::new(
+        (f64::from(reference.re) * scale) as f32,
+        (f64::from(reference.im) * scale) as f32,
+    )
+}
