@@ -62,6 +62,16 @@ pub(crate) struct AmplitudeChange {
     target: Vec<Complex32>,
     /// Σ S(k)Δk² of each drawn row.
     variance_rows: Vec<f64>,
+    /// Wave vectors of the band in each grid row (what drawing the row costs).
+    band_rows: Vec<u32>,
+    /// Once the blend has begun, per point the energy of the side `from` no longer holds
+    /// relative to the one it holds (see [`Cascade::blend_change`]).
+    coef: Vec<f32>,
+    /// Whether `from` and `coef` hold the blend's form.
+    blending: bool,
+    /// Which points are zero in the blend as the band pruning last saw it: 0 the old
+    /// amplitudes' (w = 0), 1 either side's (0 < w < 1), 2 the new ones' (w = 1).
+    pruned_for: u8,
     rows_drawn: usize,
     drawn: Option<Drawn>,
 }
@@ -75,9 +85,20 @@ impl Cascade {
     pub(crate) fn reserve_change(&mut self) -> Result<(), Error> {
         let points = self.n * self.n;
         if self.change.from.len() != points {
+            let n = self.n;
+            let config = &self.config;
+            let mut band_rows = error::try_vec(n, 0u32)?;
+            with_math!(config.determinism, M => {
+                for (j, count) in band_rows.iter_mut().enumerate() {
+                    *count = (0..n).filter(|&i| tables::in_band::<M>(config, i, j).is_some()).count()
+                        as u32;
+                }
+            });
             self.change.from = error::try_vec(points, Complex32::default())?;
             self.change.target = error::try_vec(points, Complex32::default())?;
-            self.change.variance_rows = error::try_vec(self.n, 0.0)?;
+            self.change.variance_rows = error::try_vec(n, 0.0)?;
+            self.change.coef = error::try_vec(points, 0.0)?;
+            self.change.band_rows = band_rows;
         }
         Ok(())
     }
@@ -95,6 +116,8 @@ impl Cascade {
         });
         change.rows_drawn = 0;
         change.drawn = None;
+        change.blending = false;
+        change.pruned_for = 0;
         change.active = true;
     }
 
@@ -128,23 +151,32 @@ impl Cascade {
     }
 
     /// Whether a change begun with [`begin_change`](Self::begin_change) has all its new
-    /// amplitudes.
+    /// amplitudes and what follows from them.
     pub(crate) fn change_drawn(&self) -> bool {
         self.change.drawn.is_some()
     }
 
-    /// Draws the next rows of the new amplitudes of `spectrum`, about `budget` wave vectors
-    /// of the band (at least one row; a deterministic amount, whatever the machine), and once
-    /// every row is drawn derives what [`Cascade::new`] derives from them. Returns how many
-    /// grid points it went through (the work done, for the caller's budget).
-    pub(crate) fn draw_change<M: Math>(&mut self, spectrum: &Spectrum, budget: usize) -> usize {
+    /// Whether every row of the new amplitudes is drawn (what follows from them may not be).
+    pub(crate) fn change_rows_drawn(&self) -> bool {
+        self.change.rows_drawn == self.n
+    }
+
+    /// Draws the next rows of the new amplitudes of `spectrum`, as `Cascade::new` draws them:
+    /// rows until they hold at least `budget` wave vectors of the band (at least one row; a
+    /// fixed amount of work, whatever the machine).
+    pub(crate) fn draw_change<M: Math>(&mut self, spectrum: &Spectrum, budget: usize) {
         let n = self.n;
         let change = &mut self.change;
-        if !change.active || change.drawn.is_some() {
-            return 0;
+        if !change.active || change.rows_drawn == n {
+            return;
         }
         let start = change.rows_drawn;
-        let end = start.saturating_add(budget.div_ceil(n).max(1)).min(n);
+        let mut end = start;
+        let mut work = 0usize;
+        while end < n && (end == start || work < budget) {
+            work += change.band_rows[end] as usize;
+            end += 1;
+        }
         tables::draw_rows::<M>(
             spectrum,
             &self.config,
@@ -153,29 +185,33 @@ impl Cascade {
             &mut change.variance_rows[start..end],
         );
         change.rows_drawn = end;
-        let mut work = (end - start) * n;
-        if end == n {
-            let h0 = &change.target;
-            let dk64 = std::f64::consts::TAU / f64::from(self.config.length);
-            let looping = self.config.repeat_period.map(f64::from);
-            let nyquist = std::f64::consts::PI * n as f64 / f64::from(self.config.length);
-            let band_top = f64::from(self.config.k_max).min(nyquist);
-            change.drawn = Some(Drawn {
-                stats: AmplitudeStats {
-                    expected_variance: change.variance_rows.iter().sum(),
-                    mean_level: mean_level_per_choppiness::<M>(h0, n, dk64),
-                    subgrid_slope: spectrum.slope_variance_with::<M>(
-                        band_top,
-                        f64::from(SlopeVariance::DEFAULT_CUTOFF),
-                    ),
-                },
-                amplitude_bound: tables::amplitude_bound::<M>(h0, &self.config),
-                loop_error: looping
-                    .map(|period| LoopError::new::<M>(h0, n, dk64, spectrum.dispersion(), period)),
-            });
-            work += n * n;
+    }
+
+    /// Once every row is drawn, derives from the new amplitudes what [`Cascade::new`] derives
+    /// from them (variance, mean level, slope variance above the band, amplitude bound, loop
+    /// error).
+    pub(crate) fn finish_change<M: Math>(&mut self, spectrum: &Spectrum) {
+        let n = self.n;
+        let change = &mut self.change;
+        if !change.active || change.rows_drawn != n || change.drawn.is_some() {
+            return;
         }
-        work
+        let h0 = &change.target;
+        let dk64 = std::f64::consts::TAU / f64::from(self.config.length);
+        let looping = self.config.repeat_period.map(f64::from);
+        let nyquist = std::f64::consts::PI * n as f64 / f64::from(self.config.length);
+        let band_top = f64::from(self.config.k_max).min(nyquist);
+        change.drawn = Some(Drawn {
+            stats: AmplitudeStats {
+                expected_variance: change.variance_rows.iter().sum(),
+                mean_level: mean_level_per_choppiness::<M>(h0, n, dk64),
+                subgrid_slope: spectrum
+                    .slope_variance_with::<M>(band_top, f64::from(SlopeVariance::DEFAULT_CUTOFF)),
+            },
+            amplitude_bound: tables::amplitude_bound::<M>(h0, &self.config),
+            loop_error: looping
+                .map(|period| LoopError::new::<M>(h0, n, dk64, spectrum.dispersion(), period)),
+        });
     }
 
     /// Checks that the new amplitudes, all drawn, keep the fields within f32 at the current
@@ -207,37 +243,66 @@ impl Cascade {
     /// At w = 1 the new amplitudes are installed exactly, with everything `Cascade::new`
     /// derives from them, and the change ends: the cascade is then the one `Cascade::new`
     /// builds for the new spectrum. Allocates nothing.
+    ///
+    /// The first call puts the blend in a form a step evaluates in a few operations a point:
+    /// `from` holds the larger of the two amplitudes (the reference r) and `coef` the other's
+    /// energy relative to it, c = |h0_new|²/|r|² (sign bit clear) where r is the old one and
+    /// −|h0_old|²/|r|² (sign bit set, −0 for a wave the old sea lacks) where it is the new
+    /// one; then h0 = r·√((1 − w)·c_old + w·c_new).
     pub(crate) fn blend_change(&mut self, w: f64) {
         let n = self.n;
         let Some(drawn) = self.change.drawn else {
             return;
         };
+        if !self.change.blending {
+            self.change.blending = true;
+            let AmplitudeChange {
+                from, target, coef, ..
+            } = &mut self.change;
+            from.par_chunks_mut(n)
+                .zip(target.par_chunks(n).zip(coef.par_chunks_mut(n)))
+                .for_each(|(from, (target, coef))| {
+                    for ((a, &b), c) in from.iter_mut().zip(target).zip(coef) {
+                        (*a, *c) = reference_form(*a, b);
+                    }
+                });
+        }
         let from_stats = self.change.from_stats.unwrap_or(drawn.stats);
-        let stats = if w >= 1.0 {
+        let (stats, class) = if w >= 1.0 {
             self.h0.copy_from_slice(&self.change.target);
             self.amplitude_bound = drawn.amplitude_bound;
             self.loop_error = drawn.loop_error;
             self.change.active = false;
-            drawn.stats
+            (drawn.stats, 2)
         } else {
-            let (from, target) = (&self.change.from, &self.change.target);
+            let (old, new) = ((1.0 - w) as f32, w as f32);
+            let (reference, coef) = (&self.change.from, &self.change.coef);
             self.h0
                 .par_chunks_mut(n)
-                .zip(from.par_chunks(n).zip(target.par_chunks(n)))
-                .for_each(|(h0, (from, target))| {
-                    for ((h, &a), &b) in h0.iter_mut().zip(from).zip(target) {
-                        *h = energy_blend(a, b, w);
+                .zip(reference.par_chunks(n).zip(coef.par_chunks(n)))
+                .for_each(|(h0, (reference, coef))| {
+                    for ((h, &r), &c) in h0.iter_mut().zip(reference).zip(coef) {
+                        // The sign bit says which side is the reference (−0 for a new wave).
+                        let (c_old, c_new) = if c.is_sign_negative() {
+                            (-c, 1.0)
+                        } else {
+                            (1.0, c)
+                        };
+                        *h = r * (old * c_old + new * c_new).sqrt();
                     }
                 });
             // The blend of two bounds is within their larger (each |h0| is).
             self.amplitude_bound = self.amplitude_bound.max(drawn.amplitude_bound);
-            from_stats.blend(&drawn.stats, w)
+            (from_stats.blend(&drawn.stats, w), u8::from(w > 0.0))
         };
         self.expected_variance = stats.expected_variance;
         self.mean_level = stats.mean_level;
         self.subgrid_slope = stats.subgrid_slope;
         self.evolution.set_amplitudes(&self.h0, n);
-        self.update_pruning();
+        if class != self.change.pruned_for || class == 2 {
+            self.change.pruned_for = class;
+            self.update_pruning();
+        }
     }
 
     /// Recomputes the band pruning from the evolution table, and zeroes the spectral rows
@@ -272,19 +337,16 @@ impl Cascade {
     }
 }
 
-/// The amplitude with phase of `a` and `b` (which share it: the same random draw times two
-/// non-negative real amplitudes) and energy (1 − w)|a|² + w|b|², in f64.
-#[inline]
-fn energy_blend(a: Complex32, b: Complex32, w: f64) -> Complex32 {
+/// The blend's form of an old amplitude `a` and a new one `b` (which share their phase: the
+/// same random draw times two non-negative reals): the larger, and the other's energy
+/// relative to it, negative when the larger is the new one (see [`Cascade::blend_change`]).
+fn reference_form(a: Complex32, b: Complex32) -> (Complex32, f32) {
     let (na, nb) = (f64::from(a.norm_sqr()), f64::from(b.norm_sqr()));
-    let energy = (1.0 - w) * na + w * nb;
-    let (reference, norm) = if na >= nb { (a, na) } else { (b, nb) };
-    if norm == 0.0 {
-        return Complex32::default();
+    if na == 0.0 && nb == 0.0 {
+        (Complex32::default(), 0.0)
+    } else if na >= nb {
+        (a, (nb / na) as f32)
+    } else {
+        (b, -(na / nb) as f32)
     }
-    let scale = (energy / norm).sqrt();
-    Complex32::new(
-        (f64::from(reference.re) * scale) as f32,
-        (f64::from(reference.im) * scale) as f32,
-    )
 }

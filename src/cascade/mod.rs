@@ -171,13 +171,17 @@ pub(crate) fn memory_bytes(n: usize, determinism: Determinism) -> usize {
 /// 2 Σ_k |k| |h0(k)|² in m over the grid's wave vectors (h0 in FFT order, index j·N + i at
 /// k = Δk·(m(i), m(j))): the time-averaged Σ_k |k| |h̃(k, t)|², since |h̃(k)|² averages to
 /// |h0(k)|² + |h0(−k)|².
-fn mean_level_per_choppiness<M: Math>(h0: &[Complex32], n: usize, dk: f64) -> f64 {
+pub(super) fn mean_level_per_choppiness<M: Math>(h0: &[Complex32], n: usize, dk: f64) -> f64 {
     let mut sum = 0.0;
     for j in 0..n {
         let kz = f64::from(wave_index(j, n)) * dk;
         for i in 0..n {
             let kx = f64::from(wave_index(i, n)) * dk;
             let h = h0[j * n + i];
+            if h.re == 0.0 && h.im == 0.0 {
+                // Adds nothing (skipped: most of a band-limited grid).
+                continue;
+            }
             // In f64: |h0|² of an extreme (but accepted) spectrum can overflow f32, while
             // λ Σ|k||h0|² stays below the square of the amplitude bound (≤ 1e30).
             let (re, im) = (f64::from(h.re), f64::from(h.im));

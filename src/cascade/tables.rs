@@ -166,7 +166,7 @@ pub(super) fn draw_rows<M: Math>(
 
 /// The wave vector (k_x, k_z) in rad/m of grid index (i, j) when it lies in the config's band
 /// (`k_min` ≤ |k| < `k_max`, not k = 0, not on the Nyquist row or column).
-fn in_band<M: Math>(config: &CascadeConfig, i: usize, j: usize) -> Option<(f64, f64)> {
+pub(super) fn in_band<M: Math>(config: &CascadeConfig, i: usize, j: usize) -> Option<(f64, f64)> {
     let n = config.size;
     if i == n / 2 || j == n / 2 {
         return None;
@@ -183,8 +183,10 @@ fn in_band<M: Math>(config: &CascadeConfig, i: usize, j: usize) -> Option<(f64, 
 pub(super) fn amplitude_bound<M: Math>(h0: &[Complex32], config: &CascadeConfig) -> f64 {
     let n = config.size;
     let dk64 = TAU / f64::from(config.length);
+    // Zeros (most of a band-limited grid) add nothing and are skipped.
     let abs_sum: f64 = h0
         .iter()
+        .filter(|c| c.re != 0.0 || c.im != 0.0)
         .map(|c| M::hypot(f64::from(c.re), f64::from(c.im)))
         .sum();
     let k_grid_max = dk64 * (n as f64 / 2.0) * std::f64::consts::SQRT_2;

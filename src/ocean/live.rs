@@ -11,10 +11,10 @@ use crate::spectrum::Spectrum;
 use super::foam::FoamConfig;
 use super::OceanState;
 
-/// Grid points whose new amplitudes a step draws during a change of weather, over all
-/// cascades: a fixed amount (so that the result depends on the steps taken, never on the
-/// machine), about half a default step's work.
-const DRAW_BUDGET: usize = 8192;
+/// Wave vectors of the band whose new amplitudes a step draws during a change of weather: a
+/// fixed amount (so that the result depends on the steps taken, never on the machine), about
+/// a third of a default step's work.
+const DRAW_BUDGET: usize = 4096;
 
 /// A change of weather in progress.
 #[derive(Debug, Clone, Copy)]
@@ -147,7 +147,7 @@ impl OceanState {
             weight: 0.0,
         });
         if duration == 0.0 {
-            self.draw_change(usize::MAX, self.time);
+            self.prepare_change(self.time, true);
         }
         Ok(())
     }
@@ -182,15 +182,12 @@ impl OceanState {
         Ok(())
     }
 
-    /// Moves a change of weather on to time `t`, as part of the step to `t`: draws the next
-    /// new amplitudes while they are being drawn, then blends the cascades and the foam with
-    /// the weight at `t`, and ends the change at weight 1.
+    /// Moves a change of weather on to time `t`, as part of the step to `t`: while the new sea
+    /// is prepared, one piece of that work; then the cascades and the foam blended with the
+    /// weight at `t`, and the change ended at weight 1.
     pub(super) fn advance_change(&mut self, t: f64) {
-        let Some(change) = self.change else {
-            return;
-        };
-        if change.start.is_none() {
-            self.draw_change(DRAW_BUDGET, t);
+        if self.change.is_some_and(|c| c.start.is_none()) {
+            self.prepare_change(t, false);
         }
         let Some(change) = self.change.as_mut() else {
             return;
@@ -209,27 +206,31 @@ impl OceanState {
         }
     }
 
-    /// Draws up to `budget` grid points of the new amplitudes; once all are drawn (and the
-    /// foam has its new sea), the blend begins at time `t`.
-    fn draw_change(&mut self, budget: usize, t: f64) {
+    /// Prepares the change's new sea: one piece of the work (`all`: every piece left), each
+    /// at most about a third of a default step: a few rows of one cascade's new amplitudes,
+    /// what one cascade derives from them, the foam's moments of one cascade, the foam's new
+    /// model, or one of its calibrations. When nothing is left, the blend begins at time `t`.
+    fn prepare_change(&mut self, t: f64, all: bool) {
         let determinism = self.config.determinism;
-        let mut left = budget;
-        for cascade in &mut self.cascades {
-            if left == 0 {
-                break;
-            }
-            let work = with_math!(determinism, M => cascade.draw_change::<M>(&self.spectrum, left));
-            left = left.saturating_sub(work);
-        }
-        if self.cascades.iter().all(Cascade::change_drawn) {
-            if self.cascades.iter().any(|c| c.check_change().is_err()) {
-                // Not reached: `set_spectrum` checked a bound on these amplitudes.
-                self.cancel_change();
+        loop {
+            let spectrum = &self.spectrum;
+            if let Some(cascade) = self.cascades.iter_mut().find(|c| !c.change_rows_drawn()) {
+                with_math!(determinism, M => cascade.draw_change::<M>(spectrum, DRAW_BUDGET));
+            } else if let Some(cascade) = self.cascades.iter_mut().find(|c| !c.change_drawn()) {
+                with_math!(determinism, M => cascade.finish_change::<M>(spectrum));
+                if cascade.check_change().is_err() {
+                    // Not reached: `set_spectrum` checked a bound on these amplitudes.
+                    self.cancel_change();
+                    return;
+                }
+            } else if !self.foam.prepare_change(&self.cascades, spectrum) {
+                if let Some(change) = self.change.as_mut() {
+                    change.start = Some(t);
+                }
                 return;
             }
-            self.foam.set_change_target(&self.cascades, &self.spectrum);
-            if let Some(change) = self.change.as_mut() {
-                change.start = Some(t);
+            if !all {
+                return;
             }
         }
     }
@@ -247,7 +248,7 @@ impl OceanState {
     /// at time `t` (before a pre-roll, whose steps go back in time).
     pub(super) fn finish_drawing(&mut self, t: f64) {
         if self.change.is_some_and(|c| c.start.is_none()) {
-            self.draw_change(usize::MAX, t);
+            self.prepare_change(t, true);
         }
     }
 }

@@ -39,11 +39,25 @@ impl FoamSea {
         spectrum: &Spectrum,
     ) -> FoamSea {
         let moments = |c: &'a Cascade| GradientMoments::of_amplitudes::<M>(c, amplitudes(c));
-        let resolved = moments(&cascades[0]);
-        let mut unresolved = GradientMoments::default();
-        for cascade in &cascades[1..] {
-            unresolved.add(&moments(cascade));
+        Self::from_moments::<M>(
+            moments(&cascades[0]),
+            cascades[1..].iter().map(moments),
+            spectrum,
+        )
+    }
+
+    /// The sea whose cascades have the moments `resolved` (cascade 0) and `unresolved` (the
+    /// others, in order), of `spectrum`, with the functions of `M`.
+    fn from_moments<M: Math>(
+        resolved: GradientMoments,
+        unresolved: impl IntoIterator<Item = GradientMoments>,
+        spectrum: &Spectrum,
+    ) -> FoamSea {
+        let mut sum = GradientMoments::default();
+        for moments in unresolved {
+            sum.add(&moments);
         }
+        let unresolved = sum;
         let mut total = resolved;
         total.add(&unresolved);
         let peak = spectrum
@@ -136,6 +150,8 @@ const CHECKPOINTS: usize = 8;
 #[derive(Debug, Clone)]
 pub(crate) struct FoamChange {
     from: FoamSea,
+    /// The moments of each cascade's new amplitudes, computed one cascade a step.
+    moments: [Option<GradientMoments>; crate::OceanConfig::MAX_CASCADES],
     to: Option<FoamSea>,
     from_transport: Transport,
     to_transport: Option<Transport>,
@@ -151,6 +167,7 @@ impl Foam {
         calibrations[0] = Some(self.calibration);
         self.change = Some(FoamChange {
             from,
+            moments: [None; crate::OceanConfig::MAX_CASCADES],
             to: None,
             from_transport: self.transport.clone(),
             to_transport: None,
@@ -158,25 +175,43 @@ impl Foam {
         });
     }
 
-    /// Gives the change its new sea: `cascades` with the new amplitudes each has drawn (see
-    /// `Cascade::change_target`) and the new `spectrum`. Calibrates the new sea's
-    /// threshold (the last checkpoint).
-    pub(crate) fn set_change_target(&mut self, cascades: &[Cascade], spectrum: &Spectrum) {
-        let (config, length) = (self.config, self.length);
+    /// One piece of the work that prepares the foam for the change's new sea of `cascades`
+    /// (each with its new amplitudes drawn) and `spectrum`, the next one not done yet: the
+    /// moments of one cascade, or the new sea's model, or the calibration at one checkpoint.
+    /// Each costs up to a third of a default step. Returns whether there was any left.
+    pub(crate) fn prepare_change(&mut self, cascades: &[Cascade], spectrum: &Spectrum) -> bool {
+        let (config, length, determinism) = (self.config, self.length, self.determinism);
         let Some(change) = self.change.as_mut() else {
-            return;
+            return false;
         };
-        with_math!(self.determinism, M => {
-            let to = FoamSea::of::<M>(
-                cascades,
-                |c| c.change_target().unwrap_or(c.h0()),
-                spectrum,
-            );
-            change.calibrations[CHECKPOINTS] =
-                Some(to.calibration::<M>(&config, to.wind_speed(&config)));
-            change.to_transport = Some(to.transport::<M>(&config, length));
-            change.to = Some(to);
-        });
+        with_math!(determinism, M => {
+            if let Some(c) = (0..cascades.len()).find(|&c| change.moments[c].is_none()) {
+                let cascade = &cascades[c];
+                let amplitudes = cascade.change_target().unwrap_or(cascade.h0());
+                change.moments[c] = Some(GradientMoments::of_amplitudes::<M>(cascade, amplitudes));
+                return true;
+            }
+            if change.to.is_none() {
+                let moments = |c: usize| change.moments[c].unwrap_or_default();
+                let to = FoamSea::from_moments::<M>(
+                    moments(0),
+                    (1..cascades.len()).map(moments),
+                    spectrum,
+                );
+                change.calibrations[CHECKPOINTS] =
+                    Some(to.calibration::<M>(&config, to.wind_speed(&config)));
+                change.to_transport = Some(to.transport::<M>(&config, length));
+                change.to = Some(to);
+                return true;
+            }
+            let to = change.to.expect("made above");
+            if let Some(k) = (1..CHECKPOINTS).find(|&k| change.calibrations[k].is_none()) {
+                let at = change.from.blend(&to, k as f64 / CHECKPOINTS as f64);
+                change.calibrations[k] = Some(at.calibration::<M>(&config, at.wind_speed(&config)));
+                return true;
+            }
+            false
+        })
     }
 
     /// Follows the change to the blend weight `w` in [0, 1] of the new sea: the moments and
@@ -189,6 +224,7 @@ impl Foam {
             return;
         };
         let (Some(to), Some(to_transport)) = (change.to, change.to_transport.clone()) else {
+            // Not prepared: the blend waits for `prepare_change`.
             self.change = Some(change);
             return;
         };
