@@ -95,7 +95,8 @@ fn ocean_hashes(ocean: &OceanState) -> Vec<(String, u64)> {
 /// length) with TMA, Kitaigorodskii's depth factor, Mitsuyasu spreading, swell, a repeat
 /// period and bilinear queries, and an Elfouhaily ocean of one 34² cascade (34 = 2·17: a
 /// prime-length FFT path) with capillary dispersion, Hasselmann spreading and a short-wave
-/// fade; each stepped through a fixed sequence of time steps (foam depends on it).
+/// fade; each stepped through a fixed sequence of time steps (foam depends on it); and a 32²
+/// ocean in the middle of a change of weather (`OceanState::set_spectrum`).
 fn oceans() -> Vec<(&'static str, OceanState, Vec<f64>)> {
     let deterministic = |config: OceanConfig| OceanConfig {
         determinism: Determinism::CrossPlatform,
@@ -160,11 +161,27 @@ fn oceans() -> Vec<(&'static str, OceanState, Vec<f64>)> {
         }),
     )
     .unwrap();
+    // A change of weather half way: a calm sea turning into a storm from another direction,
+    // stepped through the preparation of the new sea and into the blend.
+    let mut d = OceanState::new(
+        Spectrum::jonswap(6.0, 50_000.0).unwrap(),
+        deterministic(OceanConfig {
+            size: 32,
+            ..OceanConfig::default()
+        }),
+    )
+    .unwrap();
+    let storm = Spectrum::pierson_moskowitz(18.0)
+        .unwrap()
+        .with_wind_direction(2.0)
+        .unwrap();
+    d.set_spectrum(storm, 1.0).unwrap();
     let steps = vec![1.0 / 60.0, 1.0 / 30.0, 0.5, 0.0, 1.0 / 60.0, 3.25];
     vec![
         ("jonswap 64²", a, steps.clone()),
         ("tma 48²", b, steps.clone()),
         ("elfouhaily 34²", c, steps),
+        ("live 32²", d, vec![1.0 / 30.0; 30]),
     ]
 }
 
@@ -222,6 +239,29 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("elfouhaily 34²", "cascade 0 scalars", 0x66ac39c5a31a4153),
     ("elfouhaily 34²", "foam", 0xc2376bd0a8f5ac34),
     ("elfouhaily 34²", "queries", 0x8c6878aae0a8bb0f),
+    ("live 32²", "cascade 0 h0", 0xcbe58e02504b967d),
+    ("live 32²", "cascade 0 height", 0xd8707d62ab48d11d),
+    ("live 32²", "cascade 0 displacement", 0xd25043da9cba15c0),
+    ("live 32²", "cascade 0 slope", 0x7fc1ecdde7b43031),
+    ("live 32²", "cascade 0 normal", 0x3898cb51fec12c78),
+    ("live 32²", "cascade 0 jacobian", 0x7fba0cbdcf6cdf7d),
+    ("live 32²", "cascade 0 scalars", 0x968bb40038f5070f),
+    ("live 32²", "cascade 1 h0", 0x5b69032077a80d3d),
+    ("live 32²", "cascade 1 height", 0x83fc1735aecf68ce),
+    ("live 32²", "cascade 1 displacement", 0x8f38979a452b1187),
+    ("live 32²", "cascade 1 slope", 0x89d291669b4d15dd),
+    ("live 32²", "cascade 1 normal", 0x9157d3f10525738d),
+    ("live 32²", "cascade 1 jacobian", 0xe916d3e425430c07),
+    ("live 32²", "cascade 1 scalars", 0x70be07bcfad74c69),
+    ("live 32²", "cascade 2 h0", 0x8b7b319fc2662ee7),
+    ("live 32²", "cascade 2 height", 0x612390add778bb66),
+    ("live 32²", "cascade 2 displacement", 0x6ebbd11130fe73c0),
+    ("live 32²", "cascade 2 slope", 0x44cd33dec0bde321),
+    ("live 32²", "cascade 2 normal", 0xbe5a006b3f57d68d),
+    ("live 32²", "cascade 2 jacobian", 0xc81b87be3a5b5683),
+    ("live 32²", "cascade 2 scalars", 0x001cde1eaa4d9826),
+    ("live 32²", "foam", 0x835785a596e292d4),
+    ("live 32²", "queries", 0x0632f6c553ab8f65),
 ];
 
 #[test]

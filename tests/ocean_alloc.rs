@@ -1,5 +1,5 @@
-//! `OceanState::step` allocates nothing once built: a counting global allocator sees every
-//! allocation of every thread, rayon's workers included.
+//! `OceanState::step` allocates nothing once built, during a change of weather too: a counting
+//! global allocator sees every allocation of every thread, rayon's workers included.
 //!
 //! The frames run inside `ThreadPool::install`, as a game that owns a pool does. Called from
 //! a thread outside every pool, each parallel call is handed to rayon through its global
@@ -30,6 +30,12 @@ fn stepping_and_querying_allocate_nothing() {
             ..OceanConfig::default()
         };
         let mut ocean = OceanState::new(spectrum.clone(), config).unwrap();
+        // A change of weather's buffers are made by the first `set_spectrum`, before counting.
+        let squall = Spectrum::jonswap(18.0, 200_000.0)
+            .unwrap()
+            .with_wind_direction(1.0)
+            .unwrap();
+        ocean.set_spectrum(squall.clone(), 0.0).unwrap();
         let points: Vec<[f64; 2]> = (0..256).map(|i| [f64::from(i) * 1.7, -3.0]).collect();
         let mut heights = vec![0.0; points.len()];
         // A rollback ring's slot, filled once before counting.
@@ -58,6 +64,13 @@ fn stepping_and_querying_allocate_nothing() {
                 // A bake or a joining client: spin the foam up from nothing.
                 if frame % 100 == 99 {
                     ocean.pre_roll(0.5, 0.1).unwrap();
+                }
+                // The weather changes: the new sea prepared and blended in over the frames.
+                if frame == 10 {
+                    ocean.set_spectrum(spectrum.clone(), 1.0).unwrap();
+                }
+                if frame == 120 {
+                    ocean.set_spectrum(squall.clone(), 0.5).unwrap();
                 }
             }
             (before, count())

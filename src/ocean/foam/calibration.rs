@@ -233,6 +233,16 @@ struct Node {
     weight: f64,
 }
 
+impl Node {
+    const ZERO: Node = Node {
+        a1: 0.0,
+        a0: 0.0,
+        w_p: 0.0,
+        w_c: 0.0,
+        weight: 0.0,
+    };
+}
+
 /// The Gaussian statistics of (T, P, C) in the form the integrals use.
 #[derive(Debug, Clone)]
 struct Statistics<M: Math> {
@@ -242,7 +252,10 @@ struct Statistics<M: Math> {
     beta: [f64; 2],
     /// a2 of J(z) = a2 z² + a1 z + a0 (the same at every node).
     a2: f64,
-    nodes: Vec<Node>,
+    /// The nodes, `nodes[..node_count]` (fixed arrays: a calibration during a step of a
+    /// change of weather allocates nothing).
+    nodes: [Node; MAX_NODES],
+    node_count: usize,
     /// Covariance of (Ṫ, Ṗ, Ċ), 1/s².
     rate: [[f64; 3]; 3],
     /// Whose transcendental functions the statistics use.
@@ -254,6 +267,13 @@ struct Statistics<M: Math> {
 /// below 1e-10.
 const NODE_RANGE: f64 = 6.5;
 const NODE_STEP: f64 = 0.5;
+
+/// Points of one axis of the grid: −6.5σ to 6.5σ in steps of σ/2.
+const LINE: usize = 27;
+const _: () = assert!(LINE as f64 == 2.0 * NODE_RANGE / NODE_STEP + 1.0);
+
+/// Nodes of the two-axis grid.
+const MAX_NODES: usize = LINE * LINE;
 
 impl<M: Math> Statistics<M> {
     fn new(moments: &GradientMoments) -> Statistics<M> {
@@ -268,7 +288,8 @@ impl<M: Math> Statistics<M> {
                 sigma_t: 0.0,
                 beta: [0.0; 2],
                 a2: 0.0,
-                nodes: Vec::new(),
+                nodes: [Node::ZERO; MAX_NODES],
+                node_count: 0,
                 rate,
                 math: PhantomData,
             };
@@ -287,40 +308,42 @@ impl<M: Math> Statistics<M> {
         ];
         let (axes, spreads) = eigen_2x2::<M>(r);
         let scale = value[1][1] + value[2][2];
-        let line = |spread: f64| -> Vec<(f64, f64)> {
+        // The points (y, weight) of one axis, `.0[..1]` when it has no spread.
+        let line = |spread: f64| -> ([(f64, f64); LINE], usize) {
+            let mut points = [(0.0, 0.0); LINE];
             if spread <= 1e-12 * scale {
-                return vec![(0.0, 1.0)];
+                points[0] = (0.0, 1.0);
+                return (points, 1);
             }
-            let count = (2.0 * NODE_RANGE / NODE_STEP).round() as i32;
-            let mut points: Vec<(f64, f64)> = (0..=count)
-                .map(|k| {
-                    let y = -NODE_RANGE + f64::from(k) * NODE_STEP;
-                    (y, M::exp(-0.5 * y * y))
-                })
-                .collect();
+            for (k, point) in points.iter_mut().enumerate() {
+                let y = -NODE_RANGE + k as f64 * NODE_STEP;
+                *point = (y, M::exp(-0.5 * y * y));
+            }
             let total: f64 = points.iter().map(|p| p.1).sum();
             for p in &mut points {
                 p.1 /= total;
             }
-            points
+            (points, LINE)
         };
-        let first = line(spreads[0]);
-        let second = line(spreads[1]);
+        let (first, first_len) = line(spreads[0]);
+        let (second, second_len) = line(spreads[1]);
         let a2 = var_t * (0.25 - beta[0] * beta[0] - beta[1] * beta[1]);
-        let mut nodes = Vec::with_capacity(first.len() * second.len());
-        for &(y1, w1) in &first {
-            for &(y2, w2) in &second {
+        let mut nodes = [Node::ZERO; MAX_NODES];
+        let mut node_count = 0;
+        for &(y1, w1) in &first[..first_len] {
+            for &(y2, w2) in &second[..second_len] {
                 let s1 = spreads[0].max(0.0).sqrt() * y1;
                 let s2 = spreads[1].max(0.0).sqrt() * y2;
                 let w_p = axes[0][0] * s1 + axes[1][0] * s2;
                 let w_c = axes[0][1] * s1 + axes[1][1] * s2;
-                nodes.push(Node {
+                nodes[node_count] = Node {
                     a1: sigma_t * (1.0 - 2.0 * beta[0] * w_p - 2.0 * beta[1] * w_c),
                     a0: 1.0 - w_p * w_p - w_c * w_c,
                     w_p,
                     w_c,
                     weight: w1 * w2,
-                });
+                };
+                node_count += 1;
             }
         }
         Statistics {
@@ -328,6 +351,7 @@ impl<M: Math> Statistics<M> {
             beta,
             a2,
             nodes,
+            node_count,
             rate,
             math: PhantomData,
         }
@@ -337,7 +361,7 @@ impl<M: Math> Statistics<M> {
     /// ν = E[δ(J − J_b) max(0, −J̇)] in 1/s.
     fn crossing(&self, threshold: f64) -> (f64, f64) {
         let (mut fraction, mut rate) = (0.0, 0.0);
-        for node in &self.nodes {
+        for node in &self.nodes[..self.node_count] {
             let (p, roots, slope) = quadratic_below::<M>(self.a2, node.a1, node.a0 - threshold);
             fraction += node.weight * p;
             for z in roots.into_iter().flatten() {
