@@ -23,6 +23,13 @@
 //!   points and a 100×100 `sample_grid` on the default ocean at 256², with cubic B-spline and
 //!   bilinear interpolation.
 //!
+//! - `ocean_live`: a change of weather on the default ocean at 256² on one thread: `step`
+//!   (a plain step), `set_spectrum_and_step` (`set_spectrum` with a 10 s duration and the
+//!   step after it), `transition_step` (the mean step of a whole change: preparation and
+//!   blend), `set_spectrum_0_and_step` (duration 0: the new sea drawn at once) and `new`
+//!   (building the ocean). `cargo run --release -p ocean-fft-benches --bin live-frames` times
+//!   every frame of a change against a plain step.
+//!
 //! `cargo bench -p ocean-fft-benches --bench ocean [-- GROUP]`; the first line printed names
 //! the CPU.
 
@@ -300,6 +307,76 @@ fn queries(c: &mut Criterion) {
     group.finish();
 }
 
+/// The two seas of the `ocean_live` benches: the default breeze and a gale from another
+/// direction.
+fn live_seas() -> (Spectrum, Spectrum) {
+    let breeze = Spectrum::jonswap(10.0, 100_000.0).expect("valid spectrum");
+    let gale = Spectrum::jonswap(18.0, 300_000.0)
+        .and_then(|s| s.with_wind_direction(1.0))
+        .expect("valid spectrum");
+    (breeze, gale)
+}
+
+fn live(c: &mut Criterion) {
+    let pool = common::pool(1);
+    let mut group = c.benchmark_group("ocean_live");
+    group
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3))
+        .sample_size(60)
+        .throughput(Throughput::Elements(256 * 256));
+    let (breeze, gale) = live_seas();
+    let dt = 1.0 / 60.0;
+    let mut base = ocean(256, true);
+    // A first change, so that the change's buffers exist (as in a game after its first).
+    pool.install(|| {
+        base.set_spectrum(gale.clone(), 0.0).expect("change");
+        base.step(dt).expect("step");
+        base.set_spectrum(breeze.clone(), 0.0).expect("change");
+        base.step(dt).expect("step");
+    });
+    group.bench_function("step", |b| {
+        let mut state = base.clone();
+        pool.install(|| b.iter(|| state.step(black_box(dt)).expect("step")))
+    });
+    for (name, duration) in [
+        ("set_spectrum_and_step", 10.0),
+        ("set_spectrum_0_and_step", 0.0),
+    ] {
+        group.bench_function(name, |b| {
+            pool.install(|| {
+                b.iter_batched_ref(
+                    || base.clone(),
+                    |state| {
+                        state.set_spectrum(gale.clone(), duration).expect("change");
+                        state.step(dt).expect("step")
+                    },
+                    BatchSize::PerIteration,
+                )
+            })
+        });
+    }
+    group.bench_function("transition_step", |b| {
+        let mut state = base.clone();
+        let mut toward_gale = true;
+        pool.install(|| {
+            b.iter(|| {
+                if state.transition_progress().is_none() {
+                    let to = if toward_gale { &gale } else { &breeze };
+                    state.set_spectrum(to.clone(), 10.0).expect("change");
+                    toward_gale = !toward_gale;
+                }
+                state.step(black_box(dt)).expect("step")
+            })
+        })
+    });
+    group.bench_function("new", |b| {
+        pool.install(|| b.iter(|| black_box(ocean(256, true))))
+    });
+    group.finish();
+}
+
 fn main() {
     common::print_machine();
     let mut criterion = Criterion::default().configure_from_args();
@@ -308,5 +385,6 @@ fn main() {
     parallel_cascades(&mut criterion);
     determinism(&mut criterion);
     queries(&mut criterion);
+    live(&mut criterion);
     criterion.final_summary();
 }

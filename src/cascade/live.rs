@@ -64,6 +64,8 @@ pub(crate) struct AmplitudeChange {
     variance_rows: Vec<f64>,
     /// Wave vectors of the band in each grid row (what drawing the row costs).
     band_rows: Vec<u32>,
+    /// Whether grid column i holds a wave vector of the band.
+    band_columns: Vec<bool>,
     /// Once the blend has begun, per point the energy of the side `from` no longer holds
     /// relative to the one it holds (see [`Cascade::blend_change`]).
     coef: Vec<f32>,
@@ -88,10 +90,15 @@ impl Cascade {
             let n = self.n;
             let config = &self.config;
             let mut band_rows = error::try_vec(n, 0u32)?;
+            let mut band_columns = error::try_vec(n, false)?;
             with_math!(config.determinism, M => {
                 for (j, count) in band_rows.iter_mut().enumerate() {
-                    *count = (0..n).filter(|&i| tables::in_band::<M>(config, i, j).is_some()).count()
-                        as u32;
+                    for (i, column) in band_columns.iter_mut().enumerate() {
+                        if tables::in_band::<M>(config, i, j).is_some() {
+                            *count += 1;
+                            *column = true;
+                        }
+                    }
                 }
             });
             self.change.from = error::try_vec(points, Complex32::default())?;
@@ -99,6 +106,7 @@ impl Cascade {
             self.change.variance_rows = error::try_vec(n, 0.0)?;
             self.change.coef = error::try_vec(points, 0.0)?;
             self.change.band_rows = band_rows;
+            self.change.band_columns = band_columns;
         }
         Ok(())
     }
@@ -277,10 +285,14 @@ impl Cascade {
         } else {
             let (old, new) = ((1.0 - w) as f32, w as f32);
             let (reference, coef) = (&self.change.from, &self.change.coef);
+            let band_rows = &self.change.band_rows;
             self.h0
                 .par_chunks_mut(n)
                 .zip(reference.par_chunks(n).zip(coef.par_chunks(n)))
-                .for_each(|(h0, (reference, coef))| {
+                .enumerate()
+                // Rows without a wave vector of the band are zero on both sides.
+                .filter(|(j, _)| band_rows[*j] > 0)
+                .for_each(|(_, (h0, (reference, coef)))| {
                     for ((h, &r), &c) in h0.iter_mut().zip(reference).zip(coef) {
                         // The sign bit says which side is the reference (−0 for a new wave).
                         let (c_old, c_new) = if c.is_sign_negative() {
@@ -298,7 +310,10 @@ impl Cascade {
         self.expected_variance = stats.expected_variance;
         self.mean_level = stats.mean_level;
         self.subgrid_slope = stats.subgrid_slope;
-        self.evolution.set_amplitudes(&self.h0, n);
+        // Table row i reads grid columns i and N − i.
+        let columns = &self.change.band_columns;
+        self.evolution
+            .set_amplitudes(&self.h0, n, |i| columns[i] || columns[(n - i) % n]);
         if class != self.change.pruned_for || class == 2 {
             self.change.pruned_for = class;
             self.update_pruning();

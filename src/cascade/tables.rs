@@ -267,9 +267,16 @@ fn evolved_pair(h0: &[Complex32], n: usize, i: usize, j: usize) -> (Complex32, C
 }
 
 impl EvolutionTable {
-    /// Replaces every p and q with those of the amplitudes `h0` (N×N, FFT order), keeping
-    /// the frequencies and 1/|k|: the table [`EvolutionTable::new`] builds from `h0`.
-    pub(super) fn set_amplitudes(&mut self, h0: &[Complex32], n: usize) {
+    /// Replaces p and q with those of the amplitudes `h0` (N×N, FFT order), keeping the
+    /// frequencies and 1/|k|: the table [`EvolutionTable::new`] builds from `h0`. Table rows
+    /// i (k_x index) for which `live(i)` is false are left as they are (the caller knows
+    /// that `h0` is zero in grid column i and its partner, so p = q = 0 there already).
+    pub(super) fn set_amplitudes(
+        &mut self,
+        h0: &[Complex32],
+        n: usize,
+        live: impl Fn(usize) -> bool + Sync,
+    ) {
         let EvolutionTable {
             p_re,
             p_im,
@@ -285,6 +292,7 @@ impl EvolutionTable {
         )
             .into_par_iter()
             .enumerate()
+            .filter(|(i, _)| live(*i))
             .for_each(|(i, (p_re, p_im, q_re, q_im))| {
                 for j in 0..n {
                     let (p, q) = evolved_pair(h0, n, i, j);
