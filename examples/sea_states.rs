@@ -43,7 +43,7 @@ use ocean_fft::{Error, OceanState, SeaState, SurfaceSample};
 use plotters::prelude::*;
 
 use common::plot::{draw_on, metres, scale_bar, FONT};
-use common::{out_dir, save_indexed, save_rgb8, Args, Result};
+use common::{out_dir, save_indexed, save_rgb8, shade, to_srgb, Args, Result};
 
 /// Samples per pixel along each axis (averaged).
 const SUPER: usize = 2;
@@ -354,24 +354,4 @@ fn correlation<const D: usize>(a: &[[f64; D]], b: &[[f64; D]]) -> f64 {
         }
     }
     ab / (aa * bb).sqrt().max(1e-300)
-}
-
-/// Linear colour of one top-view sample: hill shading from the normal, crests tinted by
-/// η/H_s, residual foam a pale veil (half its coverage), active whitecaps white.
-fn shade(sample: &SurfaceSample, sun: Vec3, hs: f32, active: f32, residual: f32) -> Vec3 {
-    let deep = Vec3::new(0.01, 0.07, 0.14);
-    let crest = Vec3::new(0.06, 0.30, 0.36);
-    let lit = Vec3::from_array(sample.normal).dot(sun).max(0.0);
-    let relative = (sample.height / hs.max(1e-6)).clamp(-0.5, 0.5) + 0.5;
-    let water = deep.lerp(crest, relative) * (0.15 + 2.2 * lit * lit);
-    water
-        .lerp(Vec3::new(0.55, 0.62, 0.66), 0.5 * residual)
-        .lerp(Vec3::splat(0.95), active)
-}
-
-/// Linear colour to 8-bit with gamma 2.2.
-fn to_srgb(colour: Vec3) -> [u8; 3] {
-    colour
-        .to_array()
-        .map(|c| (c.clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0).round() as u8)
 }

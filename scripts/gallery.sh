@@ -34,6 +34,9 @@ run buoyancy --palette
 cp "$work/out/buoyancy.png" "$images/buoyancy.png"
 run whitecaps --palette
 cp "$work/out/whitecaps.png" "$images/whitecaps.png"
+run weather --palette
+cp "$work/out/weather.png" "$images/weather.png"
+cp "$work/out/weather_strip.png" "$images/weather_strip.png"
 
 ls -l "$images"
 du -ch "$images"/*.png | tail -n 1

@@ -216,6 +216,8 @@ mod guide_doc_tests {
     struct Baking;
     #[doc = include_str!("../docs/guide/errors.md")]
     struct Errors;
+    #[doc = include_str!("../docs/guide/weather.md")]
+    struct Weather;
 }
 
 // The README's example is a doc-test with or without features.

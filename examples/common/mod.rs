@@ -6,6 +6,8 @@
 
 pub mod plot;
 
+use glam::Vec3;
+use ocean_fft::SurfaceSample;
 use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
@@ -440,4 +442,24 @@ pub fn save_indexed(path: &Path, width: usize, height: usize, pixels: &[u8]) -> 
     encoder.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
     encoder.write_header()?.write_image_data(&indices)?;
     Ok(())
+}
+
+/// Linear colour of one top-view sample: hill shading from the normal, crests tinted by
+/// η/H_s, residual foam a pale veil (half its coverage), active whitecaps white.
+pub fn shade(sample: &SurfaceSample, sun: Vec3, hs: f32, active: f32, residual: f32) -> Vec3 {
+    let deep = Vec3::new(0.01, 0.07, 0.14);
+    let crest = Vec3::new(0.06, 0.30, 0.36);
+    let lit = Vec3::from_array(sample.normal).dot(sun).max(0.0);
+    let relative = (sample.height / hs.max(1e-6)).clamp(-0.5, 0.5) + 0.5;
+    let water = deep.lerp(crest, relative) * (0.15 + 2.2 * lit * lit);
+    water
+        .lerp(Vec3::new(0.55, 0.62, 0.66), 0.5 * residual)
+        .lerp(Vec3::splat(0.95), active)
+}
+
+/// Linear colour to 8-bit with gamma 2.2.
+pub fn to_srgb(colour: Vec3) -> [u8; 3] {
+    colour
+        .to_array()
+        .map(|c| (c.clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0).round() as u8)
 }
