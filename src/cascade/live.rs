@@ -13,6 +13,10 @@ use crate::determinism::{with_math, Math};
 use crate::error::{self, Error};
 use crate::spectrum::{SlopeVariance, Spectrum};
 
+/// What one entry of the radial table costs to compute, in wave vectors drawn with it (the
+/// omnidirectional spectrum, dispersion and spreading shape against a direction and a draw).
+const RADIAL_COST: usize = 4;
+
 /// What a cascade knows about one set of amplitudes besides the amplitudes themselves.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct AmplitudeStats {
@@ -75,6 +79,10 @@ pub(crate) struct AmplitudeChange {
     /// amplitudes' (w = 0), 1 either side's (0 < w < 1), 2 the new ones' (w = 1).
     pruned_for: u8,
     rows_drawn: usize,
+    /// The radial parts of the new spectrum per wave-vector length (see
+    /// `tables::RadialEntry`), rows `0..radial_rows` filled so far.
+    radial: Vec<tables::RadialEntry>,
+    radial_rows: usize,
     drawn: Option<Drawn>,
 }
 
@@ -107,6 +115,8 @@ impl Cascade {
             self.change.coef = error::try_vec(points, 0.0)?;
             self.change.band_rows = band_rows;
             self.change.band_columns = band_columns;
+            self.change.radial =
+                error::try_vec(tables::radial_entries(n), tables::RadialEntry::NONE)?;
         }
         Ok(())
     }
@@ -123,6 +133,7 @@ impl Cascade {
             subgrid_slope: self.subgrid_slope,
         });
         change.rows_drawn = 0;
+        change.radial_rows = 0;
         change.drawn = None;
         change.blending = false;
         change.pruned_for = 0;
@@ -150,12 +161,9 @@ impl Cascade {
         if check_amplitude(bound, config.choppiness).is_ok() {
             return Ok(());
         }
-        with_math!(config.determinism, M => {
-            let mut h0 = error::try_vec(n * n, Complex32::default())?;
-            let mut variance_rows = vec![0.0; n];
-            tables::draw_rows::<M>(spectrum, config, 0..n, &mut h0, &mut variance_rows);
-            check_amplitude(tables::amplitude_bound::<M>(&h0, config), config.choppiness)
-        })
+        let drawn =
+            with_math!(config.determinism, M => tables::Amplitudes::draw::<M>(spectrum, config))?;
+        check_amplitude(drawn.amplitude_bound, config.choppiness)
     }
 
     /// Whether a change begun with [`begin_change`](Self::begin_change) has all its new
@@ -169,13 +177,29 @@ impl Cascade {
         self.change.rows_drawn == self.n
     }
 
-    /// Draws the next rows of the new amplitudes of `spectrum`, as `Cascade::new` draws them:
-    /// rows until they hold at least `budget` wave vectors of the band (at least one row; a
-    /// fixed amount of work, whatever the machine).
+    /// Draws the next part of the new amplitudes of `spectrum`, as `Cascade::new` draws
+    /// them: first the radial table (each entry counted as [`RADIAL_COST`] wave vectors), then
+    /// grid rows, until the work holds at least `budget` wave vectors of the band (at least
+    /// one row; a fixed amount of work, whatever the machine).
     pub(crate) fn draw_change<M: Math>(&mut self, spectrum: &Spectrum, budget: usize) {
         let n = self.n;
         let change = &mut self.change;
         if !change.active || change.rows_drawn == n {
+            return;
+        }
+        let half = n / 2;
+        if change.radial_rows <= half {
+            let start = change.radial_rows;
+            let mut end = start;
+            // Row a of the table holds a + 1 lengths.
+            while end <= half
+                && (end == start
+                    || (end * (end + 1) / 2 - start * (start + 1) / 2) * RADIAL_COST < budget)
+            {
+                end += 1;
+            }
+            tables::fill_radial::<M>(spectrum, &self.config, start..end, &mut change.radial);
+            change.radial_rows = end;
             return;
         }
         let start = change.rows_drawn;
@@ -189,6 +213,7 @@ impl Cascade {
             spectrum,
             &self.config,
             start..end,
+            &change.radial,
             &mut change.target,
             &mut change.variance_rows[start..end],
         );

@@ -12,7 +12,7 @@ use crate::dispersion::Dispersion;
 use crate::error::{self, Error};
 use crate::grid::wave_index;
 use crate::rng;
-use crate::spectrum::Spectrum;
+use crate::spectrum::{Radial, Spectrum};
 
 /// Largest accepted bound on the outputs' magnitude (see [`Cascade::new`](crate::Cascade::new)): far enough below
 /// f32::MAX that squares and cross products of the fields stay finite.
@@ -122,16 +122,81 @@ pub(super) struct Amplitudes {
     pub(super) amplitude_bound: f64,
 }
 
+/// The part of S(k) that depends on |k| alone, for every length of wave vector an N grid
+/// holds once (a ≥ b ≥ 0 for |m_x|, |m_z| in either order, at index a(a + 1)/2 + b), filled
+/// for those in the band: a grid evaluates the costly radial part (the omnidirectional
+/// spectrum, the dispersion and the spreading's shape at ω(k)) once per length instead of up
+/// to eight times.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct RadialEntry {
+    /// The |k| the entry was computed at (NaN: none).
+    k: f64,
+    radial: Option<Radial>,
+}
+
+impl RadialEntry {
+    pub(super) const NONE: RadialEntry = RadialEntry {
+        k: f64::NAN,
+        radial: None,
+    };
+}
+
+/// Entries of the radial table of an N grid.
+pub(super) fn radial_entries(n: usize) -> usize {
+    let half = n / 2;
+    (half + 1) * (half + 2) / 2
+}
+
+/// The index of |m| = (a, b) (either order) in the radial table.
+fn radial_index(a: usize, b: usize) -> usize {
+    let (a, b) = (a.max(b), a.min(b));
+    a * (a + 1) / 2 + b
+}
+
+/// Fills the radial table's rows a of `rows` (each the entries (a, 0 … a)) for `spectrum` on
+/// the config's grid, with the functions of `M`; `table` is the whole table. Serial and
+/// allocation-free (a step of a change of weather fills a few rows). Returns the number of
+/// entries computed (those in the band), a measure of the work done.
+pub(super) fn fill_radial<M: Math>(
+    spectrum: &Spectrum,
+    config: &CascadeConfig,
+    rows: std::ops::Range<usize>,
+    table: &mut [RadialEntry],
+) -> usize {
+    let dk64 = TAU / f64::from(config.length);
+    let params = spectrum.spreading_params();
+    let (k_min, k_max) = (f64::from(config.k_min), f64::from(config.k_max));
+    let mut count = 0;
+    for a in rows {
+        for b in 0..=a {
+            let k = M::hypot(a as f64 * dk64, b as f64 * dk64);
+            table[radial_index(a, b)] = if k > 0.0 && k >= k_min && k < k_max {
+                count += 1;
+                RadialEntry {
+                    k,
+                    radial: spectrum.radial_with::<M>(k, &params),
+                }
+            } else {
+                RadialEntry::NONE
+            };
+        }
+    }
+    count
+}
+
 /// Draws h0(k) = ½(ξ_r + iξ_i)·√S(k)·Δk for the grid rows (z index j) of `rows`, into `h0`
 /// (those rows of an N×N buffer in the grid's FFT order) and each row's Σ S(k)Δk² into
 /// `variance` (one value per row of `rows`): every wave vector of the band
 /// `k_min` ≤ |k| < `k_max` (zero elsewhere, and on k = 0 and the Nyquist row and column), ξ
-/// standard normals drawn from (seed, m_x, m_z). Rows in parallel; each value depends only on
-/// its wave vector, so any split of the rows gives the same amplitudes.
+/// standard normals drawn from (seed, m_x, m_z). S(k) comes from the radial table `radial`
+/// (filled by [`fill_radial`]) where it holds the wave vector's length, to the same bits as
+/// [`Spectrum::density_with`] gives. Rows in parallel; each value depends only on its wave
+/// vector, so any split of the rows gives the same amplitudes.
 pub(super) fn draw_rows<M: Math>(
     spectrum: &Spectrum,
     config: &CascadeConfig,
     rows: std::ops::Range<usize>,
+    radial: &[RadialEntry],
     h0: &mut [Complex32],
     variance: &mut [f64],
 ) {
@@ -145,19 +210,30 @@ pub(super) fn draw_rows<M: Math>(
         .enumerate()
         .for_each(|(r, (row, variance))| {
             let j = first + r;
+            let mz = wave_index(j, n);
             *variance = 0.0;
             for (i, value) in row.iter_mut().enumerate() {
                 *value = Complex32::default();
-                let Some((kx, kz)) = in_band::<M>(config, i, j) else {
+                let Some((kx, kz, k)) = in_band_with_length::<M>(config, i, j) else {
                     continue;
                 };
-                let s = spectrum.density_with::<M>(kx, kz, &params);
+                let mx = wave_index(i, n);
+                let entry =
+                    radial[radial_index(mx.unsigned_abs() as usize, mz.unsigned_abs() as usize)];
+                let s = if entry.k.to_bits() == k.to_bits() {
+                    match &entry.radial {
+                        Some(part) => spectrum.angular_with::<M>(part, kx, kz, &params),
+                        None => 0.0,
+                    }
+                } else {
+                    // Not in the table (a length the table computed otherwise): directly.
+                    spectrum.density_with::<M>(kx, kz, &params)
+                };
                 if s <= 0.0 {
                     continue;
                 }
                 *variance += s * dk64 * dk64;
-                let (xr, xi) =
-                    rng::gaussian_pair::<M>(config.seed, wave_index(i, n), wave_index(j, n));
+                let (xr, xi) = rng::gaussian_pair::<M>(config.seed, mx, mz);
                 let amplitude = 0.5 * s.sqrt() * dk64;
                 *value = Complex32::new((xr * amplitude) as f32, (xi * amplitude) as f32);
             }
@@ -167,6 +243,15 @@ pub(super) fn draw_rows<M: Math>(
 /// The wave vector (k_x, k_z) in rad/m of grid index (i, j) when it lies in the config's band
 /// (`k_min` ≤ |k| < `k_max`, not k = 0, not on the Nyquist row or column).
 pub(super) fn in_band<M: Math>(config: &CascadeConfig, i: usize, j: usize) -> Option<(f64, f64)> {
+    in_band_with_length::<M>(config, i, j).map(|(kx, kz, _)| (kx, kz))
+}
+
+/// [`in_band`] with the wave vector's length |k| = hypot(k_x, k_z).
+fn in_band_with_length<M: Math>(
+    config: &CascadeConfig,
+    i: usize,
+    j: usize,
+) -> Option<(f64, f64, f64)> {
     let n = config.size;
     if i == n / 2 || j == n / 2 {
         return None;
@@ -174,8 +259,16 @@ pub(super) fn in_band<M: Math>(config: &CascadeConfig, i: usize, j: usize) -> Op
     let dk64 = TAU / f64::from(config.length);
     let kx = f64::from(wave_index(i, n)) * dk64;
     let kz = f64::from(wave_index(j, n)) * dk64;
+    let (k_min, k_max) = (f64::from(config.k_min), f64::from(config.k_max));
+    // Far outside the band by k² alone (which hypot's k matches to an ulp): skip hypot, the
+    // costly part, for most of a band-limited grid.
+    let square = kx * kx + kz * kz;
+    let (lo, hi) = (k_min * (1.0 - 1e-9), k_max * (1.0 + 1e-9));
+    if square < lo * lo || square >= hi * hi {
+        return None;
+    }
     let k = M::hypot(kx, kz);
-    (k > 0.0 && k >= f64::from(config.k_min) && k < f64::from(config.k_max)).then_some((kx, kz))
+    (k > 0.0 && k >= k_min && k < k_max).then_some((kx, kz, k))
 }
 
 /// Σ 2|h0| · max(1, k_grid_max) of amplitudes `h0` on the config's grid: a bound on every
@@ -210,7 +303,9 @@ impl Amplitudes {
         }
         let mut h0 = error::try_vec(n * n, Complex32::default())?;
         let mut variance_rows = vec![0.0f64; n];
-        draw_rows::<M>(spectrum, config, 0..n, &mut h0, &mut variance_rows);
+        let mut radial = error::try_vec(radial_entries(n), RadialEntry::NONE)?;
+        fill_radial::<M>(spectrum, config, 0..n / 2 + 1, &mut radial);
+        draw_rows::<M>(spectrum, config, 0..n, &radial, &mut h0, &mut variance_rows);
         // Summed in a fixed order: the same result whatever the thread count.
         let expected_variance: f64 = variance_rows.iter().sum();
         let amplitude_bound = amplitude_bound::<M>(&h0, config);

@@ -2,6 +2,7 @@
 
 use super::elfouhaily;
 use super::omega;
+use super::spreading::Shape;
 use super::spreading::SpreadingParams;
 use super::{wrap_angle, DepthFactor, Model, Spectrum};
 use crate::determinism::{Math, Std};
@@ -121,16 +122,45 @@ impl Spectrum {
         spreading: &SpreadingParams,
     ) -> f64 {
         let k = M::hypot(kx, kz);
+        match self.radial_with::<M>(k, spreading) {
+            Some(radial) => self.angular_with::<M>(&radial, kx, kz, spreading),
+            None => 0.0,
+        }
+    }
+
+    /// What S(k) needs from |k| = `k` alone (`None` where S is 0 for every direction): wave
+    /// vectors of the same length share it, so a grid can compute it once per length.
+    pub(crate) fn radial_with<M: Math>(
+        &self,
+        k: f64,
+        spreading: &SpreadingParams,
+    ) -> Option<Radial> {
         if !(k > 0.0 && k.is_finite()) {
-            return 0.0;
+            return None;
         }
         let omni = self.omni_k::<M>(k);
         if omni == 0.0 {
-            return 0.0;
+            return None;
         }
         let omega = self.dispersion.omega_with::<M>(k);
+        Some(Radial {
+            k,
+            omni,
+            shape: spreading.shape::<M>(omega, Some(k)),
+        })
+    }
+
+    /// S(k) at wave vector (`kx`, `kz`) from its length's [`Radial`] part (the same value
+    /// [`density_with`](Self::density_with) gives).
+    pub(crate) fn angular_with<M: Math>(
+        &self,
+        radial: &Radial,
+        kx: f64,
+        kz: f64,
+        spreading: &SpreadingParams,
+    ) -> f64 {
         let theta = wrap_angle(M::atan2(kz, kx) - f64::from(self.wind_direction));
-        omni * spreading.evaluate_at::<M>(omega, Some(k), theta) / k
+        radial.omni * spreading.angular::<M>(&radial.shape, theta) / radial.k
     }
 
     /// Omnidirectional wave-number spectrum ∫ S(k) k dθ in m³ at |k| = `k`, with the fade.
@@ -154,4 +184,15 @@ impl Spectrum {
         };
         value * fade
     }
+}
+
+/// The part of S(k) that depends only on |k| (see [`Spectrum::radial_with`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Radial {
+    /// |k| in rad/m.
+    pub(crate) k: f64,
+    /// The omnidirectional spectrum at |k| with the fade, m³.
+    omni: f64,
+    /// The spreading at ω(|k|).
+    shape: Shape,
 }

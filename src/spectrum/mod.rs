@@ -17,9 +17,10 @@ use crate::error::{self, Error};
 pub use slope::SlopeVariance;
 pub use spreading::Spreading;
 
+pub(crate) use density::Radial;
 use omega::PIERSON_MOSKOWITZ_ALPHA;
 pub(crate) use omega::{G, PIERSON_MOSKOWITZ_PEAK};
-use spreading::SpreadingParams;
+pub(crate) use spreading::SpreadingParams;
 
 /// How the shallow-water depth factor Φ(ω, h) of the TMA spectrum is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -136,6 +136,30 @@ pub(crate) struct SpreadingParams {
     pub spread_blend: f64,
 }
 
+/// The direction-independent part of a spreading function at one frequency (see
+/// [`SpreadingParams::shape`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Shape {
+    /// No spreading at all (spread blend 0): D = 1/(2π) exactly.
+    Flat,
+    /// A shape with nothing to prepare that is uniform: 1/(2π), then blended.
+    Uniform,
+    /// cos-2s with its exponent and normalisation Q(s).
+    Cos2s { s: f64, norm: f64 },
+    /// Donelan–Banner with its β and normalisation β/(2 tanh(βπ)).
+    DonelanBanner { beta: f64, norm: f64 },
+    /// (2/π) cos²θ downwind.
+    Cos2,
+    /// |cos θ|^p with the upwind weight and the half-plane integral.
+    Cosine {
+        exponent: f64,
+        upwind: f64,
+        half: f64,
+    },
+    /// Elfouhaily with its Δ.
+    Elfouhaily { delta: f64 },
+}
+
 impl SpreadingParams {
     /// D(ω, θ) in 1/rad, θ relative to the wind and already wrapped to [−π, π].
     pub(crate) fn evaluate<M: Math>(&self, omega: f64, theta: f64) -> f64 {
@@ -145,11 +169,77 @@ impl SpreadingParams {
     /// D at ω and, when known, the wave number `k` of ω (the Elfouhaily spreading is a
     /// function of k; without it k is solved from ω under its own dispersion).
     pub(crate) fn evaluate_at<M: Math>(&self, omega: f64, k: Option<f64>, theta: f64) -> f64 {
-        let flat = 1.0 / (2.0 * PI);
+        self.angular::<M>(&self.shape::<M>(omega, k), theta)
+    }
+
+    /// What D at ω (and `k`) needs that does not depend on the direction: every wave vector of
+    /// the same length shares it.
+    pub(crate) fn shape<M: Math>(&self, omega: f64, k: Option<f64>) -> Shape {
         if self.spread_blend == 0.0 {
-            return flat;
+            return Shape::Flat;
         }
-        let d = self.shaped::<M>(omega, k, theta);
+        if omega.is_nan() || omega <= 0.0 {
+            return Shape::Uniform;
+        }
+        if let Some(s) =
+            self.spreading
+                .cos_2s_exponent::<M>(omega, self.peak_omega, self.wind_speed)
+        {
+            // Horvath (2015) §5.2: swell narrows the spreading, s += 16 tanh(ω_p/ω) ξ².
+            let s = s + 16.0 * M::tanh(self.peak_omega / omega) * self.swell * self.swell;
+            return Shape::Cos2s {
+                s,
+                norm: cos_2s_norm::<M>(s),
+            };
+        }
+        match self.spreading {
+            Spreading::DonelanBanner => {
+                let beta = donelan_banner_beta::<M>(omega / self.peak_omega);
+                Shape::DonelanBanner {
+                    beta,
+                    norm: donelan_banner_norm::<M>(beta),
+                }
+            }
+            Spreading::Cos2 => Shape::Cos2,
+            Spreading::Cosine { exponent, upwind } => Shape::Cosine {
+                exponent: f64::from(exponent),
+                upwind: f64::from(upwind),
+                half: cosine_half::<M>(f64::from(exponent)),
+            },
+            Spreading::Elfouhaily => Shape::Elfouhaily {
+                delta: self.elfouhaily_delta::<M>(omega, k),
+            },
+            _ => Shape::Uniform,
+        }
+    }
+
+    /// D in 1/rad at θ (relative to the wind, in [−π, π]) for a frequency whose
+    /// [`shape`](Self::shape) is `shape`.
+    pub(crate) fn angular<M: Math>(&self, shape: &Shape, theta: f64) -> f64 {
+        let flat = 1.0 / (2.0 * PI);
+        let d = match *shape {
+            Shape::Flat => return flat,
+            Shape::Uniform => 1.0 / (2.0 * PI),
+            Shape::Cos2s { s, norm } => norm * M::powf(M::cos(0.5 * theta).abs(), 2.0 * s),
+            Shape::DonelanBanner { beta, norm } => {
+                let sech = 1.0 / M::cosh(beta * theta);
+                norm * sech * sech
+            }
+            Shape::Cos2 => {
+                if theta.abs() < 0.5 * PI {
+                    let c = M::cos(theta);
+                    2.0 / PI * c * c
+                } else {
+                    0.0
+                }
+            }
+            Shape::Cosine {
+                exponent,
+                upwind,
+                half,
+            } => cosine_power_with::<M>(exponent, upwind, half, theta),
+            Shape::Elfouhaily { delta } => (1.0 + delta * M::cos(2.0 * theta)) / (2.0 * PI),
+        };
         flat + self.spread_blend * (d - flat)
     }
 
@@ -206,38 +296,6 @@ impl SpreadingParams {
             _ => 0.5,
         }
     }
-
-    fn shaped<M: Math>(&self, omega: f64, k: Option<f64>, theta: f64) -> f64 {
-        if omega.is_nan() || omega <= 0.0 {
-            return 1.0 / (2.0 * PI);
-        }
-        if let Some(s) =
-            self.spreading
-                .cos_2s_exponent::<M>(omega, self.peak_omega, self.wind_speed)
-        {
-            // Horvath (2015) §5.2: swell narrows the spreading, s += 16 tanh(ω_p/ω) ξ².
-            let s = s + 16.0 * M::tanh(self.peak_omega / omega) * self.swell * self.swell;
-            return cos_2s::<M>(s, theta);
-        }
-        match self.spreading {
-            Spreading::DonelanBanner => donelan_banner::<M>(omega / self.peak_omega, theta),
-            Spreading::Cos2 => {
-                if theta.abs() < 0.5 * PI {
-                    let c = M::cos(theta);
-                    2.0 / PI * c * c
-                } else {
-                    0.0
-                }
-            }
-            Spreading::Cosine { exponent, upwind } => {
-                cosine_power::<M>(f64::from(exponent), f64::from(upwind), theta)
-            }
-            Spreading::Elfouhaily => {
-                (1.0 + self.elfouhaily_delta::<M>(omega, k) * M::cos(2.0 * theta)) / (2.0 * PI)
-            }
-            _ => 1.0 / (2.0 * PI),
-        }
-    }
 }
 
 /// Composite Simpson rule of `f` over [a, b] with `intervals` (even) intervals.
@@ -266,11 +324,6 @@ pub(crate) fn cos_2s_norm<M: Math>(s: f64) -> f64 {
     )
 }
 
-/// Q(s) |cos(θ/2)|^{2s}, θ in [−π, π].
-pub(crate) fn cos_2s<M: Math>(s: f64, theta: f64) -> f64 {
-    cos_2s_norm::<M>(s) * M::powf(M::cos(0.5 * theta).abs(), 2.0 * s)
-}
-
 /// Donelan–Banner β as a function of r = ω/ω_p (Donelan, Hamilton & Hui 1985; Banner 1990):
 ///
 /// ```text
@@ -291,23 +344,32 @@ pub(crate) fn donelan_banner_beta<M: Math>(r: f64) -> f64 {
 /// β/(2 tanh(βπ)) sech²(βθ).
 pub(crate) fn donelan_banner<M: Math>(r: f64, theta: f64) -> f64 {
     let beta = donelan_banner_beta::<M>(r);
-    // β → 0 (r → 0): the limit is flat, 1/(2π); avoid 0/0.
-    let norm = if beta < 1e-8 {
-        1.0 / (2.0 * PI)
-    } else {
-        beta / (2.0 * M::tanh(beta * PI))
-    };
+    let norm = donelan_banner_norm::<M>(beta);
     let sech = 1.0 / M::cosh(beta * theta);
     norm * sech * sech
 }
 
-/// |cos θ|^p, upwind half scaled by `upwind`, normalised over [−π, π].
-pub(crate) fn cosine_power<M: Math>(exponent: f64, upwind: f64, theta: f64) -> f64 {
-    // ∫_{−π/2}^{π/2} cos^p θ dθ = √π Γ((p+1)/2) / Γ(p/2 + 1).
-    let half = M::exp(
+/// β/(2 tanh(βπ)), the Donelan–Banner normalisation.
+fn donelan_banner_norm<M: Math>(beta: f64) -> f64 {
+    // β → 0 (r → 0): the limit is flat, 1/(2π); avoid 0/0.
+    if beta < 1e-8 {
+        1.0 / (2.0 * PI)
+    } else {
+        beta / (2.0 * M::tanh(beta * PI))
+    }
+}
+
+/// ∫_{−π/2}^{π/2} cos^p θ dθ = √π Γ((p+1)/2) / Γ(p/2 + 1).
+fn cosine_half<M: Math>(exponent: f64) -> f64 {
+    M::exp(
         0.5 * M::ln(PI) + ln_gamma::<M>(0.5 * (exponent + 1.0))
             - ln_gamma::<M>(0.5 * exponent + 1.0),
-    );
+    )
+}
+
+/// |cos θ|^p, upwind half scaled by `upwind`, normalised over [−π, π], with the half-plane
+/// integral `half` ([`cosine_half`]) already computed.
+fn cosine_power_with<M: Math>(exponent: f64, upwind: f64, half: f64, theta: f64) -> f64 {
     let c = M::cos(theta);
     let weight = if c >= 0.0 { 1.0 } else { upwind };
     if weight == 0.0 {
