@@ -109,16 +109,26 @@ fn vs_ocean(@builtin(vertex_index) vertex: u32, @builtin(instance_index) ring: u
     let horizontal = length(xz - globals.eye.xz);
     let weights = ocean_tiling_weights(xz, horizontal, globals.horizon.w, globals.tiling.x, globals.tiling.y);
     var displacement = vec3<f32>(0.0);
+    var jacobian = 1.0;
     for (var c = 0u; c < cascade_count(); c++) {
         let cascade = globals.cascades[c];
         let lod = min(ocean_vertex_lod(spacing, cascade.y), cascade.w - 1.0);
         let uv = ocean_uv(xz, cascade.x, cascade.z);
         var d = textureSampleLevel(displacement_foam, ocean_sampler, uv, c, lod).xyz * weights.x;
+        var j = (textureSampleLevel(slope_jacobian_foam, ocean_sampler, uv, c, lod).z - 1.0) * weights.x;
         if (weights.y > 0.0) {
-            d += textureSampleLevel(displacement_foam, ocean_sampler, uv + ocean_tiling_offset(c), c, lod).xyz * weights.y;
+            let shifted = uv + ocean_tiling_offset(c);
+            d += textureSampleLevel(displacement_foam, ocean_sampler, shifted, c, lod).xyz * weights.y;
+            j += (textureSampleLevel(slope_jacobian_foam, ocean_sampler, shifted, c, lod).z - 1.0) * weights.y;
         }
         displacement += d;
+        jacobian += j;
     }
+    // Where the surface folds (J < 0) a mesh turns inside out into spikes; below J = 0.5 the
+    // horizontal displacement is drawn in, to 30 % at J ≤ −0.2 (the height is kept).
+    let unfold = mix(0.3, 1.0, smoothstep(-0.2, 0.5, jacobian));
+    displacement.x *= unfold;
+    displacement.z *= unfold;
     var out: WaterVarying;
     out.world = vec3<f32>(xz.x + displacement.x, displacement.y, xz.y + displacement.z);
     out.clip = globals.view_proj * vec4<f32>(out.world, 1.0);
@@ -150,9 +160,15 @@ fn unresolved_variance(k: f32) -> vec2<f32> {
 fn fs_ocean(in: WaterVarying) -> @location(0) vec4<f32> {
     let xz = in.undisplaced;
     // Explicit gradients: the same for every look-up, valid across the tiles' wrap (where
-    // the uv jumps by 1) and usable in non-uniform control flow.
-    let gx = dpdx(xz);
-    let gy = dpdy(xz);
+    // the uv jumps by 1) and usable in non-uniform control flow. Where the surface is
+    // squeezed or folds, the undisplaced point races across a triangle far faster than the
+    // water drawn; the gradients are limited to 3 times the water's own, so that such a
+    // triangle is not filtered (and foamed) flat as a whole.
+    let wx = dpdx(in.world);
+    let wy = dpdy(in.world);
+    let limit = 3.0 * max(length(wx), length(wy)) + 1e-4;
+    let gx = dpdx(xz) * min(1.0, limit / max(length(dpdx(xz)), 1e-6));
+    let gy = dpdy(xz) * min(1.0, limit / max(length(dpdy(xz)), 1e-6));
     let to_eye = in.world - globals.eye.xyz;
     let distance = length(to_eye);
     let dir = to_eye / distance;
@@ -178,7 +194,8 @@ fn fs_ocean(in: WaterVarying) -> @location(0) vec4<f32> {
         }
     }
 
-    // The pixel's footprint on the water (geometric mean of its two axes, m): the mipmaps
+    // The pixel's footprint on the water (geometric mean of its two axes in the undisplaced
+    // plane, m): the mipmaps
     // average away the slopes of waves shorter than about twice that, and their variance goes
     // into the glitter's slope distribution with the sub-grid σ², so the sea's total slope
     // variance (and the width of the glitter path) does not depend on the distance.
@@ -259,12 +276,16 @@ fn vs_body(
 @fragment
 fn fs_body(in: BodyVarying) -> @location(0) vec4<f32> {
     let l = light();
-    let n = normalize(in.normal);
-    let ambient = ocean_sky(l, vec3<f32>(0.0, 1.0, 0.0), false) * (0.55 + 0.45 * n.y);
-    let sun = l.sun_colour * (1.0 - l.overcast) * max(dot(n, l.sun_direction), 0.0);
-    var colour = in.colour * (ambient + sun * 0.6);
     let to_eye = in.world - globals.eye.xyz;
     let distance = length(to_eye);
+    // Lit on both sides (the meshes are not closed everywhere).
+    var n = normalize(in.normal);
+    if (dot(n, to_eye) > 0.0) {
+        n = -n;
+    }
+    let ambient = ocean_sky_irradiance(l) * (0.6 + 0.4 * n.y);
+    let sun = l.sun_colour * (1.0 - l.overcast) * max(dot(n, l.sun_direction), 0.0);
+    var colour = in.colour * (ambient + sun * 0.6);
     let haze = 1.0 - exp(-distance / l.haze_distance);
     colour = mix(colour, ocean_haze_colour(l, to_eye / distance), haze);
     return vec4<f32>(ocean_tone_map(colour, globals.sun_colour.w), 1.0);

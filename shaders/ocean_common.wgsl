@@ -122,10 +122,11 @@ fn ocean_sky(light: OceanLight, dir: vec3<f32>, with_sun: bool) -> vec3<f32> {
     let elevation = max(dir.y, 0.0);
     let cosine = max(dot(dir, light.sun_direction), 0.0);
     var clear = mix(light.horizon, light.zenith, pow(elevation, 0.45));
+    let sun_seen = 1.0 - light.overcast;
     clear += vec3<f32>(1.0, 0.80, 0.55) * (0.25 * pow(cosine, 12.0) + 0.4 * pow(cosine, 400.0))
-        * length(light.sun_colour) * 0.26;
+        * length(light.sun_colour) * 0.26 * sun_seen;
     if (with_sun && cosine > 0.99988) {
-        clear += light.sun_colour * 18.0;
+        clear += light.sun_colour * 18.0 * sun_seen;
     }
     if (light.overcast <= 0.0) {
         return clear;
@@ -141,6 +142,15 @@ fn ocean_sky(light: OceanLight, dir: vec3<f32>, with_sun: bool) -> vec3<f32> {
         overcast = grey * (1.0 + 0.9 * sqrt(min(elevation, 1.0)) * (clouds - 0.5));
     }
     return mix(clear, overcast, light.overcast);
+}
+
+// Sky light on a horizontal surface, as radiance of a uniform sky: the mean of the zenith
+// and the horizon, half way to its grey (the sky near the horizon, seen by most of the
+// hemisphere, is paler than the zenith).
+fn ocean_sky_irradiance(light: OceanLight) -> vec3<f32> {
+    let sky = 0.5 * (light.zenith + light.horizon);
+    let grey = vec3<f32>(dot(sky, vec3<f32>(0.2126, 0.7152, 0.0722)));
+    return mix(sky, grey, 0.5);
 }
 
 // The colour distant water and air fade to in the horizontal direction of `dir`.
@@ -217,7 +227,7 @@ fn ocean_normal_cdf(x: f32) -> f32 {
 }
 
 // Standard deviation of the foam rank below: 0.75 z + 0.5 s + 0.3 l with z, s, l of unit
-// variance, √(0.75² + 0.5² + 0.3²) = 0.950 (a sample of 300 000 points measured 0.949, and
+// variance, √(0.75² + 0.5² + 0.3²) = 0.950 (√(0.5² + 0.3²) = 0.583 without z; a sample of 300 000 points measured 0.949, and
 // thresholds at its normal quantiles covered 0.93–1.01 of the asked fraction from 0.1 % to
 // 80 %: docs/guide/shader.md).
 const OCEAN_FOAM_RANK_SD: f32 = 0.95;
@@ -236,7 +246,9 @@ fn ocean_foam(coverage: f32, jacobian: f32, jacobian_sd: f32, xz: vec2<f32>, win
     let f = clamp(coverage, 0.0, 1.0);
     let along = dot(xz, wind);
     let across = dot(xz, vec2<f32>(-wind.y, wind.x));
-    let crest = -(jacobian - 1.0) / max(jacobian_sd, 1e-4);
+    // Without choppiness J stays 1: the rank is then the noises alone.
+    let has_crests = jacobian_sd > 1e-3;
+    let crest = select(0.0, -(jacobian - 1.0) / max(jacobian_sd, 1e-3), has_crests);
     // Value noise has a standard deviation of 0.2149 (measured): these sums have 0.1637 and
     // 0.1550.
     let streak = (0.7 * ocean_noise(vec2<f32>(along / 22.0, across / 0.8))
@@ -244,11 +256,15 @@ fn ocean_foam(coverage: f32, jacobian: f32, jacobian_sd: f32, xz: vec2<f32>, win
     let lace = (0.6 * ocean_noise(vec2<f32>(along, across) / 2.5 + vec2<f32>(7.3, 0.0))
         + 0.4 * ocean_noise(vec2<f32>(along, across) / 0.6) - 0.5) / 0.1550;
     let rank = 0.75 * crest + 0.5 * streak + 0.3 * lace;
-    let threshold = OCEAN_FOAM_RANK_SD * ocean_probit(1.0 - f);
-    let edge = OCEAN_FOAM_RANK_SD * (0.05 + 0.5 * min(footprint, 1.0));
-    let detailed = smoothstep(threshold - edge, threshold + edge, rank);
-    let blur = smoothstep(0.3, 2.5, footprint);
-    return mix(detailed, f, blur);
+    let sd = select(0.5831, OCEAN_FOAM_RANK_SD, has_crests);
+    let threshold = sd * ocean_probit(1.0 - f);
+    let edge = sd * (0.12 + 0.5 * min(footprint, 1.0));
+    // Soft edges; and foam that the crests do not carry (streaks and patches left behind)
+    // thinner than a fresh whitecap: 45 % opaque where z ≤ 0.5, fully from z = 2.
+    let detailed = smoothstep(threshold - edge, threshold + edge, rank)
+        * mix(0.45, 1.0, smoothstep(0.5, 2.0, crest));
+    let blur = smoothstep(0.15, 1.2, footprint);
+    return mix(detailed, f * 0.7, blur);
 }
 
 // ---- The water's colour ----
@@ -294,14 +310,16 @@ fn ocean_shade(light: OceanLight, surface: OceanSurface, dir: vec3<f32>, distanc
 
     let crest = clamp(surface.height / max(surface.height_sd, 1e-4) * 0.5, 0.0, 1.5);
     let toward = mix(0.35 + 0.65 * pow(max(dot(dir, sun), 0.0), 3.0), 0.3, light.overcast);
-    let ambient = ocean_sky(light, vec3<f32>(0.0, 1.0, 0.0), false);
+    let ambient = ocean_sky_irradiance(light);
     let luminance = dot(ambient, vec3<f32>(0.2126, 0.7152, 0.0722));
     let body = light.deep * (0.6 + 0.8 * luminance) + light.subsurface * crest * toward
         + light.deep * normal.y;
 
     var colour = body * (1.0 - fresnel) + reflection * fresnel + glitter;
-    let sunlit = (1.0 - light.overcast) * max(dot(normal, sun), 0.0);
-    let foam_light = vec3<f32>(0.85, 0.88, 0.90) * (0.75 * ambient + light.sun_colour * 0.35 * sunlit);
+    // Foam: a bright, rough, partly translucent scatterer (albedo about 0.85): the sky's
+    // light, the sun on the facets facing it, and a share of the sun scattered through it.
+    let sunlit = (1.0 - light.overcast) * (0.75 * max(dot(normal, sun), 0.0) + 0.25) * max(sun.y, 0.0);
+    let foam_light = vec3<f32>(0.85, 0.87, 0.88) * (1.2 * ambient + light.sun_colour * sunlit);
     colour = mix(colour, foam_light, surface.foam);
 
     let haze = 1.0 - exp(-distance / light.haze_distance);

@@ -13,6 +13,8 @@ USAGE: ocean-fft-viewer [OPTIONS]
 
   --preset NAME        default (JONSWAP 10 m/s, 100 km), calm, moderate_breeze, fresh_breeze,
                        storm, swell, shallow_bay                           [default]
+  --choppiness X       choppiness λ instead of the preset's
+  --foam X             foam coverage multiplier instead of the preset's (1)
   --frames N           render N frames, then exit (headless runs; a fixed 1/30 s of sea time
                        a frame) and print `frames N, mean frame … ms, step … ms, upload … ms`
   --screenshot FILE    with --frames: write the last frame as a PNG
@@ -123,6 +125,7 @@ impl Options {
     pub fn parse(args: impl Iterator<Item = String>) -> Result<Option<Options>, String> {
         let mut args = args.peekable();
         let mut preset = "default".to_string();
+        let (mut choppiness, mut foam) = (None, None);
         let mut frames = None;
         let mut screenshot = None;
         let (mut width, mut height) = (1280u32, 720u32);
@@ -142,6 +145,10 @@ impl Options {
                     return Ok(None);
                 }
                 "--preset" => preset = args.next().ok_or("--preset needs a name")?,
+                "--choppiness" => {
+                    choppiness = Some(check(name, number(name, args.next())?, 0.0, 5.0)?)
+                }
+                "--foam" => foam = Some(check(name, number(name, args.next())?, 0.0, 100.0)?),
                 "--frames" => {
                     frames = Some(check(
                         name,
@@ -199,12 +206,14 @@ impl Options {
         if screenshot.is_some() && frames.is_none() {
             return Err("--screenshot needs --frames N".into());
         }
-        let sea = SeaParams::preset(&preset).ok_or_else(|| {
+        let mut sea = SeaParams::preset(&preset).ok_or_else(|| {
             format!(
                 "--preset: unknown {preset:?} ({})",
                 SeaParams::preset_names().join(", ")
             )
         })?;
+        sea.choppiness = choppiness.unwrap_or(sea.choppiness);
+        sea.foam_coverage = foam.unwrap_or(sea.foam_coverage);
         light.overcast = overcast.unwrap_or(if preset == "storm" { 0.85 } else { 0.0 });
         let hs = sea
             .spectrum()

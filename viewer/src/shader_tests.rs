@@ -46,6 +46,7 @@ fn the_shading_functions_stand_alone() {
         "ocean_normal",
         "ocean_sky",
         "ocean_haze_colour",
+        "ocean_sky_irradiance",
         "ocean_fresnel",
         "ocean_glitter",
         "ocean_foam",
