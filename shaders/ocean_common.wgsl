@@ -34,11 +34,13 @@ fn ocean_uv(xz: vec2<f32>, length: f32, size: f32) -> vec2<f32> {
 }
 
 // Mip level at which a cascade of texel size `texel` (m) is sampled by vertices `spacing` m
-// apart: one level coarser than the spacing, so that waves shorter than about four vertex
-// spacings are averaged out instead of aliasing into the geometry (they stay in the
-// fragment stage's normals).
+// apart: two levels coarser than the spacing. A mip level is a 2×2 box mean, and a box of
+// width w passes a wave of length λ with amplitude |sinc(w/λ)|, which at one level coarser
+// (w = 2·spacing) still lets 20 % of the waves just below the vertices' Nyquist length through
+// and draws them as a moiré; at two levels (w = 4·spacing) the waves the vertices cannot hold
+// are averaged out (they stay in the fragment stage's normals).
 fn ocean_vertex_lod(spacing: f32, texel: f32) -> f32 {
-    return max(log2(spacing / texel) + 1.0, 0.0);
+    return max(log2(spacing / texel) + 2.0, 0.0);
 }
 
 // Hash of an integer lattice point to [0, 1].

@@ -585,11 +585,9 @@ impl Renderer {
     /// pixels), with the uniforms `globals`.
     pub fn draw(
         &mut self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
         encoder: &mut wgpu::CommandEncoder,
-        target: &wgpu::TextureView,
-        size: (u32, u32),
+        (target, size): (&wgpu::TextureView, (u32, u32)),
         globals: &Globals,
         bodies: &Bodies,
     ) {

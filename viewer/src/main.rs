@@ -160,15 +160,13 @@ impl ApplicationHandler for App {
                     }
                 }
             }
-            WindowEvent::CursorMoved { position, .. } => {
-                if state.button {
-                    if let Some((x, y)) = state.dragging {
-                        state
-                            .camera
-                            .look((position.x - x) as f32, (position.y - y) as f32);
-                    }
-                    state.dragging = Some((position.x, position.y));
+            WindowEvent::CursorMoved { position, .. } if state.button => {
+                if let Some((x, y)) = state.dragging {
+                    state
+                        .camera
+                        .look((position.x - x) as f32, (position.y - y) as f32);
                 }
+                state.dragging = Some((position.x, position.y));
             }
             WindowEvent::MouseWheel { delta, .. } if !consumed => {
                 let lines = match delta {
@@ -468,11 +466,9 @@ impl State {
             boats: self.fleet.boats(),
         };
         self.renderer.draw(
-            &self.device,
-            &self.queue,
+            (&self.device, &self.queue),
             &mut encoder,
-            &scene_view,
-            size,
+            (&scene_view, size),
             &globals,
             &bodies,
         );
@@ -628,11 +624,9 @@ impl State {
             boats: self.fleet.boats(),
         };
         self.renderer.draw(
-            &self.device,
-            &self.queue,
+            (&self.device, &self.queue),
             encoder,
-            &scene_view,
-            size,
+            (&scene_view, size),
             globals,
             &bodies,
         );
