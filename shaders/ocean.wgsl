@@ -9,7 +9,11 @@
 //                           (D_x, η, D_z, foam), RGBA16F, with mipmaps
 //   2  slope_jacobian_foam  texture_2d_array<f32>: layer c = cascade c's SlopeJacobianFoam
 //                           texels (∂y/∂x, ∂y/∂z, J, foam), RGBA16F, with mipmaps
-//   3  ocean_sampler        repeat in u and v, linear min/mag/mip filters, anisotropic
+//   3  ocean_sampler        repeat in u and v, linear min/mag/mip filters, anisotropic (the
+//                           fragment stage's lookups, with gradients)
+//   4  vertex_sampler       the same without anisotropy: the vertex stage's explicit-LOD
+//                           lookups (an anisotropic sampler has no defined footprint without
+//                           derivatives; lavapipe returned displacements that tore the mesh)
 //
 // Entry points: vs_ocean/fs_ocean draw the water on a clipmap of square rings (no vertex
 // buffer: the vertex index is the grid point, the instance index the ring), vs_sky/fs_sky the
@@ -44,6 +48,9 @@ struct Globals {
     table: vec4<f32>,
     // Cascade c: x = L (m), y = L/N (m), z = N, w = mip levels.
     cascades: array<vec4<f32>, 8>,
+    // Cascade c: xy = the corner of the tile under the eye (a multiple of L, m), which uv is
+    // measured from.
+    origins: array<vec4<f32>, 8>,
     // Entry i: x = wave number k_i (rad/m, k_i = table.x · ratio^i); y, z = slope variance
     // along and across the wind of the simulated waves with wave numbers above k_i.
     slope_table: array<vec4<f32>, 32>,
@@ -56,6 +63,7 @@ struct Globals {
 @group(0) @binding(1) var displacement_foam: texture_2d_array<f32>;
 @group(0) @binding(2) var slope_jacobian_foam: texture_2d_array<f32>;
 @group(0) @binding(3) var ocean_sampler: sampler;
+@group(0) @binding(4) var vertex_sampler: sampler;
 
 fn light() -> OceanLight {
     var l: OceanLight;
@@ -113,13 +121,13 @@ fn vs_ocean(@builtin(vertex_index) vertex: u32, @builtin(instance_index) ring: u
     for (var c = 0u; c < cascade_count(); c++) {
         let cascade = globals.cascades[c];
         let lod = min(ocean_vertex_lod(spacing, cascade.y), cascade.w - 1.0);
-        let uv = ocean_uv(xz, cascade.x, cascade.z);
-        var d = textureSampleLevel(displacement_foam, ocean_sampler, uv, c, lod).xyz * weights.x;
-        var j = (textureSampleLevel(slope_jacobian_foam, ocean_sampler, uv, c, lod).z - 1.0) * weights.x;
+        let uv = ocean_uv(xz, globals.origins[c].xy, cascade.x, cascade.z);
+        var d = textureSampleLevel(displacement_foam, vertex_sampler, uv, c, lod).xyz * weights.x;
+        var j = (textureSampleLevel(slope_jacobian_foam, vertex_sampler, uv, c, lod).z - 1.0) * weights.x;
         if (weights.y > 0.0) {
             let shifted = uv + ocean_tiling_offset(c);
-            d += textureSampleLevel(displacement_foam, ocean_sampler, shifted, c, lod).xyz * weights.y;
-            j += (textureSampleLevel(slope_jacobian_foam, ocean_sampler, shifted, c, lod).z - 1.0) * weights.y;
+            d += textureSampleLevel(displacement_foam, vertex_sampler, shifted, c, lod).xyz * weights.y;
+            j += (textureSampleLevel(slope_jacobian_foam, vertex_sampler, shifted, c, lod).z - 1.0) * weights.y;
         }
         displacement += d;
         jacobian += j;
@@ -159,8 +167,8 @@ fn unresolved_variance(k: f32) -> vec2<f32> {
 @fragment
 fn fs_ocean(in: WaterVarying) -> @location(0) vec4<f32> {
     let xz = in.undisplaced;
-    // Explicit gradients: the same for every look-up, valid across the tiles' wrap (where
-    // the uv jumps by 1) and usable in non-uniform control flow. Where the surface is
+    // Explicit gradients: the same for every look-up, usable in non-uniform control flow
+    // (the tiling breaker's second look-up is skipped near the eye). Where the surface is
     // squeezed or folds, the undisplaced point races across a triangle far faster than the
     // water drawn; the gradients are limited to 3 times the water's own, so that such a
     // triangle is not filtered (and foamed) flat as a whole.
@@ -179,7 +187,7 @@ fn fs_ocean(in: WaterVarying) -> @location(0) vec4<f32> {
     var foam = 0.0;
     for (var c = 0u; c < cascade_count(); c++) {
         let cascade = globals.cascades[c];
-        let uv = ocean_uv(xz, cascade.x, cascade.z);
+        let uv = ocean_uv(xz, globals.origins[c].xy, cascade.x, cascade.z);
         let ux = gx / cascade.x;
         let uy = gy / cascade.x;
         let a = textureSampleGrad(slope_jacobian_foam, ocean_sampler, uv, c, ux, uy);

@@ -26,11 +26,13 @@ const OCEAN_PI: f32 = 3.14159265;
 
 // ---- Texture coordinates, levels of detail and the tiling of the cascades ----
 
-// uv of world point `xz` (m) in a cascade of side `length` (m) and `size` texels a side.
-fn ocean_uv(xz: vec2<f32>, length: f32, size: f32) -> vec2<f32> {
-    // The remainder first keeps the uv small (precision) far from the origin; the sampler
-    // repeats anyway.
-    return (xz - length * floor(xz / length)) / length + vec2<f32>(0.5 / size);
+// uv of world point `xz` (m) in a cascade of side `length` (m) and `size` texels a side,
+// measured from `origin`, a tile corner (a multiple of `length` on both axes) near the eye:
+// uv stays small (precision) and continuous over the whole view, and the sampler's repeat
+// wraps it. (Taking the remainder of xz/L in the shader instead made uv jump from 1 to 0 at
+// every tile edge, and the 2×2 pixel quads across the jump drew a seam.)
+fn ocean_uv(xz: vec2<f32>, origin: vec2<f32>, length: f32, size: f32) -> vec2<f32> {
+    return (xz - origin) / length + vec2<f32>(0.5 / size);
 }
 
 // Mip level at which a cascade of texel size `texel` (m) is sampled by vertices `spacing` m

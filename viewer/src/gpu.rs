@@ -45,6 +45,7 @@ pub struct Globals {
     pub tiling: [f32; 4],
     pub table: [f32; 4],
     pub cascades: [[f32; 4]; MAX_CASCADES],
+    pub origins: [[f32; 4]; MAX_CASCADES],
     pub slope_table: [[f32; 4]; SLOPE_TABLE],
     pub levels: [[f32; 4]; MAX_RINGS],
 }
@@ -124,6 +125,8 @@ pub struct Renderer {
     globals: wgpu::Buffer,
     layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
+    /// Without anisotropy, for the vertex stage's explicit-LOD lookups.
+    vertex_sampler: wgpu::Sampler,
     textures: Option<OceanTextures>,
     ocean_pipeline: wgpu::RenderPipeline,
     sky_pipeline: wgpu::RenderPipeline,
@@ -192,6 +195,12 @@ impl Renderer {
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                     count: None,
                 },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 4,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -205,16 +214,20 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("ocean"),
-            address_mode_u: wgpu::AddressMode::Repeat,
-            address_mode_v: wgpu::AddressMode::Repeat,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Linear,
-            anisotropy_clamp: anisotropy.max(1),
-            ..Default::default()
-        });
+        let sampler_with = |anisotropy: u16| {
+            device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("ocean"),
+                address_mode_u: wgpu::AddressMode::Repeat,
+                address_mode_v: wgpu::AddressMode::Repeat,
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                mipmap_filter: wgpu::MipmapFilterMode::Linear,
+                anisotropy_clamp: anisotropy.max(1),
+                ..Default::default()
+            })
+        };
+        let sampler = sampler_with(anisotropy);
+        let vertex_sampler = sampler_with(1);
 
         let pipeline = |label: &str,
                         vs: &str,
@@ -343,6 +356,7 @@ impl Renderer {
             globals,
             layout,
             sampler,
+            vertex_sampler,
             textures: None,
             ocean_pipeline,
             sky_pipeline,
@@ -463,6 +477,10 @@ impl Renderer {
                     binding: 3,
                     resource: wgpu::BindingResource::Sampler(&self.sampler),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::Sampler(&self.vertex_sampler),
+                },
             ],
         });
         OceanTextures {
@@ -519,6 +537,13 @@ impl Renderer {
                 l / info.size as f32,
                 info.size as f32,
                 info.mip_levels as f32,
+            ];
+            let corner = |v: f32| (f64::from(v) / f64::from(l)).floor() * f64::from(l);
+            g.origins[c] = [
+                corner(view.eye.x) as f32,
+                corner(view.eye.z) as f32,
+                0.0,
+                0.0,
             ];
         }
         for (entry, t) in g.slope_table.iter_mut().zip(&info.slope_table) {
@@ -684,17 +709,20 @@ impl Renderer {
 }
 
 /// Triangle indices of the clipmap grid of (2m + 1)² vertices (index j·(2m + 1) + i): every
-/// cell, or for a ring every cell outside the m × m square of the next finer ring, whose
-/// lower corner lies at cell (m/2 + dx, m/2 + dz). Each cell is split along the diagonal
-/// from (i + 1, j) to (i, j + 1), as the crate's `triangle_indices`, so that a morphed 2×2
-/// block of a finer ring has the triangles of the coarser cell.
+/// cell, or for a ring every cell outside the m × m square of the next finer ring (whose
+/// lower corner lies at cell (m/2 + dx, m/2 + dz)) but its outermost cells: the ring overlaps
+/// the finer ring's border by one of its cells, where the finer ring is fully morphed into
+/// this ring's grid, so the two draw the same surface there. (Meeting edge to edge, they left
+/// hairline cracks in the rasterised picture.) Each cell is split along the diagonal from
+/// (i + 1, j) to (i, j + 1), as the crate's `triangle_indices`, so that a morphed 2×2 block
+/// of a finer ring has the triangles of the coarser cell.
 fn grid_indices(m: u32, hole: Option<(u32, u32)>) -> Vec<u32> {
     let side = 2 * m + 1;
     let mut indices = Vec::with_capacity((6 * 4 * m * m) as usize);
     for j in 0..2 * m {
         for i in 0..2 * m {
             if let Some((dx, dz)) = hole {
-                let inside = |c: u32, d: u32| c >= m / 2 + d && c < 3 * m / 2 + d;
+                let inside = |c: u32, d: u32| c > m / 2 + d && c + 1 < 3 * m / 2 + d;
                 if inside(i, dx) && inside(j, dz) {
                     continue;
                 }
@@ -866,17 +894,26 @@ fn boat() -> (Vec<BodyVertex>, Vec<u32>) {
 mod tests {
     use super::*;
 
-    /// A ring and the finer ring's square tile the ring's square exactly: every cell is drawn
-    /// once, for each hole offset (the cells a ring leaves out are those of the finer ring,
-    /// which covers m × m of its cells).
+    /// A ring leaves out the inside of the finer ring's square (m × m of its cells) less a
+    /// border of one cell, for each hole offset: the cells it draws, counted one by one, are
+    /// those outside the (m − 2)² square whose lower corner is at (m/2 + 1 + dx, m/2 + 1 + dz).
     #[test]
-    fn rings_leave_out_exactly_the_finer_square() {
+    fn rings_leave_out_the_finer_square_less_its_border() {
         let m = 8;
+        let side = 2 * m + 1;
         let full = grid_indices(m, None).len() / 6;
         assert_eq!(full, (4 * m * m) as usize);
-        for offset in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-            let ring = grid_indices(m, Some(offset)).len() / 6;
-            assert_eq!(ring + (m * m) as usize, full, "{offset:?}");
+        for (dx, dz) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            let indices = grid_indices(m, Some((dx, dz)));
+            assert_eq!(indices.len() / 6 + ((m - 2) * (m - 2)) as usize, full);
+            for cell in indices.chunks(6) {
+                let (i, j) = (cell[0] % side, cell[0] / side);
+                let hole = |c: u32, d: u32| (m / 2 + 1 + d..m / 2 + m - 1 + d).contains(&c);
+                assert!(
+                    !(hole(i, dx) && hole(j, dz)),
+                    "cell ({i}, {j}) drawn in the hole"
+                );
+            }
         }
     }
 }

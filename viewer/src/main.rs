@@ -100,8 +100,10 @@ struct State {
     hud: Hud,
     frames: usize,
     last: Instant,
-    /// Mean over the headless run: frame, step, upload (pack + write).
-    totals: [f64; 4],
+    /// Sums over the headless run (frame, step, upload = pack + write, query, wait) and the
+    /// frames they cover.
+    totals: [f64; 5],
+    counted: usize,
     dragging: Option<(f64, f64)>,
     button: bool,
     water_under_eye: f32,
@@ -341,7 +343,8 @@ impl State {
             },
             frames: 0,
             last: Instant::now(),
-            totals: [0.0; 4],
+            totals: [0.0; 5],
+            counted: 0,
             dragging: None,
             button: false,
             water_under_eye: 0.0,
@@ -537,12 +540,15 @@ impl State {
         self.hud.add(frame_ms, wait, times.pack + upload, times);
         self.hud.upload = upload;
         self.frames += 1;
-        if headless && self.frames > 1 {
-            // The first frame holds the start-up (pipelines, first upload): left out.
+        if headless && self.frames > 1 && capture.is_none() {
+            // The first frame holds the start-up (pipelines, first upload) and the last the
+            // screenshot's second rendering: both left out.
+            self.counted += 1;
             self.totals[0] += elapsed * 1e3;
             self.totals[1] += times.step;
             self.totals[2] += times.pack + upload;
             self.totals[3] += times.query;
+            self.totals[4] += wait;
         }
         if let Some((buffer, padded, (width, height))) = capture {
             let path = options.screenshot.as_ref().expect("a capture has a path");
@@ -551,13 +557,15 @@ impl State {
         }
         if let Some(n) = options.frames {
             if self.frames >= n {
-                let counted = (self.frames - 1).max(1) as f64;
+                let counted = self.counted.max(1) as f64;
                 println!(
-                    "frames {n}, mean frame {:.2} ms, step {:.2} ms, upload {:.2} ms, query {:.3} ms",
+                    "frames {n}, mean frame {:.2} ms, step {:.2} ms, upload {:.2} ms, query {:.3} ms, \
+                     wait {:.2} ms",
                     self.totals[0] / counted,
                     self.totals[1] / counted,
                     self.totals[2] / counted,
-                    self.totals[3] / counted
+                    self.totals[3] / counted,
+                    self.totals[4] / counted
                 );
                 return Ok(true);
             }

@@ -89,7 +89,7 @@ fn the_bindings_and_the_uniform_layout_are_the_viewers() {
     let (module, _) = validate("ocean_common.wgsl + ocean.wgsl", SHADER);
     let mut layouter = naga::proc::Layouter::default();
     layouter.update(module.to_ctx()).expect("layouts");
-    let mut seen = [false; 4];
+    let mut seen = [false; 5];
     for (_, global) in module.global_variables.iter() {
         let binding = global.binding.as_ref().expect("every global is bound");
         assert_eq!(binding.group, 0, "{:?}", global.name);
@@ -121,6 +121,7 @@ fn the_bindings_and_the_uniform_layout_are_the_viewers() {
                     std::mem::offset_of!(Globals, tiling),
                     std::mem::offset_of!(Globals, table),
                     std::mem::offset_of!(Globals, cascades),
+                    std::mem::offset_of!(Globals, origins),
                     std::mem::offset_of!(Globals, slope_table),
                     std::mem::offset_of!(Globals, levels),
                 ];
@@ -149,12 +150,12 @@ fn the_bindings_and_the_uniform_layout_are_the_viewers() {
                     }
                 ));
             }
-            3 => assert!(matches!(inner, TypeInner::Sampler { comparison: false })),
+            3 | 4 => assert!(matches!(inner, TypeInner::Sampler { comparison: false })),
             other => panic!("unexpected binding {other}"),
         }
         seen[binding.binding as usize] = true;
     }
-    assert_eq!(seen, [true; 4], "bindings 0–3");
+    assert_eq!(seen, [true; 5], "bindings 0–4");
 }
 
 /// Every entry point translates to GLSL 4.50 with naga's GLSL back end (the route to Godot's
