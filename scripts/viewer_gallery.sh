@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Makes the README's three viewer pictures, docs/images/viewer_{calm,fresh_breeze,storm}.png
-# (1280×720), with the real-time viewer rendering headless under a virtual X server. On a
-# machine without a GPU (Mesa's software Vulkan, lavapipe) with 4× MSAA and 16× anisotropic
-# filtering a frame takes tens of seconds, so each picture renders only a few frames.
+# (1280×720), with the real-time viewer rendering headless under a virtual X server, with 4×
+# MSAA and trilinear filtering: on a machine without a GPU (Mesa's software Vulkan, lavapipe)
+# anisotropic filtering makes a frame take minutes instead of about a second (a GPU runs the
+# viewer with 16× by default).
 # Needs: apt-get install -y xvfb mesa-vulkan-drivers libvulkan1 libxkbcommon-x11-0
 # Run from anywhere: bash scripts/viewer_gallery.sh
 set -euo pipefail
@@ -17,7 +18,7 @@ shot() {
     local name="$1"
     shift
     echo "== viewer_$name: $*"
-    xvfb-run -a -s "-screen 0 1920x1080x24" "$viewer" --frames 3 --hide-ui --msaa 4 --anisotropy 16 \
+    xvfb-run -a -s "-screen 0 1920x1080x24" "$viewer" --frames 2 --hide-ui --msaa 4 --anisotropy 1 \
         --width 1280 --height 720 --screenshot "$images/viewer_$name.png" "$@"
 }
 

@@ -231,9 +231,8 @@ fn ocean_normal_cdf(x: f32) -> f32 {
 }
 
 // Standard deviation of the foam rank below: 0.75 z + 0.5 s + 0.3 l with z, s, l of unit
-// variance, √(0.75² + 0.5² + 0.3²) = 0.950 (√(0.5² + 0.3²) = 0.583 without z; a sample of 300 000 points measured 0.949, and
-// thresholds at its normal quantiles covered 0.93–1.01 of the asked fraction from 0.1 % to
-// 80 %: docs/guide/shader.md).
+// variance, √(0.75² + 0.5² + 0.3²) = 0.950 (√(0.5² + 0.3²) = 0.583 without z). How well
+// thresholds at its normal quantiles keep the coverage: docs/guide/shader.md.
 const OCEAN_FOAM_RANK_SD: f32 = 0.95;
 
 // How much of the water at undisplaced point `xz` (m) foam covers, in [0, 1], from the foam
@@ -242,7 +241,7 @@ const OCEAN_FOAM_RANK_SD: f32 = 0.95;
 // `wind` and the pixel's `footprint` on the water (m). The coverage says how much of a cell
 // (3.9 m on the default ocean) is white, not where: the foam goes where the surface is most
 // compressed (lowest J: the crests that break), into streaks along the wind (value noise
-// stretched 28 × along it) and lace. Its area stays `coverage`: the rank of a point mixes
+// stretched 40 × along it) and lace. Its area stays `coverage`: the rank of a point mixes
 // the standardised compression z = −(J − 1)/σ_J, nearly Gaussian, with two standardised
 // noises, and the threshold is the rank's (1 − coverage) normal quantile. A footprint wider
 // than the detail sees the mean coverage.
@@ -255,8 +254,8 @@ fn ocean_foam(coverage: f32, jacobian: f32, jacobian_sd: f32, xz: vec2<f32>, win
     let crest = select(0.0, -(jacobian - 1.0) / max(jacobian_sd, 1e-3), has_crests);
     // Value noise has a standard deviation of 0.2149 (measured): these sums have 0.1637 and
     // 0.1550.
-    let streak = (0.7 * ocean_noise(vec2<f32>(along / 22.0, across / 0.8))
-        + 0.3 * ocean_noise(vec2<f32>(along / 5.0 + 3.1, across / 0.35)) - 0.5) / 0.1637;
+    let streak = (0.7 * ocean_noise(vec2<f32>(along / 40.0, across / 1.0))
+        + 0.3 * ocean_noise(vec2<f32>(along / 9.0 + 3.1, across / 0.4)) - 0.5) / 0.1637;
     let lace = (0.6 * ocean_noise(vec2<f32>(along, across) / 2.5 + vec2<f32>(7.3, 0.0))
         + 0.4 * ocean_noise(vec2<f32>(along, across) / 0.6) - 0.5) / 0.1550;
     let rank = 0.75 * crest + 0.5 * streak + 0.3 * lace;

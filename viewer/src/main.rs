@@ -540,7 +540,9 @@ impl State {
         self.hud.add(frame_ms, wait, times.pack + upload, times);
         self.hud.upload = upload;
         self.frames += 1;
-        if headless && self.frames > 1 && capture.is_none() {
+        // Short runs (two frames or fewer to count) count every frame.
+        let short = options.frames.is_some_and(|n| n <= 3);
+        if headless && (short || (self.frames > 1 && capture.is_none())) {
             // The first frame holds the start-up (pipelines, first upload) and the last the
             // screenshot's second rendering: both left out.
             self.counted += 1;

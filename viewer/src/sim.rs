@@ -155,19 +155,18 @@ impl Frame {
         let n = ocean.config().size;
         let cascades = ocean.cascades().len();
         let levels = mip_levels(n);
-        let mut offsets = Vec::with_capacity(levels);
-        let mut offset = 0;
-        for m in 0..levels {
-            offsets.push(offset);
-            let side = n >> m;
-            offset += side * side;
-        }
-        if offsets != self.level_offsets || self.displacement.len() != offset * cascades {
-            self.level_offsets = offsets;
-            self.layer_len = offset;
-            self.displacement = vec![[f16::ZERO; 4]; offset * cascades];
-            self.slope = vec![[f16::ZERO; 4]; offset * cascades];
-            self.scratch = vec![[0.0; 4]; offset];
+        let layer_len: usize = (0..levels).map(|m| (n >> m) * (n >> m)).sum();
+        let same = self.level_offsets.len() == levels
+            && self.layer_len == layer_len
+            && self.displacement.len() == layer_len * cascades;
+        if !same {
+            self.level_offsets = (0..levels)
+                .map(|m| (0..m).map(|k| (n >> k) * (n >> k)).sum())
+                .collect();
+            self.layer_len = layer_len;
+            self.displacement = vec![[f16::ZERO; 4]; layer_len * cascades];
+            self.slope = vec![[f16::ZERO; 4]; layer_len * cascades];
+            self.scratch = vec![[0.0; 4]; layer_len];
         }
     }
 }
