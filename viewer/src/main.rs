@@ -365,7 +365,10 @@ impl State {
             }
         };
         self.controls.error = None;
-        let change = if self.applied.config_differs(edited) {
+        // A new depth takes the rebuild path even once the weather changes live: the
+        // live-sea API may refuse a change of dispersion.
+        let depth_changed = self.applied.depth != edited.depth;
+        let change = if self.applied.config_differs(edited) || depth_changed {
             SeaChange::Rebuild {
                 spectrum,
                 config: edited.config(),
