@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Makes the README's three viewer pictures, docs/images/viewer_{calm,fresh_breeze,storm}.png
+# (1280×720), with the real-time viewer rendering headless under a virtual X server, with 4×
+# MSAA and trilinear filtering: on a machine without a GPU (Mesa's software Vulkan, lavapipe)
+# anisotropic filtering makes a frame take minutes instead of about a second (a GPU runs the
+# viewer with 16× by default).
+# Needs: apt-get install -y xvfb mesa-vulkan-drivers libvulkan1 libxkbcommon-x11-0
+# Run from anywhere: bash scripts/viewer_gallery.sh
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+images="$root/docs/images"
+mkdir -p "$images"
+
+cargo build --release --manifest-path "$root/Cargo.toml" -p ocean-fft-viewer
+viewer="$root/target/release/ocean-fft-viewer"
+
+shot() {
+    local name="$1"
+    shift
+    echo "== viewer_$name: $*"
+    xvfb-run -a -s "-screen 0 1920x1080x24" "$viewer" --frames 2 --hide-ui --msaa 4 --anisotropy 1 \
+        --width 1280 --height 720 --screenshot "$images/viewer_$name.png" "$@"
+}
+
+# A calm sea under a low sun: looking toward it, the glitter path to the horizon.
+shot calm --preset calm --camera 0,3,0 --heading 25 --pitch -4 --sun 6,30 --exposure 0.9
+# A fresh breeze (Beaufort 5) in the afternoon, the sun behind and to the side: whitecaps,
+# the sky in the waves, the buoys and boats riding them.
+shot fresh_breeze --preset fresh_breeze --camera 0,9,0 --heading 20 --pitch -7 --sun 35,160
+# The storm under an overcast sky, looking across the wind from 25 m up: whitecaps on the
+# crests and streaks of foam along the wind.
+shot storm --preset storm --camera 150,25,-400 --heading 100 --pitch -9
+
+ls -l "$images"/viewer_*.png

@@ -1,0 +1,337 @@
+// ocean-fft's reference shading functions: how to draw the water from the textures
+// `OceanState::pack_texels` (or `pack_texels_f16`) fills. No bindings and no entry points, so
+// that any pipeline can use them: the viewer (ocean.wgsl beside this file holds its bindings
+// and entry points, compiled as this file followed by that one) and an engine's material (in
+// Bevy, register this file as a shader library with `#define_import_path ocean_fft::common`
+// put before it). docs/guide/shader.md describes the recipe.
+//
+// Conventions (those of the crate):
+// - Right-handed, y up, metres; the sea is the (x, z) plane. A 2-vector of the sea holds
+//   [x, z]; a direction θ is (cos θ, sin θ) in (x, z). The wind blows toward `wind`.
+// - Texel (i, j) of a cascade of side L and N×N texels is the water displaced from the world
+//   grid point (x₀ + i·L/N, z₀ + j·L/N), for every tile origin (x₀, z₀) on a multiple of L:
+//   the textures repeat (address mode Repeat) and world point (x, z) reads at
+//   uv = (x, z)/L + ½/N (texel centres at (i + ½)/N, v = 0 at row 0 = z₀).
+// - Layouts (ocean_fft::TexelLayout): DisplacementFoam = (D_x, η, D_z, foam) in metres,
+//   SlopeJacobianFoam = (∂y/∂x, ∂y/∂z, J, foam), dimensionless. Displacements and slopes of
+//   the cascades add. The foam is the whole ocean's coverage in [0, 1] on the largest
+//   cascade's grid (cascade 0's alpha; the other cascades' alpha is 0): a fraction of each
+//   cell, not a picture of it, so the shader places it inside the cell.
+// - Textures are looked up at the *undisplaced* point: the vertex stage moves the grid point
+//   by the summed displacement, and the fragment stage reads slopes, Jacobian and foam at the
+//   undisplaced point it interpolates from the vertices.
+// - Radiance is linear RGB; the caller tone-maps (`ocean_tone_map`) or lets its engine do it.
+
+const OCEAN_PI: f32 = 3.14159265;
+
+// ---- Texture coordinates, levels of detail and the tiling of the cascades ----
+
+// uv of world point `xz` (m) in a cascade of side `length` (m) and `size` texels a side,
+// measured from `origin`, a tile corner (a multiple of `length` on both axes) near the eye:
+// uv stays small (precision) and continuous over the whole view, and the sampler's repeat
+// wraps it. (Taking the remainder of xz/L in the shader instead made uv jump from 1 to 0 at
+// every tile edge, and the 2×2 pixel quads across the jump drew a seam.)
+fn ocean_uv(xz: vec2<f32>, origin: vec2<f32>, length: f32, size: f32) -> vec2<f32> {
+    return (xz - origin) / length + vec2<f32>(0.5 / size);
+}
+
+// Mip level at which a cascade of texel size `texel` (m) is sampled by vertices `spacing` m
+// apart: two levels coarser than the spacing. A mip level is a 2×2 box mean, and a box of
+// width w passes a wave of length λ with amplitude |sinc(w/λ)|, which at one level coarser
+// (w = 2·spacing) still lets 20 % of the waves just below the vertices' Nyquist length through
+// and draws them as a moiré; at two levels (w = 4·spacing) the waves the vertices cannot hold
+// are averaged out (they stay in the fragment stage's normals).
+fn ocean_vertex_lod(spacing: f32, texel: f32) -> f32 {
+    return max(log2(spacing / texel) + 2.0, 0.0);
+}
+
+// Hash of an integer lattice point to [0, 1].
+fn ocean_hash(p: vec2<i32>) -> f32 {
+    var h = (u32(p.x) * 0x27d4eb2du) ^ (u32(p.y) * 0x165667b1u);
+    h = h ^ (h >> 15u);
+    h = h * 0x85ebca6bu;
+    h = h ^ (h >> 13u);
+    return f32(h & 0xffffu) / 65535.0;
+}
+
+// Smooth value noise in [0, 1] on a unit lattice (hashed corners, smoothstep blend); not
+// periodic, so patterns built on it never repeat with the cascades.
+fn ocean_noise(p: vec2<f32>) -> f32 {
+    let cell = floor(p);
+    let f = p - cell;
+    let u = f * f * (3.0 - 2.0 * f);
+    let i = vec2<i32>(cell);
+    let a = ocean_hash(i);
+    let b = ocean_hash(i + vec2<i32>(1, 0));
+    let c = ocean_hash(i + vec2<i32>(0, 1));
+    let d = ocean_hash(i + vec2<i32>(1, 1));
+    return mix(mix(a, b, u.x), mix(c, d, u.x), u.y);
+}
+
+// Second look-up offset (in uv) of cascade `c` against visible tiling: a fixed irrational
+// shift, different for each cascade, far larger than the waves' correlation length.
+fn ocean_tiling_offset(c: u32) -> vec2<f32> {
+    let fc = f32(c);
+    return fract(vec2<f32>(0.3819660 + 0.6180340 * fc, 0.7548777 + 0.5698403 * fc));
+}
+
+// Weights (a, b), a² + b² = 1, of a cascade's two look-ups at world point `xz`, `distance`
+// metres from the eye, for a tiling breaker of strength `strength` in [0, 1] whose pattern
+// has cells of `scale` metres. Within `near` metres of the eye (a = 1, b = 0) the water is
+// exactly the simulated one (what the CPU queries return); beyond 3·`near` a slow noise blends
+// in the second, shifted look-up. Two look-ups of a field at points much farther apart than
+// its correlation length are uncorrelated, so weights with a² + b² = 1 keep the variance of
+// heights, displacements and slopes, while the blend's pattern, which does not repeat, breaks
+// up the period L of every cascade.
+fn ocean_tiling_weights(xz: vec2<f32>, distance: f32, strength: f32, scale: f32, near: f32) -> vec2<f32> {
+    let ramp = smoothstep(near, 3.0 * near, distance) * strength;
+    let n = 0.65 * ocean_noise(xz / scale) + 0.35 * ocean_noise(xz / (0.37 * scale) + vec2<f32>(17.3, 5.1));
+    let angle = ramp * smoothstep(0.15, 0.85, n) * 0.5 * OCEAN_PI;
+    return vec2<f32>(cos(angle), sin(angle));
+}
+
+// ---- Surface from the summed textures ----
+
+// The unit normal of a surface of slope (∂y/∂x, ∂y/∂z) (the sum over the cascades' RG of
+// SlopeJacobianFoam), y up.
+fn ocean_normal(slope: vec2<f32>) -> vec3<f32> {
+    return normalize(vec3<f32>(-slope.x, 1.0, -slope.y));
+}
+
+// ---- Light ----
+
+// Everything the shading needs to know about the light and the water's colours.
+struct OceanLight {
+    // Unit vector toward the sun (y up).
+    sun_direction: vec3<f32>,
+    // 0 for a clear sky with a sun, 1 for a heavy overcast (no sun disc, no glitter).
+    overcast: f32,
+    // Sun irradiance on a surface facing it, linear RGB.
+    sun_colour: vec3<f32>,
+    // Distance in metres over which the haze takes 63 % of the light.
+    haze_distance: f32,
+    // Sky radiance at the zenith and at the horizon, linear RGB.
+    zenith: vec3<f32>,
+    horizon: vec3<f32>,
+    // Water: the colour of deep water and the subsurface tint of thin, high crests.
+    deep: vec3<f32>,
+    subsurface: vec3<f32>,
+}
+
+// Sky radiance in the unit direction `dir` (linear RGB); `with_sun` adds the sun's disc.
+// Clear: zenith to horizon gradient and a warm glow around the sun. Overcast: the CIE
+// standard overcast sky, L ∝ (1 + 2 sin θ)/3 (Moon & Spencer 1942), under a deck of cloud
+// masses 1 km up, fading toward the horizon where the deck is seen edge on.
+fn ocean_sky(light: OceanLight, dir: vec3<f32>, with_sun: bool) -> vec3<f32> {
+    let elevation = max(dir.y, 0.0);
+    let cosine = max(dot(dir, light.sun_direction), 0.0);
+    var clear = mix(light.horizon, light.zenith, pow(elevation, 0.45));
+    let sun_seen = 1.0 - light.overcast;
+    clear += vec3<f32>(1.0, 0.80, 0.55) * (0.25 * pow(cosine, 12.0) + 0.4 * pow(cosine, 400.0))
+        * length(light.sun_colour) * 0.26 * sun_seen;
+    if (with_sun && cosine > 0.99988) {
+        clear += light.sun_colour * 18.0 * sun_seen;
+    }
+    if (light.overcast <= 0.0) {
+        return clear;
+    }
+    let l = (1.0 + 2.0 * elevation) / 3.0;
+    let grey = mix(light.horizon, light.zenith, (l - 1.0 / 3.0) * 1.5) * (0.6 + 0.4 * l);
+    var overcast = grey;
+    if (elevation > 0.0) {
+        let deck = 1000.0 / max(dir.y, 0.02);
+        let p = dir.xz * deck / 900.0;
+        let clouds = 0.55 * ocean_noise(p) + 0.3 * ocean_noise(2.1 * p + vec2<f32>(5.2, 0.0))
+            + 0.15 * ocean_noise(4.3 * p + vec2<f32>(0.0, 1.7));
+        overcast = grey * (1.0 + 0.9 * sqrt(min(elevation, 1.0)) * (clouds - 0.5));
+    }
+    return mix(clear, overcast, light.overcast);
+}
+
+// Sky light on a horizontal surface, as radiance of a uniform sky: the mean of the zenith
+// and the horizon, half way to its grey (the sky near the horizon, seen by most of the
+// hemisphere, is paler than the zenith).
+fn ocean_sky_irradiance(light: OceanLight) -> vec3<f32> {
+    let sky = 0.5 * (light.zenith + light.horizon);
+    let grey = vec3<f32>(dot(sky, vec3<f32>(0.2126, 0.7152, 0.0722)));
+    return mix(sky, grey, 0.5);
+}
+
+// The colour distant water and air fade to in the horizontal direction of `dir`.
+fn ocean_haze_colour(light: OceanLight, dir: vec3<f32>) -> vec3<f32> {
+    let flat = vec3<f32>(dir.x, 0.0, dir.z);
+    let len = length(flat);
+    var horizontal = vec3<f32>(1.0, 0.0, 0.0);
+    if (len > 1e-6) {
+        horizontal = flat / len;
+    }
+    return ocean_sky(light, horizontal, false);
+}
+
+// Schlick's Fresnel reflectance of water (n = 1.33, F0 ≈ 0.02) at incidence cosine `c`.
+fn ocean_fresnel(c: f32) -> f32 {
+    let f0 = 0.0200593;
+    return f0 + (1.0 - f0) * pow(1.0 - clamp(c, 0.0, 1.0), 5.0);
+}
+
+// Sun glitter: radiance reflected toward `view` from a sun of irradiance 1 in direction
+// `sun` by facets tilted about the resolved normal `normal` with the anisotropic Gaussian
+// slope distribution of Cox & Munk (1954), variances `variance` = (along, across) the unit
+// horizontal `wind` (x, z): L = F p(ζ) / (4 cos θ_v cos⁴ β). The variances are what the pixel
+// does not resolve (sub-grid σ² plus the simulated slopes too small for its footprint), so a
+// distant sea turns into a wide, smooth glitter path instead of flickering points.
+fn ocean_glitter(normal: vec3<f32>, view: vec3<f32>, sun: vec3<f32>, wind: vec2<f32>, variance: vec2<f32>) -> f32 {
+    let half_vector = normalize(sun + view);
+    let wind3 = vec3<f32>(wind.x, 0.0, wind.y);
+    var t1 = wind3 - normal * dot(normal, wind3);
+    let t1_length = length(t1);
+    if (t1_length < 1e-5) {
+        t1 = vec3<f32>(1.0, 0.0, 0.0);
+    } else {
+        t1 = t1 / t1_length;
+    }
+    let t2 = cross(normal, t1);
+    let hn = max(dot(half_vector, normal), 1e-3);
+    let zeta = vec2<f32>(dot(half_vector, t1), dot(half_vector, t2)) / hn;
+    let v = max(variance, vec2<f32>(1e-5));
+    let density = exp(-0.5 * (zeta.x * zeta.x / v.x + zeta.y * zeta.y / v.y))
+        / (2.0 * OCEAN_PI * sqrt(v.x * v.y));
+    let cos_view = max(dot(normal, view), 0.05);
+    let fresnel = ocean_fresnel(dot(half_vector, view));
+    return density * fresnel / (4.0 * cos_view * hn * hn * hn * hn);
+}
+
+// ---- Foam ----
+
+// The standard normal quantile Φ⁻¹(p), p in (0, 1) (Acklam's rational approximation; a few
+// 10⁻⁷ relative in f64, ample here).
+fn ocean_probit(p_in: f32) -> f32 {
+    let p = clamp(p_in, 1e-6, 1.0 - 1e-6);
+    let low = 0.02425;
+    if (p < low || p > 1.0 - low) {
+        let q = sqrt(-2.0 * log(min(p, 1.0 - p)));
+        let x = (((((-0.007784894 * q - 0.32239646) * q - 2.400758) * q - 2.5497325) * q + 4.374664) * q + 2.938164)
+            / ((((0.007784696 * q + 0.32246713) * q + 2.445134) * q + 3.7544087) * q + 1.0);
+        return select(-x, x, p < low);
+    }
+    let q = p - 0.5;
+    let r = q * q;
+    return (((((-39.69683 * r + 220.9461) * r - 275.9285) * r + 138.35775) * r - 30.664799) * r + 2.5066283) * q
+        / (((((-54.4761 * r + 161.58583) * r - 155.699) * r + 66.80131) * r - 13.280682) * r + 1.0);
+}
+
+// The standard normal distribution function Φ(x) (Abramowitz & Stegun 7.1.26 for erf,
+// |error| < 1.5·10⁻⁷).
+fn ocean_normal_cdf(x: f32) -> f32 {
+    let t = abs(x) * 0.70710678;
+    let k = 1.0 / (1.0 + 0.3275911 * t);
+    let poly = k * (0.2548296 + k * (-0.2844967 + k * (1.4214137 + k * (-1.453152 + k * 1.0614054))));
+    let erf = 1.0 - poly * exp(-t * t);
+    return 0.5 * (1.0 + select(-erf, erf, x >= 0.0));
+}
+
+// Standard deviation of the foam rank below: 0.75 z + 0.5 s + 0.3 l with z, s, l of unit
+// variance, √(0.75² + 0.5² + 0.3²) = 0.950 (√(0.5² + 0.3²) = 0.583 without z). How well
+// thresholds at its normal quantiles keep the coverage: docs/guide/shader.md.
+const OCEAN_FOAM_RANK_SD: f32 = 0.95;
+
+// How much of the water at undisplaced point `xz` (m) foam covers, in [0, 1], from the foam
+// coverage `coverage` of its cell (the foam channel), the summed Jacobian `jacobian` (J − 1
+// of the cascades added, standard deviation `jacobian_sd` over the sea), the horizontal unit
+// `wind` and the pixel's `footprint` on the water (m). The coverage says how much of a cell
+// (3.9 m on the default ocean) is white, not where: the foam goes where the surface is most
+// compressed (lowest J: the crests that break), into streaks along the wind (value noise
+// stretched 40 × along it) and lace. Its area stays `coverage`: the rank of a point mixes
+// the standardised compression z = −(J − 1)/σ_J, nearly Gaussian, with two standardised
+// noises, and the threshold is the rank's (1 − coverage) normal quantile. A footprint wider
+// than the detail sees the mean coverage.
+fn ocean_foam(coverage: f32, jacobian: f32, jacobian_sd: f32, xz: vec2<f32>, wind: vec2<f32>, footprint: f32) -> f32 {
+    let f = clamp(coverage, 0.0, 1.0);
+    let along = dot(xz, wind);
+    let across = dot(xz, vec2<f32>(-wind.y, wind.x));
+    // Without choppiness J stays 1: the rank is then the noises alone.
+    let has_crests = jacobian_sd > 1e-3;
+    let crest = select(0.0, -(jacobian - 1.0) / max(jacobian_sd, 1e-3), has_crests);
+    // Value noise has a standard deviation of 0.2149 (measured): these sums have 0.1637 and
+    // 0.1550.
+    let streak = (0.7 * ocean_noise(vec2<f32>(along / 40.0, across / 1.0))
+        + 0.3 * ocean_noise(vec2<f32>(along / 9.0 + 3.1, across / 0.4)) - 0.5) / 0.1637;
+    let lace = (0.6 * ocean_noise(vec2<f32>(along, across) / 2.5 + vec2<f32>(7.3, 0.0))
+        + 0.4 * ocean_noise(vec2<f32>(along, across) / 0.6) - 0.5) / 0.1550;
+    let rank = 0.75 * crest + 0.5 * streak + 0.3 * lace;
+    let sd = select(0.5831, OCEAN_FOAM_RANK_SD, has_crests);
+    let threshold = sd * ocean_probit(1.0 - f);
+    let edge = sd * (0.12 + 0.5 * min(footprint, 1.0));
+    // Soft edges; and foam that the crests do not carry (streaks and patches left behind)
+    // thinner than a fresh whitecap: 45 % opaque where z ≤ 0.5, fully from z = 2.
+    let detailed = smoothstep(threshold - edge, threshold + edge, rank)
+        * mix(0.45, 1.0, smoothstep(0.5, 2.0, crest));
+    let blur = smoothstep(0.15, 1.2, footprint);
+    return mix(detailed, f * 0.7, blur);
+}
+
+// ---- The water's colour ----
+
+// What the fragment stage knows about one point of water.
+struct OceanSurface {
+    // Unit normal of the resolved surface (y up).
+    normal: vec3<f32>,
+    // Summed height η (m) and its standard deviation over the sea (m).
+    height: f32,
+    height_sd: f32,
+    // Foam cover of the pixel in [0, 1] (`ocean_foam`).
+    foam: f32,
+    // Slope variance (along, across the wind) that the pixel does not resolve.
+    variance: vec2<f32>,
+    // Horizontal unit wind (x, z).
+    wind: vec2<f32>,
+}
+
+// Linear radiance leaving the water toward an eye `distance` metres away along the unit
+// direction `dir` (from the eye to the water): Fresnel-weighted sky reflection, the body
+// colour of deep water with a subsurface tint on high crests, sun glitter, foam lit by sky
+// and sun, and haze.
+fn ocean_shade(light: OceanLight, surface: OceanSurface, dir: vec3<f32>, distance: f32) -> vec3<f32> {
+    let view = -dir;
+    var normal = surface.normal;
+    // Facing away (behind a crest or folded): bend it toward the viewer.
+    let facing = dot(normal, view);
+    if (facing < 0.02) {
+        normal = normalize(normal + view * (0.02 - facing));
+    }
+    let cosine = clamp(dot(normal, view), 0.0, 1.0);
+    let fresnel = ocean_fresnel(cosine);
+    var reflected = reflect(dir, normal);
+    reflected.y = abs(reflected.y);
+    let reflection = ocean_sky(light, normalize(reflected), false);
+
+    let sun = light.sun_direction;
+    // √(sin elevation): a crude dimming of a low sun by its longer path through the air.
+    let sun_strength = (1.0 - light.overcast) * sqrt(max(sun.y, 0.0));
+    let glitter = light.sun_colour * sun_strength
+        * ocean_glitter(normal, view, sun, surface.wind, surface.variance);
+
+    let crest = clamp(surface.height / max(surface.height_sd, 1e-4) * 0.5, 0.0, 1.5);
+    let toward = mix(0.35 + 0.65 * pow(max(dot(dir, sun), 0.0), 3.0), 0.3, light.overcast);
+    let ambient = ocean_sky_irradiance(light);
+    let luminance = dot(ambient, vec3<f32>(0.2126, 0.7152, 0.0722));
+    let body = light.deep * (0.6 + 0.8 * luminance) + light.subsurface * crest * toward
+        + light.deep * normal.y;
+
+    var colour = body * (1.0 - fresnel) + reflection * fresnel + glitter;
+    // Foam: a bright, rough, partly translucent scatterer (albedo about 0.85): the sky's
+    // light, the sun on the facets facing it, and a share of the sun scattered through it.
+    let sunlit = (1.0 - light.overcast) * (0.75 * max(dot(normal, sun), 0.0) + 0.25) * max(sun.y, 0.0);
+    let foam_light = vec3<f32>(0.85, 0.87, 0.88) * (1.2 * ambient + light.sun_colour * sunlit);
+    colour = mix(colour, foam_light, surface.foam);
+
+    let haze = 1.0 - exp(-distance / light.haze_distance);
+    return mix(colour, ocean_haze_colour(light, dir), haze);
+}
+
+// Linear radiance to display values in [0, 1] (still linear: write them to an sRGB target)
+// through the ACES filmic curve, Narkowicz's (2015) fit x(2.51x + 0.03)/(x(2.43x + 0.59) + 0.14).
+fn ocean_tone_map(colour: vec3<f32>, exposure: f32) -> vec3<f32> {
+    let x = max(colour * exposure, vec3<f32>(0.0));
+    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
+}

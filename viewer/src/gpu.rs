@@ -1,0 +1,919 @@
+//! The wgpu side: the reference shader's pipelines, the cascade textures, the clipmap mesh,
+//! the floating bodies' meshes, and drawing a frame into any target (the window or a
+//! screenshot).
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec3};
+use wgpu::util::DeviceExt;
+
+use crate::light::Light;
+use crate::sim::{Frame, OceanInfo, MAX_CASCADES, SLOPE_TABLE};
+
+/// The reference shader: the shading functions, then the viewer's bindings and entry points.
+pub const SHADER: &str = concat!(
+    include_str!("../../shaders/ocean_common.wgsl"),
+    "\n",
+    include_str!("../../shaders/ocean.wgsl")
+);
+
+/// Most rings of the clipmap (the size of `Globals::levels`).
+pub const MAX_RINGS: usize = 16;
+/// Vertex spacing of the finest ring, m.
+pub const FINEST_SPACING: f32 = 0.25;
+/// The mesh reaches this far from the eye, m (the horizon from 500 m up is 80 km away).
+pub const MESH_REACH: f32 = 120_000.0;
+/// Depth format (reversed depth: 1 near, 0 at infinity).
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Distance within which the water is exactly the simulated one (no tiling breaker), m.
+pub const EXACT_WITHIN: f32 = 400.0;
+
+/// The shader's `Globals` (ocean.wgsl), field for field; its size is checked against
+/// naga's layout of the WGSL struct in the tests.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub struct Globals {
+    pub view_proj: [[f32; 4]; 4],
+    pub inverse_view_proj: [[f32; 4]; 4],
+    pub eye: [f32; 4],
+    pub sun: [f32; 4],
+    pub sun_colour: [f32; 4],
+    pub zenith: [f32; 4],
+    pub horizon: [f32; 4],
+    pub deep: [f32; 4],
+    pub subsurface: [f32; 4],
+    pub wind: [f32; 4],
+    pub tiling: [f32; 4],
+    pub table: [f32; 4],
+    pub cascades: [[f32; 4]; MAX_CASCADES],
+    pub origins: [[f32; 4]; MAX_CASCADES],
+    pub slope_table: [[f32; 4]; SLOPE_TABLE],
+    pub levels: [[f32; 4]; MAX_RINGS],
+}
+
+/// One floating body's instance: model matrix columns and colour.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub struct BodyInstance {
+    pub model: [[f32; 4]; 4],
+    pub colour: [f32; 4],
+}
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+struct BodyVertex {
+    position: [f32; 3],
+    normal: [f32; 3],
+}
+
+/// A camera for one frame.
+#[derive(Debug, Clone, Copy)]
+pub struct View {
+    pub eye: Vec3,
+    pub forward: Vec3,
+    /// Vertical field of view, radians.
+    pub fov_y: f32,
+    /// Height of the eye above the water under it, m (picks the finest ring).
+    pub height_above_water: f32,
+}
+
+/// Settings of the rendering panel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RenderSettings {
+    /// Strength of the tiling breaker in [0, 1].
+    pub tiling: f32,
+    /// Cell of the tiling breaker's pattern, as a fraction of the largest cascade.
+    pub tiling_scale: f32,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            tiling: 1.0,
+            tiling_scale: 0.61,
+        }
+    }
+}
+
+/// Which bodies to draw: `(mesh, instances)`.
+pub struct Bodies<'a> {
+    pub buoys: &'a [BodyInstance],
+    pub boats: &'a [BodyInstance],
+}
+
+/// The cascade textures (two 2D arrays, a layer per cascade, with mipmaps).
+struct OceanTextures {
+    displacement: wgpu::Texture,
+    slope: wgpu::Texture,
+    bind_group: wgpu::BindGroup,
+    size: usize,
+    cascades: usize,
+    mips: usize,
+}
+
+/// Render targets of one size (multisampled colour and depth).
+struct Targets {
+    size: (u32, u32),
+    colour: Option<wgpu::TextureView>,
+    depth: wgpu::TextureView,
+}
+
+/// Everything the viewer draws with.
+pub struct Renderer {
+    /// The scene's format (sRGB) and the window's (its linear twin, for egui).
+    pub scene_format: wgpu::TextureFormat,
+    pub samples: u32,
+    globals: wgpu::Buffer,
+    layout: wgpu::BindGroupLayout,
+    sampler: wgpu::Sampler,
+    /// Without anisotropy, for the vertex stage's explicit-LOD lookups.
+    vertex_sampler: wgpu::Sampler,
+    textures: Option<OceanTextures>,
+    ocean_pipeline: wgpu::RenderPipeline,
+    sky_pipeline: wgpu::RenderPipeline,
+    body_pipeline: wgpu::RenderPipeline,
+    /// Index buffers of the clipmap: the full square, and the rings with their hole at each
+    /// of the four offsets.
+    full: (wgpu::Buffer, u32),
+    rings: [(wgpu::Buffer, u32); 4],
+    half_cells: u32,
+    buoy_mesh: (wgpu::Buffer, wgpu::Buffer, u32),
+    boat_mesh: (wgpu::Buffer, wgpu::Buffer, u32),
+    instances: wgpu::Buffer,
+    targets: Option<Targets>,
+    /// The rings of the last frame (for the HUD): count, vertices.
+    pub rings_drawn: (usize, usize),
+}
+
+/// Most body instances.
+pub const MAX_BODIES: usize = 64;
+
+impl Renderer {
+    /// Pipelines for targets of `scene_format` with `samples` samples per pixel, a clipmap of
+    /// rings `half_cells` cells from centre to edge (even), and textures sampled with up to
+    /// `anisotropy`× anisotropic filtering.
+    pub fn new(
+        device: &wgpu::Device,
+        scene_format: wgpu::TextureFormat,
+        samples: u32,
+        half_cells: u32,
+        anisotropy: u16,
+    ) -> Renderer {
+        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("ocean.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(SHADER.into()),
+        });
+        let texture_entry = |binding: u32| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2Array,
+                multisampled: false,
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ocean"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: wgpu::BufferSize::new(
+                            std::mem::size_of::<Globals>() as u64
+                        ),
+                    },
+                    count: None,
+                },
+                texture_entry(1),
+                texture_entry(2),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 3,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 4,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("ocean"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let globals = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("globals"),
+            size: std::mem::size_of::<Globals>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let sampler_with = |anisotropy: u16| {
+            device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("ocean"),
+                address_mode_u: wgpu::AddressMode::Repeat,
+                address_mode_v: wgpu::AddressMode::Repeat,
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                mipmap_filter: wgpu::MipmapFilterMode::Linear,
+                anisotropy_clamp: anisotropy.max(1),
+                ..Default::default()
+            })
+        };
+        let sampler = sampler_with(anisotropy);
+        let vertex_sampler = sampler_with(1);
+
+        let pipeline = |label: &str,
+                        vs: &str,
+                        fs: &str,
+                        buffers: &[Option<wgpu::VertexBufferLayout>],
+                        depth_write: bool,
+                        compare: wgpu::CompareFunction,
+                        cull: Option<wgpu::Face>| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers,
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some(fs),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format: scene_format,
+                        blend: None,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                primitive: wgpu::PrimitiveState {
+                    cull_mode: cull,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(depth_write),
+                    depth_compare: Some(compare),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: wgpu::MultisampleState {
+                    count: samples,
+                    ..Default::default()
+                },
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let ocean_pipeline = pipeline(
+            "ocean",
+            "vs_ocean",
+            "fs_ocean",
+            &[],
+            true,
+            wgpu::CompareFunction::GreaterEqual,
+            None,
+        );
+        let sky_pipeline = pipeline(
+            "sky",
+            "vs_sky",
+            "fs_sky",
+            &[],
+            false,
+            wgpu::CompareFunction::Always,
+            None,
+        );
+        let body_layouts = [
+            Some(wgpu::VertexBufferLayout {
+                array_stride: std::mem::size_of::<BodyVertex>() as u64,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3],
+            }),
+            Some(wgpu::VertexBufferLayout {
+                array_stride: std::mem::size_of::<BodyInstance>() as u64,
+                step_mode: wgpu::VertexStepMode::Instance,
+                attributes: &wgpu::vertex_attr_array![
+                    2 => Float32x4, 3 => Float32x4, 4 => Float32x4, 5 => Float32x4, 6 => Float32x4
+                ],
+            }),
+        ];
+        let body_pipeline = pipeline(
+            "bodies",
+            "vs_body",
+            "fs_body",
+            &body_layouts,
+            true,
+            wgpu::CompareFunction::GreaterEqual,
+            None,
+        );
+
+        let index_buffer = |label: &str, indices: &[u32]| {
+            let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytemuck::cast_slice(indices),
+                usage: wgpu::BufferUsages::INDEX,
+            });
+            (buffer, indices.len() as u32)
+        };
+        let m = half_cells.max(4) & !1;
+        let full = index_buffer("clipmap full", &grid_indices(m, None));
+        let rings = [(0, 0), (1, 0), (0, 1), (1, 1)]
+            .map(|offset| index_buffer("clipmap ring", &grid_indices(m, Some(offset))));
+        let vertex_buffer = |label: &str, vertices: &[BodyVertex]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytemuck::cast_slice(vertices),
+                usage: wgpu::BufferUsages::VERTEX,
+            })
+        };
+        let mesh = |label: &str, (vertices, indices): (Vec<BodyVertex>, Vec<u32>)| {
+            (
+                vertex_buffer(label, &vertices),
+                index_buffer(label, &indices).0,
+                indices.len() as u32,
+            )
+        };
+        let buoy_mesh = mesh("buoy", buoy());
+        let boat_mesh = mesh("boat", boat());
+        let instances = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("body instances"),
+            size: (MAX_BODIES * std::mem::size_of::<BodyInstance>()) as u64,
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Renderer {
+            scene_format,
+            samples,
+            globals,
+            layout,
+            sampler,
+            vertex_sampler,
+            textures: None,
+            ocean_pipeline,
+            sky_pipeline,
+            body_pipeline,
+            full,
+            rings,
+            half_cells: m,
+            buoy_mesh,
+            boat_mesh,
+            instances,
+            targets: None,
+            rings_drawn: (0, 0),
+        }
+    }
+
+    /// Uploads a frame's texels (creating the textures when the ocean's size changed).
+    pub fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, frame: &Frame) {
+        let info = &frame.info;
+        let fits = self.textures.as_ref().is_some_and(|t| {
+            t.size == info.size
+                && t.cascades == info.cascades
+                && t.mips == frame.level_offsets.len()
+        });
+        if !fits {
+            self.textures = Some(self.create_textures(
+                device,
+                info.size,
+                info.cascades,
+                frame.level_offsets.len(),
+            ));
+        }
+        let textures = self.textures.as_ref().expect("created above");
+        for (texture, texels) in [
+            (&textures.displacement, &frame.displacement),
+            (&textures.slope, &frame.slope),
+        ] {
+            for c in 0..info.cascades {
+                let layer = &texels[c * frame.layer_len..(c + 1) * frame.layer_len];
+                for (m, &offset) in frame.level_offsets.iter().enumerate() {
+                    let side = (info.size >> m) as u32;
+                    let count = (side * side) as usize;
+                    queue.write_texture(
+                        wgpu::TexelCopyTextureInfo {
+                            texture,
+                            mip_level: m as u32,
+                            origin: wgpu::Origin3d {
+                                x: 0,
+                                y: 0,
+                                z: c as u32,
+                            },
+                            aspect: wgpu::TextureAspect::All,
+                        },
+                        bytemuck::cast_slice(&layer[offset..offset + count]),
+                        wgpu::TexelCopyBufferLayout {
+                            offset: 0,
+                            bytes_per_row: Some(side * 8),
+                            rows_per_image: Some(side),
+                        },
+                        wgpu::Extent3d {
+                            width: side,
+                            height: side,
+                            depth_or_array_layers: 1,
+                        },
+                    );
+                }
+            }
+        }
+    }
+
+    fn create_textures(
+        &self,
+        device: &wgpu::Device,
+        size: usize,
+        cascades: usize,
+        mips: usize,
+    ) -> OceanTextures {
+        let texture = |label: &str| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: size as u32,
+                    height: size as u32,
+                    depth_or_array_layers: cascades as u32,
+                },
+                mip_level_count: mips as u32,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba16Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            })
+        };
+        let displacement = texture("displacement + foam");
+        let slope = texture("slope + jacobian + foam");
+        let view = |t: &wgpu::Texture| {
+            t.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2Array),
+                ..Default::default()
+            })
+        };
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ocean"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.globals.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&view(&displacement)),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&view(&slope)),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::Sampler(&self.vertex_sampler),
+                },
+            ],
+        });
+        OceanTextures {
+            displacement,
+            slope,
+            bind_group,
+            size,
+            cascades,
+            mips,
+        }
+    }
+
+    /// The uniforms of a frame seen from `view` at `size` pixels.
+    pub fn globals(
+        &mut self,
+        info: &OceanInfo,
+        view: &View,
+        light: &Light,
+        settings: &RenderSettings,
+        size: (u32, u32),
+    ) -> Globals {
+        let aspect = size.0 as f32 / size.1.max(1) as f32;
+        let projection = Mat4::perspective_infinite_reverse_rh(view.fov_y, aspect, 0.1);
+        let look = Mat4::look_to_rh(view.eye, view.forward, Vec3::Y);
+        let view_proj = projection * look;
+        let mut g = Globals::zeroed();
+        g.view_proj = view_proj.to_cols_array_2d();
+        g.inverse_view_proj = view_proj.inverse().to_cols_array_2d();
+        g.eye = [view.eye.x, view.eye.y, view.eye.z, info.time as f32];
+        g.sun = [light.sun.x, light.sun.y, light.sun.z, light.overcast];
+        g.sun_colour = light.sun_colour.extend(light.exposure).to_array();
+        g.zenith = light.zenith.extend(light.haze).to_array();
+        g.horizon = light.horizon.extend(settings.tiling).to_array();
+        g.deep = light.deep.extend(info.height_sd).to_array();
+        g.subsurface = light.subsurface.extend(info.jacobian_sd).to_array();
+        g.wind = [info.wind[0], info.wind[1], info.subgrid[0], info.subgrid[1]];
+        g.tiling = [
+            settings.tiling_scale * info.lengths[0],
+            EXACT_WITHIN,
+            info.cascades as f32,
+            0.0,
+        ];
+        let (k0, k1) = (info.slope_table[0][0], info.slope_table[SLOPE_TABLE - 1][0]);
+        g.table = [
+            k0,
+            (SLOPE_TABLE - 1) as f32 / (k1 / k0).ln().max(1e-6),
+            SLOPE_TABLE as f32,
+            0.0,
+        ];
+        for c in 0..info.cascades {
+            let l = info.lengths[c];
+            g.cascades[c] = [
+                l,
+                l / info.size as f32,
+                info.size as f32,
+                info.mip_levels as f32,
+            ];
+            let corner = |v: f32| (f64::from(v) / f64::from(l)).floor() * f64::from(l);
+            g.origins[c] = [
+                corner(view.eye.x) as f32,
+                corner(view.eye.z) as f32,
+                0.0,
+                0.0,
+            ];
+        }
+        for (entry, t) in g.slope_table.iter_mut().zip(&info.slope_table) {
+            *entry = [t[0], t[1], t[2], 0.0];
+        }
+        // The rings: spacing FINEST_SPACING·2^l from l_min, which grows with the height so
+        // that the finest ring's cells stay about the size of a pixel's footprint below.
+        let first = ((view.height_above_water.max(1.0) / 8.0)
+            .log2()
+            .floor()
+            .max(0.0) as usize)
+            .min(6);
+        let half = self.half_cells as f32;
+        let mut count = 0;
+        for l in first..first + MAX_RINGS {
+            let spacing = FINEST_SPACING * (1u32 << l) as f32;
+            let snap = 2.0 * spacing;
+            let centre = [
+                (view.eye.x / snap).floor() * snap,
+                (view.eye.z / snap).floor() * snap,
+            ];
+            g.levels[count] = [centre[0], centre[1], spacing, half];
+            count += 1;
+            if half * spacing >= MESH_REACH {
+                break;
+            }
+        }
+        g.tiling[3] = count as f32;
+        let side = (2 * self.half_cells + 1) as usize;
+        self.rings_drawn = (count, count * side * side);
+        g
+    }
+
+    fn targets(&mut self, device: &wgpu::Device, size: (u32, u32)) {
+        if self.targets.as_ref().is_some_and(|t| t.size == size) {
+            return;
+        }
+        let texture = |label: &str, format: wgpu::TextureFormat| {
+            device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size: wgpu::Extent3d {
+                        width: size.0,
+                        height: size.1,
+                        depth_or_array_layers: 1,
+                    },
+                    mip_level_count: 1,
+                    sample_count: self.samples,
+                    dimension: wgpu::TextureDimension::D2,
+                    format,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                    view_formats: &[],
+                })
+                .create_view(&Default::default())
+        };
+        self.targets = Some(Targets {
+            size,
+            colour: (self.samples > 1).then(|| texture("msaa colour", self.scene_format)),
+            depth: texture("depth", DEPTH_FORMAT),
+        });
+    }
+
+    /// Records the scene (sky, water, bodies) into `target` (a view of `scene_format`, `size`
+    /// pixels), with the uniforms `globals`.
+    pub fn draw(
+        &mut self,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
+        encoder: &mut wgpu::CommandEncoder,
+        (target, size): (&wgpu::TextureView, (u32, u32)),
+        globals: &Globals,
+        bodies: &Bodies,
+    ) {
+        let Some(textures) = self.textures.as_ref() else {
+            return;
+        };
+        queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(globals));
+        let buoys = bodies.buoys.len().min(MAX_BODIES);
+        let boats = bodies.boats.len().min(MAX_BODIES - buoys);
+        let stride = std::mem::size_of::<BodyInstance>() as u64;
+        if buoys > 0 {
+            queue.write_buffer(
+                &self.instances,
+                0,
+                bytemuck::cast_slice(&bodies.buoys[..buoys]),
+            );
+        }
+        if boats > 0 {
+            queue.write_buffer(
+                &self.instances,
+                buoys as u64 * stride,
+                bytemuck::cast_slice(&bodies.boats[..boats]),
+            );
+        }
+        let bind_group = textures.bind_group.clone();
+        self.targets(device, size);
+        let targets = self.targets.as_ref().expect("created above");
+        let (view, resolve) = match &targets.colour {
+            Some(msaa) => (msaa, Some(target)),
+            None => (target, None),
+        };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("scene"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: resolve,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: if resolve.is_some() {
+                        wgpu::StoreOp::Discard
+                    } else {
+                        wgpu::StoreOp::Store
+                    },
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.set_pipeline(&self.sky_pipeline);
+        pass.draw(0..3, 0..1);
+
+        pass.set_pipeline(&self.ocean_pipeline);
+        let count = globals.tiling[3] as usize;
+        for ring in 0..count {
+            let (buffer, indices) = if ring == 0 {
+                &self.full
+            } else {
+                // Offset of the finer ring's square in this ring's cells: 0 or 1 on each axis.
+                let finer = globals.levels[ring - 1];
+                let this = globals.levels[ring];
+                let dx = ((finer[0] - this[0]) / this[2]).round() as usize;
+                let dz = ((finer[1] - this[1]) / this[2]).round() as usize;
+                &self.rings[dx.min(1) + 2 * dz.min(1)]
+            };
+            pass.set_index_buffer(buffer.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..*indices, 0, ring as u32..ring as u32 + 1);
+        }
+
+        pass.set_pipeline(&self.body_pipeline);
+        for (mesh, range) in [
+            (&self.buoy_mesh, 0..buoys as u32),
+            (&self.boat_mesh, buoys as u32..(buoys + boats) as u32),
+        ] {
+            if range.is_empty() {
+                continue;
+            }
+            pass.set_vertex_buffer(0, mesh.0.slice(..));
+            pass.set_vertex_buffer(1, self.instances.slice(..));
+            pass.set_index_buffer(mesh.1.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..mesh.2, 0, range);
+        }
+    }
+}
+
+/// Triangle indices of the clipmap grid of (2m + 1)² vertices (index j·(2m + 1) + i): every
+/// cell, or for a ring every cell outside the m × m square of the next finer ring (whose
+/// lower corner lies at cell (m/2 + dx, m/2 + dz)) but its outermost cells: the ring overlaps
+/// the finer ring's border by one of its cells, where the finer ring is fully morphed into
+/// this ring's grid, so the two draw the same surface there. (Meeting edge to edge, they left
+/// hairline cracks in the rasterised picture.) Each cell is split along the diagonal from
+/// (i + 1, j) to (i, j + 1), as the crate's `triangle_indices`, so that a morphed 2×2 block
+/// of a finer ring has the triangles of the coarser cell.
+fn grid_indices(m: u32, hole: Option<(u32, u32)>) -> Vec<u32> {
+    let side = 2 * m + 1;
+    let mut indices = Vec::with_capacity((6 * 4 * m * m) as usize);
+    for j in 0..2 * m {
+        for i in 0..2 * m {
+            if let Some((dx, dz)) = hole {
+                let inside = |c: u32, d: u32| c > m / 2 + d && c + 1 < 3 * m / 2 + d;
+                if inside(i, dx) && inside(j, dz) {
+                    continue;
+                }
+            }
+            let a = j * side + i;
+            let (b, c, d) = (a + 1, a + side, a + side + 1);
+            indices.extend_from_slice(&[a, c, b, b, c, d]);
+        }
+    }
+    indices
+}
+
+/// A closed mesh from quads (counter-clockwise seen from outside).
+fn push_quad(vertices: &mut Vec<BodyVertex>, indices: &mut Vec<u32>, corners: [Vec3; 4]) {
+    let normal = (corners[1] - corners[0])
+        .cross(corners[2] - corners[0])
+        .normalize_or(Vec3::Y);
+    let base = vertices.len() as u32;
+    for c in corners {
+        vertices.push(BodyVertex {
+            position: c.to_array(),
+            normal: normal.to_array(),
+        });
+    }
+    indices.extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
+}
+
+/// A box from `min` to `max`.
+fn push_box(vertices: &mut Vec<BodyVertex>, indices: &mut Vec<u32>, min: Vec3, max: Vec3) {
+    let p = |x: bool, y: bool, z: bool| {
+        Vec3::new(
+            if x { max.x } else { min.x },
+            if y { max.y } else { min.y },
+            if z { max.z } else { min.z },
+        )
+    };
+    let faces = [
+        [
+            p(true, false, false),
+            p(true, true, false),
+            p(true, true, true),
+            p(true, false, true),
+        ],
+        [
+            p(false, false, true),
+            p(false, true, true),
+            p(false, true, false),
+            p(false, false, false),
+        ],
+        [
+            p(false, true, false),
+            p(false, true, true),
+            p(true, true, true),
+            p(true, true, false),
+        ],
+        [
+            p(false, false, true),
+            p(false, false, false),
+            p(true, false, false),
+            p(true, false, true),
+        ],
+        [
+            p(false, false, true),
+            p(true, false, true),
+            p(true, true, true),
+            p(false, true, true),
+        ],
+        [
+            p(true, false, false),
+            p(false, false, false),
+            p(false, true, false),
+            p(true, true, false),
+        ],
+    ];
+    for face in faces {
+        push_quad(vertices, indices, face);
+    }
+}
+
+/// A spar buoy: a cylinder 2.2 m tall (0.8 m of it under water) of radius 0.5 m with a cone
+/// on top, y up, the waterline at y = 0.
+fn buoy() -> (Vec<BodyVertex>, Vec<u32>) {
+    let (mut vertices, mut indices) = (Vec::new(), Vec::new());
+    let segments = 16;
+    let ring = |k: usize, r: f32, y: f32| {
+        let a = k as f32 / segments as f32 * std::f32::consts::TAU;
+        Vec3::new(r * a.cos(), y, r * a.sin())
+    };
+    for k in 0..segments {
+        let (k1, k0) = (k, k + 1);
+        push_quad(
+            &mut vertices,
+            &mut indices,
+            [
+                ring(k0, 0.5, -0.8),
+                ring(k0, 0.5, 1.4),
+                ring(k1, 0.5, 1.4),
+                ring(k1, 0.5, -0.8),
+            ],
+        );
+        push_quad(
+            &mut vertices,
+            &mut indices,
+            [
+                ring(k0, 0.5, 1.4),
+                ring(k0, 0.05, 2.6),
+                ring(k1, 0.05, 2.6),
+                ring(k1, 0.5, 1.4),
+            ],
+        );
+    }
+    (vertices, indices)
+}
+
+/// A small boat: a hull 9 m long (along x) and 3 m wide with a cabin, y up, the waterline at
+/// y = 0.
+fn boat() -> (Vec<BodyVertex>, Vec<u32>) {
+    let (mut vertices, mut indices) = (Vec::new(), Vec::new());
+    push_box(
+        &mut vertices,
+        &mut indices,
+        Vec3::new(-4.5, -0.7, -1.5),
+        Vec3::new(3.0, 0.9, 1.5),
+    );
+    // The bow: a wedge from the hull's front to a point.
+    let (top, bottom) = (0.9, -0.7);
+    let tip_top = Vec3::new(5.5, top + 0.3, 0.0);
+    let tip_bottom = Vec3::new(4.6, bottom, 0.0);
+    push_quad(
+        &mut vertices,
+        &mut indices,
+        [
+            Vec3::new(3.0, bottom, 1.5),
+            tip_bottom,
+            tip_top,
+            Vec3::new(3.0, top, 1.5),
+        ],
+    );
+    push_quad(
+        &mut vertices,
+        &mut indices,
+        [
+            tip_bottom,
+            Vec3::new(3.0, bottom, -1.5),
+            Vec3::new(3.0, top, -1.5),
+            tip_top,
+        ],
+    );
+    push_quad(
+        &mut vertices,
+        &mut indices,
+        [
+            Vec3::new(3.0, top, 1.5),
+            tip_top,
+            tip_top,
+            Vec3::new(3.0, top, -1.5),
+        ],
+    );
+    push_box(
+        &mut vertices,
+        &mut indices,
+        Vec3::new(-3.5, 0.9, -1.1),
+        Vec3::new(0.5, 2.6, 1.1),
+    );
+    (vertices, indices)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A ring leaves out the inside of the finer ring's square (m × m of its cells) less a
+    /// border of one cell, for each hole offset: the cells it draws, counted one by one, are
+    /// those outside the (m − 2)² square whose lower corner is at (m/2 + 1 + dx, m/2 + 1 + dz).
+    #[test]
+    fn rings_leave_out_the_finer_square_less_its_border() {
+        let m = 8;
+        let side = 2 * m + 1;
+        let full = grid_indices(m, None).len() / 6;
+        assert_eq!(full, (4 * m * m) as usize);
+        for (dx, dz) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            let indices = grid_indices(m, Some((dx, dz)));
+            assert_eq!(indices.len() / 6 + ((m - 2) * (m - 2)) as usize, full);
+            for cell in indices.chunks(6) {
+                let (i, j) = (cell[0] % side, cell[0] / side);
+                let hole = |c: u32, d: u32| (m / 2 + 1 + d..m / 2 + m - 1 + d).contains(&c);
+                assert!(
+                    !(hole(i, dx) && hole(j, dz)),
+                    "cell ({i}, {j}) drawn in the hole"
+                );
+            }
+        }
+    }
+}
