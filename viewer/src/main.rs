@@ -365,33 +365,35 @@ impl State {
             }
         };
         self.controls.error = None;
-        // A new depth takes the rebuild path even once the weather changes live: the
-        // live-sea API may refuse a change of dispersion.
-        let depth_changed = self.applied.depth != edited.depth;
-        let change = if self.applied.config_differs(edited) || depth_changed {
+        // What the ocean changes live goes through it (weather over the transition time, the
+        // choppiness, the foam settings, one at a time as the panels edit them); new grids
+        // take the rebuild path, and so does a new depth (`change_sea` falls back to it).
+        let mut only_choppiness = self.applied.clone();
+        only_choppiness.choppiness = edited.choppiness;
+        let mut only_foam = self.applied.clone();
+        only_foam.foam_coverage = edited.foam_coverage;
+        only_foam.foam_wind = edited.foam_wind;
+        let change = if self.applied.config_differs(edited)
+            || self.applied.foam_differs(edited) && only_foam != *edited
+        {
+            SeaChange::Rebuild {
+                spectrum,
+                config: edited.config(),
+            }
+        } else if only_choppiness == *edited {
+            SeaChange::Choppiness(edited.choppiness)
+        } else if only_foam == *edited {
+            SeaChange::Foam(edited.config().foam)
+        } else if self.applied.choppiness != edited.choppiness {
+            // A spectrum and a choppiness at once (a preset): the config carries both.
             SeaChange::Rebuild {
                 spectrum,
                 config: edited.config(),
             }
         } else {
-            let mut only_choppiness = self.applied.clone();
-            only_choppiness.choppiness = edited.choppiness;
-            if only_choppiness == *edited {
-                SeaChange::Choppiness(edited.choppiness)
-            } else {
-                let choppiness_too = self.applied.choppiness != edited.choppiness;
-                if choppiness_too {
-                    // A spectrum and a choppiness at once: the config carries the choppiness.
-                    SeaChange::Rebuild {
-                        spectrum,
-                        config: edited.config(),
-                    }
-                } else {
-                    SeaChange::Spectrum {
-                        spectrum,
-                        duration: f64::from(self.controls.transition),
-                    }
-                }
+            SeaChange::Spectrum {
+                spectrum,
+                duration: f64::from(self.controls.transition),
             }
         };
         self.applied = edited.clone();

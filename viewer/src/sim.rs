@@ -13,9 +13,10 @@ use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::thread::JoinHandle;
 use std::time::Instant;
 
+use ocean_fft::gpu::TexelLayout;
 use ocean_fft::half::f16;
 use ocean_fft::half::slice::HalfFloatSliceExt;
-use ocean_fft::{Error, OceanConfig, OceanState, Spectrum, SurfaceSample, TexelLayout};
+use ocean_fft::{Error, FoamConfig, OceanConfig, OceanState, Spectrum, SurfaceSample};
 use rayon::prelude::*;
 
 /// Most cascades the shader takes.
@@ -39,25 +40,33 @@ pub enum SeaChange {
     },
     /// A new choppiness, taking effect at the next step.
     Choppiness(f32),
+    /// New foam settings, live (`OceanState::set_foam_config`).
+    Foam(FoamConfig),
 }
 
 /// Every sea-state change of the viewer goes through here: new weather `spectrum` reached
-/// over `duration` seconds of simulated time, the time (and, once the live-sea API lands,
-/// the phases and the foam) kept.
+/// over `duration` seconds of simulated time with the ocean's live change
+/// (`OceanState::set_spectrum`: every wave's phase and the foam kept). A new water depth,
+/// which the live change refuses, takes the rebuild path: a new ocean at the same time.
 ///
 /// # Errors
 /// The crate's, for a spectrum the ocean refuses; nothing changes then.
 pub fn change_sea(ocean: &mut OceanState, spectrum: Spectrum, duration: f64) -> Result<(), Error> {
-    // Until `OceanState::set_spectrum(spectrum, duration)` exists: a new ocean with the same
-    // configuration at the same time, its foam spun up again (the transition is immediate).
-    let _ = duration;
-    let config = ocean.config().clone();
-    rebuild(ocean, spectrum, config)
+    match ocean.set_spectrum(spectrum.clone(), duration) {
+        Err(Error::NotApplicable {
+            name: "spectrum.dispersion",
+            ..
+        }) => {
+            let config = ocean.config().clone();
+            rebuild(ocean, spectrum, config)
+        }
+        other => other,
+    }
 }
 
 /// A new ocean of `spectrum` and `config` at the time of `ocean`, its foam spun up over
-/// [`PRE_ROLL_ON_CHANGE`] seconds; the path for changes of configuration (and of depth, which
-/// the live-sea API may refuse).
+/// [`PRE_ROLL_ON_CHANGE`] seconds; the path for new grids and for a new depth, which the live
+/// change refuses.
 ///
 /// # Errors
 /// The crate's; nothing changes then.
@@ -418,6 +427,7 @@ fn serve(ocean: &mut OceanState, info: &mut OceanInfo, request: Request) -> Box<
             SeaChange::Spectrum { spectrum, duration } => change_sea(ocean, spectrum, duration),
             SeaChange::Rebuild { spectrum, config } => rebuild(ocean, spectrum, config),
             SeaChange::Choppiness(lambda) => ocean.set_choppiness(lambda),
+            SeaChange::Foam(config) => ocean.set_foam_config(config),
         }
         .and_then(|()| static_info(ocean, info));
         frame.error = result.err().map(|e| e.to_string());
