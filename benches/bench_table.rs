@@ -129,11 +129,12 @@ struct Estimate {
 }
 
 fn estimate(criterion: &Path, group: &str, function: &str, n: usize) -> Option<Estimate> {
-    let path = criterion
-        .join(group)
-        .join(function)
-        .join(n.to_string())
-        .join("new/sample.json");
+    estimate_at(&criterion.join(group).join(function).join(n.to_string()))
+}
+
+/// [`estimate`] of a benchmark in directory `dir` (criterion's layout: `dir/new/sample.json`).
+fn estimate_at(dir: &Path) -> Option<Estimate> {
+    let path = dir.join("new/sample.json");
     let text = std::fs::read_to_string(&path).ok()?;
     let json: serde_json::Value = serde_json::from_str(&text).ok()?;
     let iters = json["iters"].as_array()?;
@@ -150,6 +151,54 @@ fn estimate(criterion: &Path, group: &str, function: &str, n: usize) -> Option<E
         median: median(&per_iteration),
         min: per_iteration.iter().copied().fold(f64::INFINITY, f64::min),
     })
+}
+
+/// The live sea's benches (`ocean_live`, no size parameter), each as (name, what it times).
+const LIVE: [(&str, &str); 5] = [
+    ("step", "a plain step"),
+    (
+        "set_spectrum_and_step",
+        "`set_spectrum` (10 s) and the step after it",
+    ),
+    (
+        "transition_step",
+        "the mean step of a whole change (preparation and blend)",
+    ),
+    (
+        "set_spectrum_0_and_step",
+        "`set_spectrum` with duration 0 (drawn at once) and the step after it",
+    ),
+    ("new", "`OceanState::new`"),
+];
+
+/// The live sea's table: each bench's fastest sample per round, its median over the rounds,
+/// and its ratio to the plain step of the same round; then the per-frame figures of
+/// `live-frames`.
+fn live(rounds: &[BTreeMap<String, Estimate>], frames: &str) -> String {
+    let mut out = String::from("| bench | what | time | ÷ step |\n|---|---|---|---|\n");
+    for (name, what) in LIVE {
+        let times: Vec<f64> = rounds
+            .iter()
+            .filter_map(|r| r.get(name).map(|e| e.min))
+            .collect();
+        let ratios: Vec<f64> = rounds
+            .iter()
+            .filter_map(|r| Some(r.get(name)?.min / r.get("step")?.min))
+            .collect();
+        if times.is_empty() {
+            continue;
+        }
+        out.push_str(&format!(
+            "| `{name}` | {what} | {} | {:.2} |\n",
+            time(median(&times)),
+            median(&ratios)
+        ));
+    }
+    out.push_str(&format!(
+        "\nEvery frame of a 10 s change against a plain step, fastest of 8 runs per frame \
+         (`cargo run --release -p ocean-fft-benches --bin live-frames`):\n\n```text\n{frames}\n```\n"
+    ));
+    out
 }
 
 /// Estimates of each (group, function, N), one per round.
@@ -300,12 +349,22 @@ fn main() {
         .flat_map(|f| THREADS.iter().map(move |t| format!("{f}_{t}t")))
         .collect();
     let scaling_functions = vec!["update".to_string(), "four_ffts".to_string()];
+    let mut live_rounds = Vec::new();
     for round in 0..options.rounds {
         if options.run {
             eprintln!("== round {} of {}", round + 1, options.rounds);
             run_bench("cascade", "cascade_update");
             run_bench("ocean", "ocean_step");
+            run_bench("ocean", "ocean_live");
         }
+        live_rounds.push(
+            LIVE.iter()
+                .filter_map(|(name, _)| {
+                    let dir = options.criterion.join("ocean_live").join(name);
+                    Some((name.to_string(), estimate_at(&dir)?))
+                })
+                .collect::<BTreeMap<_, _>>(),
+        );
         collect(
             &mut samples,
             &options.criterion,
@@ -331,6 +390,22 @@ fn main() {
         &scaling_functions,
         &LARGE_SIZES,
     );
+    let frames = if options.run {
+        command_output(
+            std::env::var("CARGO").as_deref().unwrap_or("cargo"),
+            &[
+                "run",
+                "--quiet",
+                "--release",
+                "-p",
+                "ocean-fft-benches",
+                "--bin",
+                "live-frames",
+            ],
+        )
+    } else {
+        String::from("(not run: --no-run)")
+    };
     let load_after = load_average();
 
     let rounds = options.rounds;
@@ -348,7 +423,8 @@ fn main() {
          ## Default `OceanState::step` ÷ the twelve bare FFTs of its three cascades \
          (`ocean_step`; target ≤ 1.2)\n\n{step}\n\
          ## Time and memory per cascade (`cascade_update` at 2 threads and `cascade_scaling`; \
-         memory from `CascadeConfig::memory_bytes`)\n\n{scaling}",
+         memory from `CascadeConfig::memory_bytes`)\n\n{scaling}\n\
+         ## A change of weather on the default ocean at 256², one thread (`ocean_live`)\n\n{live}",
         date = command_output("date", &["-u", "+%Y-%m-%d %H:%M UTC"]),
         commit = command_output("git", &["rev-parse", "--short", "HEAD"]),
         rustc = command_output("rustc", &["--version"]),
@@ -356,6 +432,7 @@ fn main() {
         update = comparison(&samples, "cascade_update", "update", "four_ffts", "update ÷ four_ffts"),
         step = comparison(&samples, "ocean_step", "step", "twelve_ffts", "step ÷ twelve_ffts"),
         scaling = scaling(&samples),
+        live = live(&live_rounds, &frames),
     );
     match options.out {
         None => println!("{table}"),
