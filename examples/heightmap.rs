@@ -35,7 +35,9 @@ use ocean_fft::{OceanConfig, OceanState, Spectrum, SurfaceSample};
 use plotters::prelude::*;
 
 use common::plot::{draw_on, metres, scale_bar};
-use common::{out_dir, save_gray16, save_gray8, save_rgb8, to_u16, to_u8, Args, Result};
+use common::{
+    out_dir, sample_window, save_gray16, save_gray8, save_rgb8, to_u16, to_u8, Args, Result,
+};
 
 /// Samples per pixel along each axis (averaged).
 const SUPER: usize = 3;
@@ -65,14 +67,7 @@ fn main() -> Result<()> {
     // The window: SUPER × SUPER samples per pixel at the centres of its sub-pixels.
     let n = pixels;
     let fine = n * SUPER;
-    let spacing = window / fine as f64;
-    let mut samples = vec![SurfaceSample::default(); fine * fine];
-    ocean.sample_grid(
-        [0.5 * spacing, 0.5 * spacing],
-        spacing,
-        [fine, fine],
-        &mut samples,
-    )?;
+    let samples = sample_window(&ocean, window, fine)?;
     let mut height = vec![0.0f32; n * n];
     let mut normal = vec![[0.0f32; 3]; n * n];
     let mut foam = vec![0.0f32; n * n];

@@ -43,7 +43,7 @@ use ocean_fft::{Error, OceanState, SeaState, SurfaceSample};
 use plotters::prelude::*;
 
 use common::plot::{draw_on, metres, scale_bar, FONT};
-use common::{out_dir, save_indexed, save_rgb8, shade, to_srgb, Args, Result};
+use common::{out_dir, sample_window, save_indexed, save_rgb8, shade, to_srgb, Args, Result};
 
 /// Samples per pixel along each axis (averaged).
 const SUPER: usize = 2;
@@ -76,7 +76,6 @@ fn main() -> Result<()> {
         .take(width * height * 3)
         .collect();
     let fine = tile_px * SUPER;
-    let mut samples = vec![SurfaceSample::default(); fine * fine];
     let sun = Vec3::new(-0.7, 0.35, -0.5).normalize();
 
     println!(
@@ -134,12 +133,7 @@ fn main() -> Result<()> {
         ocean.set_time(24.0)?;
         ocean.pre_roll(15.0, 0.1)?;
         let spacing = window / fine as f64;
-        ocean.sample_grid(
-            [0.5 * spacing, 0.5 * spacing],
-            spacing,
-            [fine, fine],
-            &mut samples,
-        )?;
+        let samples = sample_window(&ocean, window, fine)?;
         let repeat = repeat_correlation(&ocean, window, wavelength, 160)?;
         repeats.push((state.name(), window, repeat, tile_config.lengths.len()));
 

@@ -20,11 +20,11 @@
 mod common;
 
 use glam::Vec3;
-use ocean_fft::{OceanConfig, OceanState, Spectrum, SurfaceSample};
+use ocean_fft::{OceanConfig, OceanState, Spectrum};
 use plotters::prelude::*;
 
 use common::plot::{draw_legend, draw_on, draw_png, line_swatch, outlined_text, FONT, SERIES};
-use common::{out_dir, save_indexed, save_rgb8, shade, to_srgb, Args, Result};
+use common::{out_dir, sample_window, save_indexed, save_rgb8, shade, to_srgb, Args, Result};
 
 /// Steps of the simulation, s.
 const DT: f64 = 1.0 / 20.0;
@@ -142,13 +142,7 @@ fn measure(ocean: &OceanState, t: f64) -> Row {
 fn top_view(ocean: &OceanState, sigma_storm: f32) -> Result<Vec<u8>> {
     let fine = 2 * FRAME;
     let spacing = WINDOW / fine as f64;
-    let mut samples = vec![SurfaceSample::default(); fine * fine];
-    ocean.sample_grid(
-        [0.5 * spacing, 0.5 * spacing],
-        spacing,
-        [fine, fine],
-        &mut samples,
-    )?;
+    let samples = sample_window(ocean, WINDOW, fine)?;
     let sun = Vec3::new(-0.5, 0.6, -0.62).normalize();
     let mut pixels = vec![0u8; FRAME * FRAME * 3];
     for j in 0..FRAME {

@@ -16,12 +16,14 @@
 // Reference computations in the standard library's maths: tests are not simulation code.
 #![allow(clippy::disallowed_methods)]
 
+mod props;
+
 use ocean_fft::{
     Cascade, CascadeConfig, Determinism, Dispersion, Error, FoamConfig, OceanConfig, OceanState,
     Spectrum,
 };
 use proptest::prelude::*;
-use proptest::test_runner::{Config, RngSeed};
+use proptest::test_runner::Config;
 
 mod foam_model;
 
@@ -32,16 +34,7 @@ const CASES: u32 = 128;
 const SEED: u64 = 0x0cea_21f5;
 
 fn config() -> Config {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|value| value.parse().ok())
-        .unwrap_or(CASES);
-    Config {
-        cases,
-        rng_seed: RngSeed::Fixed(SEED),
-        failure_persistence: None,
-        ..Config::default()
-    }
+    props::config(CASES, SEED)
 }
 
 /// The next f32 up (`up`) or down from a positive finite `v`.

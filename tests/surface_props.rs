@@ -15,6 +15,8 @@
 // Reference computations in the standard library's maths: tests are not simulation code.
 #![allow(clippy::disallowed_methods)]
 
+mod props;
+
 use std::ops::Bound;
 
 use ocean_fft::inspect;
@@ -24,7 +26,7 @@ use ocean_fft::{
     OceanConfig, OceanState, QueryConfig, SeaState, Spectrum, Spreading, SurfaceSample,
 };
 use proptest::prelude::*;
-use proptest::test_runner::{Config, RngSeed};
+use proptest::test_runner::Config;
 
 /// Cases per property, unless `PROPTEST_CASES` says otherwise.
 const CASES: u32 = 256;
@@ -33,16 +35,7 @@ const CASES: u32 = 256;
 const SEED: u64 = 0x0cea_4fff;
 
 fn config() -> Config {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|value| value.parse().ok())
-        .unwrap_or(CASES);
-    Config {
-        cases,
-        rng_seed: RngSeed::Fixed(SEED),
-        failure_persistence: None,
-        ..Config::default()
-    }
+    props::config(CASES, SEED)
 }
 
 // ----------------------------------------------------------------------------------------

@@ -463,3 +463,21 @@ pub fn to_srgb(colour: Vec3) -> [u8; 3] {
         .to_array()
         .map(|c| (c.clamp(0.0, 1.0).powf(1.0 / 2.2) * 255.0).round() as u8)
 }
+
+/// Samples of the summed surface over the window [0, `window`]² (m) at `fine` × `fine`
+/// points, at the centres of its cells (`OceanState::sample_grid`).
+pub fn sample_window(
+    ocean: &ocean_fft::OceanState,
+    window: f64,
+    fine: usize,
+) -> Result<Vec<SurfaceSample>> {
+    let spacing = window / fine as f64;
+    let mut samples = vec![SurfaceSample::default(); fine * fine];
+    ocean.sample_grid(
+        [0.5 * spacing, 0.5 * spacing],
+        spacing,
+        [fine, fine],
+        &mut samples,
+    )?;
+    Ok(samples)
+}
