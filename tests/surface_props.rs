@@ -308,6 +308,10 @@ fn ocean_bits(ocean: &OceanState) -> Vec<u64> {
     }
     let c = ocean.foam_coverage();
     bits.extend([c.active, c.residual, c.total].map(|x| x.to_bits() as u64));
+    // What a change of weather or of the foam settings moves.
+    bits.push(ocean.expected_variance().to_bits());
+    bits.push(ocean.transition_progress().map_or(u64::MAX, f64::to_bits));
+    bits.push(ocean.foam_calibration().threshold.to_bits() as u64);
     bits
 }
 
@@ -839,6 +843,9 @@ enum OceanOp {
     ClearFoam,
     Snapshot,
     Restore,
+    SetSpectrum(Spectrum, f64),
+    SetFoamConfig(FoamConfig),
+    FoamAt(f64, f64),
 }
 
 fn any_ocean_op() -> impl Strategy<Value = OceanOp> {
@@ -866,6 +873,13 @@ fn any_ocean_op() -> impl Strategy<Value = OceanOp> {
         1 => (prop::collection::vec((any_f64(), any_f64()).prop_map(|(x, z)| [x, z]), 0..80), 0usize..3)
             .prop_map(|(points, extra)| OceanOp::Batch(points, extra)),
         1 => (any_f64(), any_f64()).prop_map(|(x, z)| OceanOp::BreakingAt(x, z)),
+        1 => (any_f64(), any_f64()).prop_map(|(x, z)| OceanOp::FoamAt(x, z)),
+        1 => (
+            valid_spectrum(),
+            prop_oneof![2 => Just(0.0), 3 => 0f64..0.5, 1 => any_f64()],
+        )
+            .prop_map(|(spectrum, duration)| OceanOp::SetSpectrum(spectrum, duration)),
+        1 => any_foam().prop_map(OceanOp::SetFoamConfig),
         1 => (
             prop_oneof![3 => 0f64..1.0, 1 => prop::sample::select(vec![-1.0, f64::NAN, f64::INFINITY, 1e300, 0.0])],
             prop_oneof![
@@ -935,6 +949,11 @@ fn query(ocean: &OceanState, op: &OceanOp) -> Result<(), Error> {
         OceanOp::BreakingAt(x, z) => ocean.breaking_at(x, z).map(|s| {
             assert!(s.is_finite() && s >= 0.0, "{s}");
         }),
+        OceanOp::FoamAt(x, z) => ocean.foam_at(x, z).map(|c| {
+            for v in [c.active, c.residual, c.total] {
+                assert!((0.0..=1.0).contains(&v), "{c:?}");
+            }
+        }),
         _ => unreachable!("not a query"),
     }
 }
@@ -975,7 +994,11 @@ proptest! {
                     | OceanOp::ClearFoam
                     | OceanOp::Restore
                     | OceanOp::PreRoll(..)
+                    | OceanOp::SetSpectrum(..)
+                    | OceanOp::SetFoamConfig(_)
             );
+            let spectrum_before = ocean.spectrum().clone();
+            let config_before = ocean.config().clone();
             let result = match *op {
                 OceanOp::Step(dt) => ocean.step(dt),
                 OceanOp::SetTime(t) => ocean.set_time(t),
@@ -996,6 +1019,12 @@ proptest! {
                 OceanOp::Restore => ocean.restore(&saved).map(|()| {
                     assert_eq!(ocean.snapshot(), saved, "restore did not restore");
                 }),
+                OceanOp::SetSpectrum(ref spectrum, duration) => ocean
+                    .set_spectrum(spectrum.clone(), duration)
+                    .map(|()| assert_eq!(ocean.spectrum(), spectrum)),
+                OceanOp::SetFoamConfig(foam) => ocean
+                    .set_foam_config(foam)
+                    .map(|()| assert_eq!(ocean.config().foam, foam)),
                 _ => query(&ocean, op),
             };
             match result {
@@ -1008,6 +1037,8 @@ proptest! {
                 Err(error) => {
                     check_error(&error);
                     prop_assert_eq!(&before, &ocean_bits(&ocean), "failed {:?} changed state", op);
+                    prop_assert_eq!(&spectrum_before, ocean.spectrum(), "failed {:?}", op);
+                    prop_assert_eq!(&config_before, ocean.config(), "failed {:?}", op);
                 }
             }
         }
