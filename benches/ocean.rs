@@ -30,6 +30,10 @@
 //!   (building the ocean). `cargo run --release -p ocean-fft-benches --bin live-frames` times
 //!   every frame of a change against a plain step.
 //!
+//! - `ocean_second_order`: the default ocean's step with `OceanConfig::second_order` off and
+//!   on (`step_off_1t`, `step_on_1t`, `step_off_2t`, `step_on_2t`) at N = 128, 256 and 512,
+//!   each pair one right after the other.
+//!
 //! `cargo bench -p ocean-fft-benches --bench ocean [-- GROUP]`; the first line printed names
 //! the CPU.
 
@@ -377,6 +381,45 @@ fn live(c: &mut Criterion) {
     group.finish();
 }
 
+/// The default ocean at N with second order off or on.
+fn ocean_second_order(size: usize, second_order: bool) -> OceanState {
+    let spectrum = Spectrum::jonswap(10.0, 100_000.0).expect("valid spectrum");
+    let config = OceanConfig {
+        size,
+        second_order,
+        ..OceanConfig::default()
+    };
+    OceanState::new(spectrum, config).expect("valid ocean")
+}
+
+fn second_order(c: &mut Criterion) {
+    let pools: Vec<_> = THREADS.iter().map(|&t| (t, common::pool(t))).collect();
+    let mut group = c.benchmark_group("ocean_second_order");
+    group
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    for size in [128, 256, 512] {
+        group
+            .sample_size(samples(size))
+            .throughput(Throughput::Elements((size * size) as u64));
+        for (threads, pool) in &pools {
+            for (name, on) in [("off", false), ("on", true)] {
+                let mut state: Option<OceanState> = None;
+                group.bench_with_input(
+                    BenchmarkId::new(format!("step_{name}_{threads}t"), size),
+                    &size,
+                    |b, _| {
+                        let state = state.get_or_insert_with(|| ocean_second_order(size, on));
+                        pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step")))
+                    },
+                );
+            }
+        }
+    }
+    group.finish();
+}
+
 fn main() {
     common::print_machine();
     let mut criterion = Criterion::default().configure_from_args();
@@ -386,5 +429,6 @@ fn main() {
     determinism(&mut criterion);
     queries(&mut criterion);
     live(&mut criterion);
+    second_order(&mut criterion);
     criterion.final_summary();
 }

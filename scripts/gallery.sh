@@ -37,6 +37,8 @@ cp "$work/out/whitecaps.png" "$images/whitecaps.png"
 run weather --palette
 cp "$work/out/weather.png" "$images/weather.png"
 cp "$work/out/weather_strip.png" "$images/weather_strip.png"
+run second_order --palette
+cp "$work/out/second_order.png" "$images/second_order.png"
 
 ls -l "$images"
 du -ch "$images"/*.png | tail -n 1

@@ -38,6 +38,20 @@ impl RowFft {
             Determinism::SameMachine => FftPlanner::<f32>::new().plan_fft_inverse(n),
             Determinism::CrossPlatform => FftPlannerScalar::<f32>::new().plan_fft_inverse(n),
         };
+        Self::from_plan(fft)
+    }
+
+    /// The forward FFT of length `n` (the planner as in [`RowFft::new`]): the second-order
+    /// waves transform products of fields back to wave vectors.
+    pub(crate) fn new_forward(n: usize, determinism: Determinism) -> Self {
+        let fft = match determinism {
+            Determinism::SameMachine => FftPlanner::<f32>::new().plan_fft_forward(n),
+            Determinism::CrossPlatform => FftPlannerScalar::<f32>::new().plan_fft_forward(n),
+        };
+        Self::from_plan(fft)
+    }
+
+    fn from_plan(fft: Arc<dyn Fft<f32>>) -> Self {
         // `par_chunks_mut` needs a non-zero chunk length.
         let scratch_len = fft.get_inplace_scratch_len().max(1);
         RowFft { fft, scratch_len }

@@ -20,7 +20,9 @@
 //! here too), and when the foam's transport moved to a real-data transform (two rows packed
 //! in one complex row, half the columns transformed); every cascade entry stayed as it was.
 //! The query entries were recomputed once more when the foam's point interpolation became the
-//! queries' own bilinear stencil (the same weights summed in another order; 0.3).
+//! queries' own bilinear stencil (the same weights summed in another order; 0.3). The
+//! "second order 48²" entries were added with the second-order waves (0.3); every other entry
+//! stayed as it was.
 //!
 //! The hash is [`BitHash`] (FNV-1a over the little-endian bytes of each value's bit pattern),
 //! because std's `DefaultHasher` does not promise the same hashes across releases.
@@ -175,13 +177,26 @@ fn oceans() -> Vec<(&'static str, OceanState, Vec<f64>)> {
         .unwrap()
         .with_wind_direction(2.0)
         .unwrap();
-    d.set_spectrum(storm, 1.0).unwrap();
+    d.set_spectrum(storm.clone(), 1.0).unwrap();
+    // Second-order waves, through a change of weather too.
+    let mut e = OceanState::new(
+        Spectrum::jonswap(12.0, 150_000.0).unwrap(),
+        deterministic(OceanConfig {
+            size: 48,
+            lengths: vec![600.0, 140.0],
+            second_order: true,
+            ..OceanConfig::default()
+        }),
+    )
+    .unwrap();
+    e.set_spectrum(storm, 0.5).unwrap();
     let steps = vec![1.0 / 60.0, 1.0 / 30.0, 0.5, 0.0, 1.0 / 60.0, 3.25];
     vec![
         ("jonswap 64²", a, steps.clone()),
         ("tma 48²", b, steps.clone()),
         ("elfouhaily 34²", c, steps),
         ("live 32²", d, vec![1.0 / 30.0; 30]),
+        ("second order 48²", e, vec![1.0 / 30.0; 20]),
     ]
 }
 
@@ -262,6 +277,30 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("live 32²", "cascade 2 scalars", 0x6fc7dc5a9cda6310),
     ("live 32²", "foam", 0xbc28d13a7fb57809),
     ("live 32²", "queries", 0xb2e5dd3d2b87e8bc),
+    ("second order 48²", "cascade 0 h0", 0xfc12a5fce6cd8be1),
+    ("second order 48²", "cascade 0 height", 0x98ef3de42c9d7471),
+    (
+        "second order 48²",
+        "cascade 0 displacement",
+        0xd0c5d8086c573186,
+    ),
+    ("second order 48²", "cascade 0 slope", 0xe1a9a5583ff1df44),
+    ("second order 48²", "cascade 0 normal", 0x68db4d96cf2dd368),
+    ("second order 48²", "cascade 0 jacobian", 0x31bf22cfacc1bee3),
+    ("second order 48²", "cascade 0 scalars", 0xb4cc8456221e1cfb),
+    ("second order 48²", "cascade 1 h0", 0xf2ad86821598599b),
+    ("second order 48²", "cascade 1 height", 0x561847b307bb58d9),
+    (
+        "second order 48²",
+        "cascade 1 displacement",
+        0xec8621233236d740,
+    ),
+    ("second order 48²", "cascade 1 slope", 0x5cba594a800ca996),
+    ("second order 48²", "cascade 1 normal", 0xb779ac34879c4b1c),
+    ("second order 48²", "cascade 1 jacobian", 0x71b099333d0a39cb),
+    ("second order 48²", "cascade 1 scalars", 0x48ac7b89d920efd3),
+    ("second order 48²", "foam", 0x0ab480ca50208877),
+    ("second order 48²", "queries", 0x91f4822357c449fc),
 ];
 
 #[test]

@@ -218,6 +218,8 @@ mod guide_doc_tests {
     struct Errors;
     #[doc = include_str!("../docs/guide/weather.md")]
     struct Weather;
+    #[doc = include_str!("../docs/guide/cascades.md")]
+    struct Cascades;
 }
 
 // The README's example is a doc-test with or without features.

@@ -98,8 +98,9 @@ fn small(determinism: Determinism, repeat_period: Option<f32>) -> OceanConfig {
 /// calibration are those of an ocean built with the new spectrum at the same time: the
 /// change installs what `OceanState::new` computes, by the same code (checked bit for bit).
 /// Changes of wind speed, fetch, direction, spreading, swell and model, in both modes, with
-/// and without a loop, with `duration` 0 (the next step) and longer, and a second change in
-/// the middle of a first.
+/// and without a loop and with second-order waves (which follow the blended amplitudes:
+/// they are formed from the evolution table each step), with `duration` 0 (the next step)
+/// and longer, and a second change in the middle of a first.
 #[test]
 fn the_sea_after_a_change_is_the_new_sea_bit_for_bit() {
     let calm = Spectrum::jonswap(6.0, 40_000.0).unwrap();
@@ -116,14 +117,17 @@ fn the_sea_after_a_change_is_the_new_sea_bit_for_bit() {
         .with_wind_direction(-2.5)
         .unwrap();
     for determinism in [Determinism::SameMachine, Determinism::CrossPlatform] {
-        for repeat in [None, Some(40.0)] {
+        for (repeat, second_order) in [(None, false), (Some(40.0), false), (None, true)] {
             for (from, to, duration) in [
                 (&calm, &storm, 0.0),
                 (&calm, &storm, 2.0),
                 (&storm, &swell, 0.7),
                 (&swell, &calm, 0.0),
             ] {
-                let config = small(determinism, repeat);
+                let config = OceanConfig {
+                    second_order,
+                    ..small(determinism, repeat)
+                };
                 let mut ocean = OceanState::new(from.clone(), config.clone()).unwrap();
                 for _ in 0..5 {
                     ocean.step(0.1).unwrap();
@@ -139,7 +143,9 @@ fn the_sea_after_a_change_is_the_new_sea_bit_for_bit() {
                 finish_change(&mut ocean, 1.0 / 30.0, 400);
                 let mut fresh = OceanState::new(to.clone(), config.clone()).unwrap();
                 fresh.set_time(ocean.time()).unwrap();
-                let what = format!("{determinism:?} loop {repeat:?} duration {duration}");
+                let what = format!(
+                    "{determinism:?} loop {repeat:?} second order {second_order} duration {duration}"
+                );
                 assert_same_sea(&ocean, &fresh, &what);
                 // And it steps on as the new sea does.
                 ocean.step(0.25).unwrap();

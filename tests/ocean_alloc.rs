@@ -1,4 +1,5 @@
-//! `OceanState::step` allocates nothing once built, during a change of weather too: a counting
+//! `OceanState::step` allocates nothing once built, during a change of weather and with
+//! second-order waves too: a counting
 //! global allocator sees every allocation of every thread, rayon's workers included.
 //!
 //! The frames run inside `ThreadPool::install`, as a game that owns a pool does. Called from
@@ -21,12 +22,17 @@ fn stepping_and_querying_allocate_nothing() {
     let pools = counting::warm_pools(&[2]);
     let pool = &pools[0];
     let modes = [Determinism::SameMachine, Determinism::CrossPlatform];
-    for (parallel_cascades, determinism) in [(false, modes[0]), (true, modes[0]), (true, modes[1])]
-    {
+    for (parallel_cascades, determinism, second_order) in [
+        (false, modes[0], false),
+        (true, modes[0], false),
+        (true, modes[1], false),
+        (true, modes[0], true),
+    ] {
         let config = OceanConfig {
             size: 128,
             parallel_cascades,
             determinism,
+            second_order,
             ..OceanConfig::default()
         };
         let mut ocean = OceanState::new(spectrum.clone(), config).unwrap();
@@ -78,7 +84,7 @@ fn stepping_and_querying_allocate_nothing() {
         assert_eq!(
             after - before,
             0,
-            "parallel_cascades = {parallel_cascades}: {} allocations in 200 frames",
+            "parallel_cascades = {parallel_cascades}, second order {second_order}: {} allocations in 200 frames",
             after - before
         );
     }

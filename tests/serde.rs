@@ -472,6 +472,24 @@ fn fields_added_in_0_2_read_their_defaults_when_missing() {
 }
 
 #[test]
+fn configs_saved_before_second_order_load_with_it_off() {
+    let mut value = serde_json::to_value(OceanConfig::default()).unwrap();
+    assert!(value
+        .as_object_mut()
+        .unwrap()
+        .remove("second_order")
+        .is_some());
+    let loaded: OceanConfig = serde_json::from_value(value).unwrap();
+    assert!(!loaded.second_order);
+    assert_eq!(loaded, OceanConfig::default());
+    let on = OceanConfig {
+        second_order: true,
+        ..OceanConfig::default()
+    };
+    assert_eq!(round_trip(&on), on);
+}
+
+#[test]
 fn a_band_limit_that_json_cannot_hold_is_refused() {
     for bad in [f32::NAN, f32::NEG_INFINITY] {
         let config = CascadeConfig {

@@ -777,7 +777,7 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
             any::<bool>(),
         ),
         any_memory_limit(),
-        (any::<bool>(), any_determinism()),
+        (any::<bool>(), any_determinism(), any::<bool>()),
     )
         .prop_map(
             |(
@@ -791,7 +791,7 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
                 repeat_period,
                 (max_iterations, tolerance, bilinear),
                 memory_limit,
-                (parallel_cascades, determinism),
+                (parallel_cascades, determinism, second_order),
             )| {
                 let memory_limit = if size > 16 {
                     memory_limit.min(TEST_MEMORY_LIMIT)
@@ -820,6 +820,7 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
                     },
                     memory_limit,
                     determinism,
+                    second_order,
                 }
             },
         )

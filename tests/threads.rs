@@ -163,3 +163,34 @@ fn cascade_can_move_to_and_be_shared_with_other_threads() {
             .all(|(x, y)| x.to_bits() == y.to_bits()));
     });
 }
+
+/// With second-order waves (their own transforms and products, in parallel rows) the default
+/// ocean's buffers are the same bits on 1, 2 and 3 threads.
+#[test]
+fn second_order_is_bit_identical_for_1_2_and_3_threads() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let config = ocean_fft::OceanConfig {
+                size: 128,
+                second_order: true,
+                ..ocean_fft::OceanConfig::default()
+            };
+            let mut ocean =
+                ocean_fft::OceanState::new(Spectrum::jonswap(11.0, 120_000.0).unwrap(), config)
+                    .unwrap();
+            for _ in 0..3 {
+                ocean.step(0.7).unwrap();
+            }
+            let c = &ocean.cascades()[0];
+            let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let flat = |v: &[[f32; 2]]| v.iter().flatten().copied().collect::<Vec<_>>();
+            (bits(c.height()), bits(&flat(c.slope())))
+        })
+    };
+    let one = run(1);
+    assert!(run(2) == one && run(3) == one);
+}

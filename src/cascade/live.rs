@@ -254,7 +254,10 @@ impl Cascade {
     /// [`Error::AmplitudeTooLarge`] if they do not.
     pub(crate) fn check_change(&self) -> Result<(), Error> {
         match self.change.drawn {
-            Some(drawn) => check_amplitude(drawn.amplitude_bound, self.config.choppiness),
+            Some(drawn) => {
+                check_amplitude(drawn.amplitude_bound, self.config.choppiness)?;
+                self.check_second_order_bound(drawn.amplitude_bound)
+            }
             None => Ok(()),
         }
     }
@@ -351,10 +354,12 @@ impl Cascade {
     fn update_pruning(&mut self) {
         let n = self.n;
         let stride = row_stride(n);
+        // Rows that may receive second-order terms are written whatever their waves.
+        let second_top = self.second_order_top_row();
         // Which row pairs the update wrote so far, one bit each (N/2 ≤ 2048).
         let mut written = [0u64; 32];
         for i in 1..n / 2 {
-            if i <= self.live_pairs && !self.pruning[i].empty {
+            if i <= self.live_pairs && (!self.pruning[i].empty || i <= second_top) {
                 written[i / 64] |= 1 << (i % 64);
             }
         }
@@ -364,10 +369,11 @@ impl Cascade {
         let live = (1..n / 2)
             .rev()
             .find(|&i| !self.pruning[i].empty)
-            .unwrap_or(0);
+            .unwrap_or(0)
+            .max(second_top);
         for i in 1..n / 2 {
             let was_written = written[i / 64] & (1 << (i % 64)) != 0;
-            if was_written && (i > live || self.pruning[i].empty) {
+            if was_written && (i > live || (self.pruning[i].empty && i > second_top)) {
                 for row in [i, n - i] {
                     self.spectral[row * stride..(row + 1) * stride].fill(Complex32::default());
                 }

@@ -7,6 +7,7 @@ mod field;
 mod inspect;
 mod live;
 mod outputs;
+mod second_order;
 mod tables;
 #[cfg(test)]
 mod tests;
@@ -25,6 +26,7 @@ use crate::simd::Simd;
 use crate::spectrum::{SlopeVariance, Spectrum};
 
 pub(crate) use config::check_band;
+
 pub use config::CascadeConfig;
 pub use field::Field;
 
@@ -100,6 +102,8 @@ pub struct Cascade {
     jacobian: Vec<f32>,
     /// A live change of amplitudes (empty buffers until the first).
     change: live::AmplitudeChange,
+    /// Second-order bound waves, when enabled (see `OceanConfig::second_order`).
+    second_order: Option<Box<second_order::SecondOrder>>,
 }
 
 impl std::fmt::Debug for Cascade {
@@ -121,6 +125,11 @@ const TRANSFORMS: usize = 4;
 /// row, all fall into the same cache set and evict each other.
 pub(crate) fn row_stride(n: usize) -> usize {
     (TRANSFORMS * n).saturating_add(TILE)
+}
+
+/// Bytes the second-order state of an N grid holds at most.
+pub(crate) fn second_order_memory_bytes(n: usize) -> usize {
+    second_order::SecondOrder::memory_bytes(n)
 }
 
 /// Checks a simulation time `name`: finite, |t| ≤ [`Cascade::MAX_TIME`].
@@ -276,6 +285,7 @@ impl Cascade {
             normal: error::try_vec(points, [0.0, 1.0, 0.0])?,
             jacobian: error::try_vec(points, 1.0)?,
             change: live::AmplitudeChange::default(),
+            second_order: None,
         };
         cascade.update(0.0)?;
         Ok(cascade)

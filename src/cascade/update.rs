@@ -8,6 +8,7 @@ use super::evolve::{
     column_blocks, evolve_row_pair, fract_turns, packed_pair, zero_blocks, EvolveBuffers,
 };
 use super::outputs::{write_gradient, write_outputs, NormalBuffers};
+use super::second_order::{self, SecondOrder};
 use super::tables::EvolutionTable;
 use super::{check_time, row_stride, Cascade, TRANSFORMS};
 use crate::error::Error;
@@ -164,6 +165,9 @@ impl Cascade {
         // One job handed to rayon per update: inside it both passes run on the pool's
         // workers, whose own queues do not allocate (see `tests/alloc.rs`).
         rayon::scope(|_| {
+            if let Some(second) = self.second_order.as_deref_mut() {
+                second.compute(&self.evolution, phase_time);
+            }
             self.spectral_pass(phase_time);
             self.spatial_pass(gradient);
         });
@@ -190,6 +194,9 @@ impl Cascade {
             .tasks
             .pass1_pairs_per_task(pairs, rayon::current_num_threads());
         let simd = self.simd;
+        let second = self.second_order.as_deref();
+        // Rows up to this one may receive second-order terms, so are never skipped.
+        let second_top = second.map_or(0, SecondOrder::top_row);
 
         // Rows 1..=pairs, and their partners N − pairs..N − 1.
         let (row0, rest) = self.spectral.split_at_mut(stride);
@@ -219,6 +226,9 @@ impl Cascade {
                         row0[f * n + n - j] = minus[f];
                     }
                 }
+                if let Some(second) = second {
+                    second_order::add_to_row0(second.row(0), kz, row0);
+                }
                 rows.process(row0, scratch0);
             },
             || {
@@ -233,7 +243,7 @@ impl Cascade {
                         let mut buffers = EvolveBuffers::new();
                         for m in 0..count {
                             let i = task * per_task + m + 1;
-                            if pruning[i].empty {
+                            if pruning[i].empty && i > second_top {
                                 continue;
                             }
                             let upper = &mut uppers[m * stride..][..row_len];
@@ -256,6 +266,9 @@ impl Cascade {
                                     )
                                 },
                             );
+                            if let Some(second) = second.filter(|_| i <= second_top) {
+                                second_order::add_to_row_pair(second.row(i), kx, kz, upper, lower);
+                            }
                             rows.process(upper, scratch);
                             rows.process(lower, scratch);
                         }

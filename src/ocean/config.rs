@@ -100,6 +100,17 @@ pub struct OceanConfig {
     /// equally calibrated waves. Configs saved without it read back with the default.
     #[cfg_attr(feature = "serde", serde(default))]
     pub determinism: Determinism,
+    /// Second-order bound waves (default: `false`): crests higher and troughs shallower, as
+    /// at sea. The largest cascade's waves below half its Nyquist wave number (the energetic
+    /// peak of every preset) get the group-scale bound waves of second-order theory that the
+    /// horizontal displacement lacks (Longuet-Higgins 1963), added to the height and its
+    /// slopes, and so to the normals, the texels and every query; the horizontal
+    /// displacement, the Jacobian and the foam are unchanged. It costs the largest cascade
+    /// three transforms on a grid of about 3N/4 per update (see `docs/theory.md` and
+    /// `docs/performance.md`). Off, nothing changes. Configs saved without it read back
+    /// with it off.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub second_order: bool,
 }
 
 impl Default for OceanConfig {
@@ -118,6 +129,7 @@ impl Default for OceanConfig {
             query: QueryConfig::default(),
             memory_limit: CascadeConfig::DEFAULT_MEMORY_LIMIT,
             determinism: Determinism::SameMachine,
+            second_order: false,
         }
     }
 }
@@ -299,10 +311,16 @@ impl OceanConfig {
             Interpolation::CubicBSpline => super::spline::Spline::memory_bytes(self.size),
             Interpolation::Bilinear => 0,
         };
+        let second = if self.second_order {
+            crate::cascade::second_order_memory_bytes(self.size)
+        } else {
+            0
+        };
         cascade
             .saturating_add(spline)
             .saturating_mul(self.lengths.len())
             .saturating_add(foam)
+            .saturating_add(second)
     }
 
     /// The config of cascade `index` (its length, band, seed and determinism mode).

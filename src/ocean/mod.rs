@@ -62,7 +62,9 @@ impl OceanState {
     ///
     /// # Errors
     /// Those of [`OceanConfig::validate`] and of [`Cascade::new`] for each cascade;
-    /// [`Error::OutOfMemory`] if the system refuses the foam's buffers.
+    /// [`Error::AmplitudeTooLarge`] also if, with [`OceanConfig::second_order`], the
+    /// second-order terms could overflow f32; [`Error::OutOfMemory`] if the system refuses the
+    /// foam's or the second order's buffers.
     pub fn new(spectrum: Spectrum, config: OceanConfig) -> Result<OceanState, Error> {
         let bands = config.bands()?;
         let cascades = bands
@@ -71,6 +73,11 @@ impl OceanState {
             .map(|(index, &band)| Cascade::new(&spectrum, config.cascade_config(index, band)))
             .collect::<Result<Vec<_>, _>>()?;
         let mut cascades = cascades;
+        if config.second_order {
+            if let Some(first) = cascades.first_mut() {
+                first.enable_second_order()?;
+            }
+        }
         let foam = foam::Foam::new(&mut cascades, &config.foam, &spectrum)?;
         let cubic = config.query.interpolation == Interpolation::CubicBSpline;
         let splines = QuerySplines::new(
