@@ -13,6 +13,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::light::CascadeShadowConfigBuilder;
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{save_to_disk, Screenshot, ScreenshotCaptured};
@@ -126,6 +127,8 @@ fn scene(
 ) {
     commands.spawn((
         Camera3d::default(),
+        // The filmic curve the reference shader's palette was tuned with (ACES).
+        Tonemapping::AcesFitted,
         OceanCamera,
         Transform::from_xyz(0.0, 7.0, 24.0).looking_at(Vec3::new(0.0, 1.0, -40.0), Vec3::Y),
     ));
@@ -298,7 +301,7 @@ fn hud(
         let (x, z) = (eye.translation.x, eye.translation.z);
         if let (Some(height), Some(normal)) = (water.height(x, z), water.normal(x, z)) {
             let tilt = normal.angle_between(Vec3::Y).to_degrees();
-            text.0 += &format!("\nwater under the camera {height:+.2} m, tilted {tilt:.1}°");
+            text.0 += &format!("\nwater under the camera {height:+.2} m, tilted {tilt:.1} deg");
         }
     }
     // guide: end

@@ -506,9 +506,12 @@ fn follow_camera(
             &mut Visibility,
             &mut Mesh3d,
         ),
-        Without<OceanSky>,
+        (Without<OceanSky>, Without<Camera3d>),
     >,
-    mut sky: Query<(&mut Transform, &mut GlobalTransform), (With<OceanSky>, Without<OceanRing>)>,
+    mut sky: Query<
+        (&mut Transform, &mut GlobalTransform),
+        (With<OceanSky>, Without<OceanRing>, Without<Camera3d>),
+    >,
     mut materials: ResMut<Assets<OceanMaterial>>,
     mut skies: ResMut<Assets<OceanSkyMaterial>>,
 ) {
