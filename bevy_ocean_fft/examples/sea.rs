@@ -109,10 +109,10 @@ fn main() -> ExitCode {
     }
 }
 
-/// The sun: 22° up, ahead of the camera and a little to the right, so that its glitter
-/// path runs toward the viewer.
+/// The sun: 24° up, 30° to the right of the view, so that its glitter path runs toward the
+/// viewer on the right and the sky on the left is the clear sky away from the sun.
 fn sun_direction() -> Vec3 {
-    let (elevation, azimuth) = (22f32.to_radians(), (-80f32).to_radians());
+    let (elevation, azimuth) = (24f32.to_radians(), (-60f32).to_radians());
     Vec3::new(
         elevation.cos() * azimuth.cos(),
         elevation.sin(),
@@ -148,6 +148,12 @@ fn scene(
         }
         .build(),
     ));
+    // The sky's light on the shaded sides (Bevy's default, 80 cd/m², is a dim room's).
+    commands.insert_resource(GlobalAmbientLight {
+        color: Color::srgb(0.75, 0.85, 1.0),
+        brightness: 500.0,
+        ..default()
+    });
     let hull = meshes.add(Cuboid::new(2.4, 1.2, 6.0));
     let cabin = meshes.add(Cuboid::new(1.8, 1.0, 2.2));
     let mast = meshes.add(Cylinder::new(0.06, 5.0));

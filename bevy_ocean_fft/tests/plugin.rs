@@ -146,18 +146,11 @@ fn columns(body: &Buoyancy, transform: &Transform) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// A body dropped on a moderate sea settles at its water line and then follows the waves:
-/// its height minus the mean water height under its columns (from an ocean the test builds)
-/// averages the rest depth Archimedes gives, and its heave follows that water height.
-#[test]
-fn a_body_settles_at_its_water_line_and_follows_the_waves() {
-    let sea = settings(SeaState::ModerateBreeze, 10.0);
+/// Drops `body` on `sea` at (3, 2.5, −2) and, after 10 s of settling, records every frame
+/// for 15 s its height and the mean water height under its columns, the latter from an ocean
+/// the test builds itself.
+fn float(sea: &OceanSettings, body: &Buoyancy) -> Vec<(f32, f32)> {
     let mut app = app(sea.clone());
-    // A 2 × 2 × 2 m body of 1 t: draft m/(ρA) = 0.244 m, heave frequency √(ρgA/m) =
-    // 6.3 rad/s, far above the sea's peak (1.3 rad/s), so it should follow the long waves.
-    let body = Buoyancy::boat(2.0, 2.0, 2.0, 1000.0);
-    let rest = body.rest_depth();
-    assert!((rest - (1000.0 / (1025.0 * 4.0) - 1.0)).abs() < 1e-6);
     let entity = app
         .world_mut()
         .spawn((body.clone(), Transform::from_xyz(3.0, 2.5, -2.0)))
@@ -165,49 +158,73 @@ fn a_body_settles_at_its_water_line_and_follows_the_waves() {
     run_until(&mut app, "the first ocean", |w| {
         w.resource::<OceanStatus>().ready
     });
-
     let mut reference = OceanState::new(sea.spectrum.clone(), sea.config.clone()).unwrap();
     let mut samples = Vec::new();
     for frame in 0..1500 {
         app.update();
-        // Settling: 10 s.
         if frame < 600 {
             continue;
         }
         let transform = *app.world().get::<Transform>(entity).unwrap();
         // The ocean the fixed updates of this frame used is the one collected at its start.
-        let time = status(&app).time;
-        reference.set_time(time).unwrap();
-        let points = columns(&body, &transform);
+        reference.set_time(status(&app).time).unwrap();
+        let points = columns(body, &transform);
         let mut heights = vec![0.0; points.len()];
         reference.heights_at(&points, &mut heights).unwrap();
         let water = heights.iter().sum::<f32>() / heights.len() as f32;
         samples.push((transform.translation.y, water));
     }
-    let n = samples.len() as f32;
-    let mean_offset = samples.iter().map(|(y, h)| y - h).sum::<f32>() / n;
-    // In steady motion the mean buoyancy is the weight: mean offset = −rest depth. The mean
-    // acceleration over the 15 s window is at most 2·v_max/T (v_max < 1 m/s: 0.13 m/s², 1.4 %
-    // of g), and the tilt moves columns up and down symmetrically: 3 cm is 12 % of the draft.
+    // It stayed where it was put (kinematic mode moves y, pitch and roll only).
+    let transform = app.world().get::<Transform>(entity).unwrap();
+    assert_eq!((transform.translation.x, transform.translation.z), (3.0, -2.0));
+    samples
+}
+
+/// A body dropped on the sea settles at its water line (on a calm sea, where its columns stay
+/// in the water and the model is linear) and follows the waves (on a moderate sea): its
+/// height against the mean water height under its columns, the latter from an independent
+/// ocean, and the rest depth from Archimedes.
+#[test]
+fn a_body_settles_at_its_water_line_and_follows_the_waves() {
+    // A 2 × 2 × 2 m body of 1 t: draft m/(ρA) = 0.244 m, heave frequency √(ρgA/m) =
+    // 6.3 rad/s, damping ratio 0.35.
+    let body = Buoyancy::boat(2.0, 2.0, 2.0, 1000.0);
+    let rest = body.rest_depth();
+    assert!((rest - (1000.0 / (1025.0 * 4.0) - 1.0)).abs() < 1e-6);
+
+    // Calm (H_s 0.17 m): the columns never leave the water or go under, so the push is linear
+    // in the water height and its mean equals the weight when the mean acceleration vanishes:
+    // mean offset = −rest depth. Over 15 s the mean acceleration is at most 2·v_max/T
+    // (v_max < 0.3 m/s here: 0.4 % of g, 1 mm of draft); the drag's share, correlated with
+    // the submersion, is of the order of the relative motion squared: 1 cm (4 % of the
+    // draft) bounds both.
+    let calm = float(&settings(SeaState::Calm, 10.0), &body);
+    let n = calm.len() as f32;
+    let mean_offset = calm.iter().map(|(y, h)| y - h).sum::<f32>() / n;
     assert!(
-        (mean_offset + rest).abs() < 0.03,
-        "mean height above the water {mean_offset} m, expected {}",
+        (mean_offset + rest).abs() < 0.01,
+        "calm: mean height above the water {mean_offset} m, expected {}",
         -rest
     );
-    // Following: the error of y against (water − rest depth) is small beside the heave
-    // itself. A linear oscillator of natural frequency ω_n = 6.3 rad/s and damping ratio
-    // 0.35 driven at the peak frequency (1.3 rad/s) answers within |1 − H| ≈ 0.15 of the
-    // drive; the shorter waves of the spectrum do worse, so the bound is 0.35.
-    let mean_water = samples.iter().map(|(_, h)| h).sum::<f32>() / n;
-    let heave = (samples
+
+    // Moderate breeze (H_s 1.2 m, peak 1.3 rad/s): the body follows the water under it. A
+    // linear oscillator of natural frequency 6.3 rad/s and damping ratio 0.35 driven at the
+    // peak answers within |1 − H| ≈ 0.15 of the drive; the shorter waves of the spectrum do
+    // worse (and lift a column out of the water now and then, which sinks the body a little
+    // deeper on average), so the bound on the rms error is 0.35 of the water's rms motion.
+    let moderate = float(&settings(SeaState::ModerateBreeze, 10.0), &body);
+    let n = moderate.len() as f32;
+    let mean_water = moderate.iter().map(|(_, h)| h).sum::<f32>() / n;
+    let mean_offset = moderate.iter().map(|(y, h)| y - h).sum::<f32>() / n;
+    let heave = (moderate
         .iter()
         .map(|(_, h)| (h - mean_water).powi(2))
         .sum::<f32>()
         / n)
         .sqrt();
-    let error = (samples
+    let error = (moderate
         .iter()
-        .map(|(y, h)| (y - (h - rest)).powi(2))
+        .map(|(y, h)| (y - h - mean_offset).powi(2))
         .sum::<f32>()
         / n)
         .sqrt();
@@ -216,9 +233,12 @@ fn a_body_settles_at_its_water_line_and_follows_the_waves() {
         error < 0.35 * heave,
         "rms error {error} m against the water's rms motion {heave} m"
     );
-    // It stayed where it was put (kinematic mode moves y, pitch and roll only).
-    let transform = app.world().get::<Transform>(entity).unwrap();
-    assert_eq!((transform.translation.x, transform.translation.z), (3.0, -2.0));
+    eprintln!(
+        "calm: offset {:.4} m (Archimedes {:.4}); moderate: offset {mean_offset:.4} m, \
+         rms error {error:.3} m, water rms {heave:.3} m",
+        calm.iter().map(|(y, h)| y - h).sum::<f32>() / calm.len() as f32,
+        -rest
+    );
 }
 
 /// With a `BuoyancyForce` the plugin does not move the body and writes Archimedes' force
