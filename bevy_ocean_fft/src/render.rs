@@ -604,13 +604,13 @@ fn follow_camera(
         u.deep,
         u.subsurface,
     ] = light;
-    u.wind = Vec4::new(
-        info.wind[0],
-        info.wind[1],
-        info.subgrid[0],
-        info.subgrid[1],
+    u.wind = Vec4::new(info.wind[0], info.wind[1], info.subgrid[0], info.subgrid[1]);
+    u.tiling = Vec4::new(
+        0.61 * info.lengths[0],
+        EXACT_WITHIN,
+        info.cascades as f32,
+        half,
     );
-    u.tiling = Vec4::new(0.61 * info.lengths[0], EXACT_WITHIN, info.cascades as f32, half);
     let (k0, k1) = (info.slope_table[0][0], info.slope_table[SLOPE_TABLE - 1][0]);
     u.table = Vec4::new(
         k0,
@@ -656,9 +656,7 @@ fn extract_texels(
     commands.insert_resource(ExtractedTexels {
         generation: texels.generation,
         texels: texels.texels.clone(),
-        images: render
-            .as_ref()
-            .map(|r| (r.displacement.id(), r.slope.id())),
+        images: render.as_ref().map(|r| (r.displacement.id(), r.slope.id())),
     });
 }
 
@@ -673,8 +671,7 @@ fn upload_texels(
     let Some(extracted) = extracted else {
         return;
     };
-    let (Some(texels), Some((displacement, slope))) = (&extracted.texels, extracted.images)
-    else {
+    let (Some(texels), Some((displacement, slope))) = (&extracted.texels, extracted.images) else {
         return;
     };
     if extracted.generation == *uploaded {
@@ -696,10 +693,7 @@ fn upload_texels(
         return;
     }
     let start = Instant::now();
-    for (image, data) in [
-        (displacement, &texels.displacement),
-        (slope, &texels.slope),
-    ] {
+    for (image, data) in [(displacement, &texels.displacement), (slope, &texels.slope)] {
         for c in 0..info.cascades {
             for (m, &offset) in texels.level_offsets.iter().enumerate() {
                 let side = n >> m;

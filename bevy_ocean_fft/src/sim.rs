@@ -59,8 +59,14 @@ pub struct Texels {
     pub info: OceanInfo,
     /// f32 scratch: one layer's mip chain.
     scratch: Vec<[f32; 4]>,
-    /// The spectrum and choppiness the slope table was computed for.
-    table_for: Option<(Spectrum, f32)>,
+}
+
+/// The slope-variance table and the spectrum and choppiness it was computed for (32
+/// integrals of the spectrum: computed again only when they change).
+#[derive(Debug, Default)]
+struct SlopeTable {
+    key: Option<(Spectrum, f32)>,
+    table: [[f32; 3]; SLOPE_TABLE],
 }
 
 /// Mip levels of an N×N texture whose side halves while it is even.
@@ -71,7 +77,7 @@ pub fn mip_levels(n: usize) -> usize {
 impl Texels {
     /// Packs every cascade of `ocean` with its mip chains (allocates only when the grid
     /// changed since this buffer's last use).
-    fn pack(&mut self, ocean: &OceanState) -> Result<(), Error> {
+    fn pack(&mut self, ocean: &OceanState, slopes: &mut SlopeTable) -> Result<(), Error> {
         let n = ocean.config().size;
         let cascades = ocean.cascades().len().min(MAX_CASCADES);
         let levels = mip_levels(n);
@@ -125,17 +131,21 @@ impl Texels {
         info.wind = spectrum.wind_vector();
         let subgrid = ocean.subgrid_slope_variance();
         info.subgrid = [subgrid.along, subgrid.across];
-        let key = (spectrum.clone(), ocean.config().choppiness);
-        if self.table_for.as_ref() != Some(&key) {
+        let fresh = slopes
+            .key
+            .as_ref()
+            .is_some_and(|(s, c)| s == spectrum && *c == ocean.config().choppiness);
+        if !fresh {
             let bands = ocean.config().bands()?;
             let (bottom, top) = (bands[0].0.max(1e-3), bands[bands.len() - 1].1);
-            for (i, entry) in info.slope_table.iter_mut().enumerate() {
+            for (i, entry) in slopes.table.iter_mut().enumerate() {
                 let k = bottom * (top / bottom).powf(i as f32 / (SLOPE_TABLE - 1) as f32);
                 let v = spectrum.slope_variance(k, top);
                 *entry = [k, v.along, v.across];
             }
-            self.table_for = Some(key);
+            slopes.key = Some((spectrum.clone(), ocean.config().choppiness));
         }
+        info.slope_table = slopes.table;
         Ok(())
     }
 }
@@ -170,6 +180,7 @@ fn box_down(source: &[[f32; 4]], target: &mut [[f32; 4]], side: usize) {
 struct Stepped {
     ocean: OceanState,
     texels: Box<Texels>,
+    slopes: Box<SlopeTable>,
     errors: Vec<String>,
     step_ms: f64,
     pack_ms: f64,
@@ -193,8 +204,10 @@ pub struct OceanSim {
     refused: Option<OceanSettings>,
     step: Option<Task<Stepped>>,
     build: Option<Task<Built>>,
-    /// Texel buffers free for the next step.
+    /// Texel buffers free for the next step, and those the render world may still hold.
     pool: Vec<Box<Texels>>,
+    lent: Vec<Arc<Texels>>,
+    slopes: Option<Box<SlopeTable>>,
 }
 
 impl OceanSim {
@@ -285,12 +298,21 @@ pub(crate) fn collect(
             status.last_error = Some(error);
         }
         sim.ocean = Some(stepped.ocean);
+        sim.slopes = Some(stepped.slopes);
         let previous = texels.texels.replace(Arc::from(stepped.texels));
         texels.generation += 1;
-        // The render world may still hold the previous frame's texels for a frame: recycle
-        // them when it has let go.
-        if let Some(previous) = previous.and_then(|p| Arc::try_unwrap(p).ok()) {
-            sim.pool.push(Box::new(previous));
+        // The render world holds a frame's texels until its next extraction: recycle them
+        // once it has let go, so that steps reuse two or three buffers.
+        sim.lent.extend(previous);
+        let mut i = 0;
+        while i < sim.lent.len() {
+            if Arc::strong_count(&sim.lent[i]) == 1 {
+                if let Ok(free) = Arc::try_unwrap(sim.lent.swap_remove(i)) {
+                    sim.pool.push(Box::new(free));
+                }
+            } else {
+                i += 1;
+            }
         }
     }
     if sim.build.as_ref().is_some_and(|task| task.is_finished()) {
@@ -357,6 +379,7 @@ pub(crate) fn launch(
         return;
     };
     let mut texels = sim.pool.pop().unwrap_or_default();
+    let mut slopes = sim.slopes.take().unwrap_or_default();
     sim.step = Some(AsyncComputeTaskPool::get().spawn(async move {
         let mut errors = Vec::new();
         for change in changes {
@@ -374,12 +397,13 @@ pub(crate) fn launch(
             errors.push(format!("step refused: {error}"));
         }
         let stepped = Instant::now();
-        if let Err(error) = texels.pack(&ocean) {
+        if let Err(error) = texels.pack(&ocean, &mut slopes) {
             errors.push(format!("packing refused: {error}"));
         }
         Stepped {
             ocean,
             texels,
+            slopes,
             errors,
             step_ms: (stepped - start).as_secs_f64() * 1e3,
             pack_ms: stepped.elapsed().as_secs_f64() * 1e3,

@@ -53,9 +53,7 @@ impl Water<'_> {
 
     /// Everything about the surface above (x, z): height, displacement, slope, normal, foam.
     pub fn surface(&self, x: f32, z: f32) -> Option<SurfaceSample> {
-        self.ocean()?
-            .surface_at(f64::from(x), f64::from(z))
-            .ok()
+        self.ocean()?.surface_at(f64::from(x), f64::from(z)).ok()
     }
 
     /// Sea time of the water, s.

@@ -109,7 +109,11 @@ fn a_change_of_weather_is_a_transition_and_a_new_grid_a_rebuild() {
     assert!(progress.len() > 150, "{} frames of change", progress.len());
     assert!(progress.iter().any(|&w| w > 0.2 && w < 0.8), "{progress:?}");
     assert!(progress.windows(2).all(|p| p[1] >= p[0]), "{progress:?}");
-    assert_eq!(status(&app).rebuilds, 1, "a weather change must not rebuild");
+    assert_eq!(
+        status(&app).rebuilds,
+        1,
+        "a weather change must not rebuild"
+    );
     assert_eq!(status(&app).last_error, None);
     assert_eq!(status(&app).spectrum.as_ref(), Some(&target.spectrum));
 
@@ -176,7 +180,10 @@ fn float(sea: &OceanSettings, body: &Buoyancy) -> Vec<(f32, f32)> {
     }
     // It stayed where it was put (kinematic mode moves y, pitch and roll only).
     let transform = app.world().get::<Transform>(entity).unwrap();
-    assert_eq!((transform.translation.x, transform.translation.z), (3.0, -2.0));
+    assert_eq!(
+        (transform.translation.x, transform.translation.z),
+        (3.0, -2.0)
+    );
     samples
 }
 
@@ -228,7 +235,10 @@ fn a_body_settles_at_its_water_line_and_follows_the_waves() {
         .sum::<f32>()
         / n)
         .sqrt();
-    assert!(heave > 0.1, "the water under the body hardly moves: {heave} m");
+    assert!(
+        heave > 0.1,
+        "the water under the body hardly moves: {heave} m"
+    );
     assert!(
         error < 0.35 * heave,
         "rms error {error} m against the water's rms motion {heave} m"
@@ -290,9 +300,7 @@ fn forces_for_a_physics_engine_are_archimedes() {
         let mut expected_torque = Vec3::ZERO;
         for point in &body.points {
             let p = transform.transform_point(point.offset);
-            let h = reference
-                .height_at(f64::from(p.x), f64::from(p.z))
-                .unwrap();
+            let h = reference.height_at(f64::from(p.x), f64::from(p.z)).unwrap();
             let depth = (h - (p.y - 0.5 * point.height)).clamp(0.0, point.height);
             let up = Vec3::Y * SEA_WATER_DENSITY * GRAVITY * point.volume * depth / point.height;
             expected_force += up;
