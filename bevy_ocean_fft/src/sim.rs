@@ -179,7 +179,7 @@ fn box_down(source: &[[f32; 4]], target: &mut [[f32; 4]], side: usize) {
 /// A step's result, back from the task.
 struct Stepped {
     ocean: OceanState,
-    texels: Box<Texels>,
+    texels: Texels,
     slopes: Box<SlopeTable>,
     errors: Vec<String>,
     step_ms: f64,
@@ -205,7 +205,7 @@ pub struct OceanSim {
     step: Option<Task<Stepped>>,
     build: Option<Task<Built>>,
     /// Texel buffers free for the next step, and those the render world may still hold.
-    pool: Vec<Box<Texels>>,
+    pool: Vec<Texels>,
     lent: Vec<Arc<Texels>>,
     slopes: Option<Box<SlopeTable>>,
 }
@@ -299,7 +299,7 @@ pub(crate) fn collect(
         }
         sim.ocean = Some(stepped.ocean);
         sim.slopes = Some(stepped.slopes);
-        let previous = texels.texels.replace(Arc::from(stepped.texels));
+        let previous = texels.texels.replace(Arc::new(stepped.texels));
         texels.generation += 1;
         // The render world holds a frame's texels until its next extraction: recycle them
         // once it has let go, so that steps reuse two or three buffers.
@@ -308,7 +308,7 @@ pub(crate) fn collect(
         while i < sim.lent.len() {
             if Arc::strong_count(&sim.lent[i]) == 1 {
                 if let Ok(free) = Arc::try_unwrap(sim.lent.swap_remove(i)) {
-                    sim.pool.push(Box::new(free));
+                    sim.pool.push(free);
                 }
             } else {
                 i += 1;
