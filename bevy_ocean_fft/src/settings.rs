@@ -62,9 +62,9 @@ impl OceanSettings {
         self.config.foam = config.foam;
     }
 
-    /// Whether going from `self` to `other` needs a new ocean: a config that differs in
-    /// anything but the choppiness and the foam. (A new depth is found when the ocean
-    /// refuses the spectrum.)
+    /// Whether going from `self` to `other` needs a new ocean because of the grids: a config
+    /// that differs in anything but the choppiness and the foam. (The plugin also rebuilds
+    /// for a spectrum of another water depth, which `set_spectrum` would refuse.)
     pub fn needs_rebuild(&self, other: &OceanSettings) -> bool {
         let mut a = self.config.clone();
         a.choppiness = other.config.choppiness;
