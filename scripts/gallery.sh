@@ -40,5 +40,12 @@ cp "$work/out/weather_strip.png" "$images/weather_strip.png"
 run second_order --palette
 cp "$work/out/second_order.png" "$images/second_order.png"
 
+# The Bevy plugin's sea example (bevy_ocean_fft/), headless under Xvfb with Mesa's software
+# Vulkan (needs xvfb mesa-vulkan-drivers libvulkan1 libxkbcommon-x11-0; about a minute after
+# its build, which is long: see bevy_ocean_fft/README.md), without anisotropic filtering.
+cargo build --release --manifest-path "$root/Cargo.toml" -p bevy_ocean_fft --example sea
+(cd "$work" && xvfb-run -a -s "-screen 0 1920x1080x24" "$root/target/release/examples/sea" \
+    --frames 60 --anisotropy 1 --screenshot "$images/bevy_sea.png")
+
 ls -l "$images"
 du -ch "$images"/*.png | tail -n 1

@@ -1,6 +1,7 @@
 //! The Rust blocks of the guide's chapters (docs/guide/*.md) that rustdoc does not run
 //! (`rust,ignore`) are honest: each is either a verbatim copy of a region of a crate in
-//! clients/ that CI compiles, or says why it is not compiled. Every other ```rust block of a
+//! clients/ (or of the Bevy plugin's example) that CI compiles, or says why it is not
+//! compiled. Every other ```rust block of a
 //! chapter is a doc-test: src/lib.rs includes each chapter that has one (`guide_doc_tests`).
 //!
 //! In a chapter, the line before an ignored block is an HTML comment, either
@@ -19,6 +20,7 @@ const SOURCES: &[&str] = &[
     "clients/glam-0.33/src/lib.rs",
     "clients/engines-wgpu/src/lib.rs",
     "clients/engines-macroquad/src/lib.rs",
+    "bevy_ocean_fft/examples/sea.rs",
 ];
 
 /// A fenced code block of a chapter: its info string, the closest non-blank line above its

@@ -1,0 +1,391 @@
+//! The sea in Bevy: the ocean, a few floating boats, and a panel to change the weather live.
+//!
+//! ```text
+//! cargo run --release -p bevy_ocean_fft --example sea
+//! cargo run --release -p bevy_ocean_fft --example sea -- --frames 60 --screenshot out/bevy.png
+//! ```
+//!
+//! `--anisotropy 1` for a software rasteriser (as in CI): anisotropic filtering makes its
+//! frames take minutes. With `--frames N` it renders N frames and exits, printing
+//! `frames N, mean frame … ms, step … ms, upload … ms, …`; with `--screenshot FILE` it saves
+//! the last frame as a PNG first.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use bevy::core_pipeline::tonemapping::Tonemapping;
+use bevy::light::CascadeShadowConfigBuilder;
+use bevy::prelude::*;
+use bevy::render::view::screenshot::{save_to_disk, Screenshot, ScreenshotCaptured};
+use bevy::window::WindowResolution;
+use bevy_ocean_fft::prelude::*;
+use bevy_ocean_fft::UploadTime;
+
+/// The command line: `--frames N`, `--screenshot FILE`.
+#[derive(Resource, Debug, Clone, Default)]
+struct Options {
+    frames: Option<u64>,
+    screenshot: Option<PathBuf>,
+    anisotropy: u16,
+}
+
+fn parse() -> Result<Options, String> {
+    let mut options = Options {
+        anisotropy: 16,
+        ..Options::default()
+    };
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "--frames" => {
+                let value = args.next().ok_or("--frames needs a number")?;
+                let n: u64 = value
+                    .parse()
+                    .map_err(|_| format!("--frames: not a number: {value}"))?;
+                if n == 0 {
+                    return Err("--frames must be at least 1".into());
+                }
+                options.frames = Some(n);
+            }
+            "--screenshot" => {
+                options.screenshot = Some(args.next().ok_or("--screenshot needs a file")?.into());
+            }
+            "--anisotropy" => {
+                let value = args.next().ok_or("--anisotropy needs a number")?;
+                options.anisotropy = value
+                    .parse()
+                    .ok()
+                    .filter(|a| (1..=16).contains(a))
+                    .ok_or(format!("--anisotropy: 1 to 16, not {value}"))?;
+            }
+            "--help" | "-h" => {
+                return Err(
+                    "usage: sea [--frames N] [--screenshot FILE.png] [--anisotropy 1..16]".into(),
+                );
+            }
+            other => return Err(format!("unknown argument: {other} (try --help)")),
+        }
+    }
+    if options.screenshot.is_some() && options.frames.is_none() {
+        return Err("--screenshot needs --frames N (the frame to capture)".into());
+    }
+    Ok(options)
+}
+
+fn main() -> ExitCode {
+    let options = match parse() {
+        Ok(options) => options,
+        Err(message) => {
+            eprintln!("{message}");
+            return ExitCode::from(2);
+        }
+    };
+    // guide: app
+    let exit = App::new()
+        .add_plugins(DefaultPlugins.set(WindowPlugin {
+            primary_window: Some(Window {
+                title: "bevy_ocean_fft: sea".into(),
+                resolution: WindowResolution::new(1280, 720),
+                ..default()
+            }),
+            ..default()
+        }))
+        // The simulation, buoyancy, queries, and the water and sky drawn on this app's camera.
+        .add_plugins(OceanPlugin {
+            anisotropy: options.anisotropy,
+            ..default()
+        })
+        // A fresh breeze on the crate's default grids (three 256² cascades).
+        .insert_resource(OceanSettings::preset(SeaState::FreshBreeze))
+        .insert_resource(options)
+        .init_resource::<Stats>()
+        .add_systems(Startup, (scene, panel))
+        .add_systems(Update, (buttons, hud, frames))
+        .run();
+    // guide: end
+    match exit {
+        AppExit::Success => ExitCode::SUCCESS,
+        AppExit::Error(code) => ExitCode::from(code.get()),
+    }
+}
+
+/// The sun: 24° up, 30° to the right of the view, so that its glitter path runs toward the
+/// viewer on the right and the sky on the left is the clear sky away from the sun.
+fn sun_direction() -> Vec3 {
+    let (elevation, azimuth) = (24f32.to_radians(), (-60f32).to_radians());
+    Vec3::new(
+        elevation.cos() * azimuth.cos(),
+        elevation.sin(),
+        elevation.cos() * azimuth.sin(),
+    )
+}
+
+fn scene(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+) {
+    commands.spawn((
+        Camera3d::default(),
+        // The filmic curve the reference shader's palette was tuned with (ACES).
+        Tonemapping::AcesFitted,
+        OceanCamera,
+        Transform::from_xyz(0.0, 7.0, 24.0).looking_at(Vec3::new(0.0, 1.0, -40.0), Vec3::Y),
+    ));
+    // About 3.8 klx: with Bevy's default exposure (EV100 9.7) a white body facing the sun
+    // shows about 1.15, the brightness the reference shader is tuned for.
+    commands.spawn((
+        DirectionalLight {
+            illuminance: 3800.0,
+            shadow_maps_enabled: true,
+            ..default()
+        },
+        Transform::default().looking_to(-sun_direction(), Vec3::Y),
+        CascadeShadowConfigBuilder {
+            maximum_distance: 150.0,
+            first_cascade_far_bound: 25.0,
+            ..default()
+        }
+        .build(),
+    ));
+    // The sky's light on the shaded sides (Bevy's default, 80 cd/m², is a dim room's).
+    commands.insert_resource(GlobalAmbientLight {
+        color: Color::srgb(0.75, 0.85, 1.0),
+        brightness: 500.0,
+        ..default()
+    });
+    let hull = meshes.add(Cuboid::new(2.4, 1.2, 6.0));
+    let cabin = meshes.add(Cuboid::new(1.8, 1.0, 2.2));
+    let mast = meshes.add(Cylinder::new(0.06, 5.0));
+    let colours = [
+        Color::srgb(0.75, 0.12, 0.08),
+        Color::srgb(0.92, 0.90, 0.85),
+        Color::srgb(0.95, 0.65, 0.10),
+        Color::srgb(0.10, 0.25, 0.55),
+    ];
+    let white = materials.add(Color::srgb(0.9, 0.9, 0.88));
+    let places = [
+        Vec3::new(-7.0, 0.0, -8.0),
+        Vec3::new(6.0, 0.0, -18.0),
+        Vec3::new(-3.0, 0.0, -34.0),
+        Vec3::new(14.0, 0.0, -45.0),
+    ];
+    for (i, (place, colour)) in places.into_iter().zip(colours).enumerate() {
+        let heading = Quat::from_rotation_y(0.6 * i as f32 - 0.5);
+        // guide: boat
+        // A 6 × 2.4 × 1.2 m hull of 3 t: it heaves, pitches and rolls on the waves (the
+        // plugin moves it every fixed update; add a BuoyancyForce to hand the push to a
+        // physics engine instead).
+        commands
+            .spawn((
+                Name::new(format!("boat {i}")),
+                Buoyancy::boat(6.0, 2.4, 1.2, 3000.0),
+                Transform::from_translation(place).with_rotation(heading),
+                Mesh3d(hull.clone()),
+                MeshMaterial3d(materials.add(colour)),
+            ))
+            .with_children(|boat| {
+                boat.spawn((
+                    Mesh3d(cabin.clone()),
+                    MeshMaterial3d(white.clone()),
+                    Transform::from_xyz(0.0, 1.0, 0.8),
+                ));
+                boat.spawn((
+                    Mesh3d(mast.clone()),
+                    MeshMaterial3d(white.clone()),
+                    Transform::from_xyz(0.0, 3.0, -0.8),
+                ));
+            });
+        // guide: end
+    }
+}
+
+/// A weather button.
+#[derive(Component, Clone, Copy)]
+enum Choice {
+    Sea(SeaState),
+    Overcast,
+}
+
+#[derive(Component)]
+struct Hud;
+
+fn panel(mut commands: Commands) {
+    let font = TextFont::from_font_size(14.0);
+    commands
+        .spawn((
+            Node {
+                position_type: PositionType::Absolute,
+                left: px(10.0),
+                top: px(10.0),
+                flex_direction: FlexDirection::Column,
+                row_gap: px(4.0),
+                padding: UiRect::all(px(8.0)),
+                ..default()
+            },
+            BackgroundColor(Color::srgba(0.0, 0.0, 0.0, 0.45)),
+        ))
+        .with_children(|panel| {
+            panel.spawn((Text::new("Weather (10 s change)"), font.clone()));
+            let choices = SeaState::ALL
+                .into_iter()
+                .map(Choice::Sea)
+                .chain([Choice::Overcast]);
+            for choice in choices {
+                let label = match choice {
+                    Choice::Sea(state) => state.name().replace('_', " "),
+                    Choice::Overcast => "overcast / clear".to_string(),
+                };
+                panel
+                    .spawn((
+                        Button,
+                        choice,
+                        Node {
+                            padding: UiRect::axes(px(8.0), px(3.0)),
+                            ..default()
+                        },
+                        BackgroundColor(Color::srgba(0.2, 0.3, 0.4, 0.8)),
+                    ))
+                    .with_child((Text::new(label), font.clone()));
+            }
+            panel.spawn((Text::new(""), font.clone(), Hud));
+        });
+}
+
+// guide: weather
+fn buttons(
+    presses: Query<(&Interaction, &Choice), Changed<Interaction>>,
+    mut settings: ResMut<OceanSettings>,
+    mut appearance: ResMut<OceanAppearance>,
+) {
+    for (interaction, choice) in &presses {
+        if *interaction != Interaction::Pressed {
+            continue;
+        }
+        match *choice {
+            // The preset's weather on the running grids: a live change of 10 s.
+            Choice::Sea(state) => settings.set_weather(state),
+            Choice::Overcast => {
+                *appearance = if appearance.overcast > 0.5 {
+                    OceanAppearance::default()
+                } else {
+                    OceanAppearance::overcast()
+                };
+            }
+        }
+    }
+}
+// guide: end
+
+fn hud(
+    status: Res<OceanStatus>,
+    water: Water,
+    camera: Query<&Transform, With<OceanCamera>>,
+    mut text: Query<&mut Text, With<Hud>>,
+) {
+    let Ok(mut text) = text.single_mut() else {
+        return;
+    };
+    let Some(spectrum) = &status.spectrum else {
+        text.0 = "building the ocean…".into();
+        return;
+    };
+    let change = status
+        .transition_progress
+        .map(|w| format!(", changing {:.0} %", 100.0 * w))
+        .unwrap_or_default();
+    text.0 = format!(
+        "wind {:.1} m/s, Hs {:.2} m{change}\nstep {:.1} ms, pack {:.1} ms",
+        spectrum.wind_speed(),
+        spectrum.significant_wave_height(),
+        status.step_ms,
+        status.pack_ms,
+    );
+    // guide: query
+    // Gameplay queries: the water under the camera, from the sea this frame draws.
+    if let Ok(eye) = camera.single() {
+        let (x, z) = (eye.translation.x, eye.translation.z);
+        if let (Some(height), Some(normal)) = (water.height(x, z), water.normal(x, z)) {
+            let tilt = normal.angle_between(Vec3::Y).to_degrees();
+            text.0 += &format!("\nwater under the camera {height:+.2} m, tilted {tilt:.1} deg");
+        }
+    }
+    // guide: end
+    if let Some(error) = &status.last_error {
+        text.0.push_str(&format!("\n{error}"));
+    }
+}
+
+/// Frame timing for `--frames`.
+#[derive(Resource, Default)]
+struct Stats {
+    /// Frames since the ocean's first texels, and the sums of their times, ms.
+    counted: u64,
+    frame: f64,
+    step: f64,
+    pack: f64,
+    upload: f64,
+    wait: f64,
+    requested: bool,
+    saved: bool,
+}
+
+#[derive(Resource)]
+struct Saved;
+
+#[allow(clippy::too_many_arguments)]
+fn frames(
+    mut commands: Commands,
+    options: Res<Options>,
+    mut stats: ResMut<Stats>,
+    status: Res<OceanStatus>,
+    upload: Res<UploadTime>,
+    time: Res<Time<Real>>,
+    saved: Option<Res<Saved>>,
+    mut exit: MessageWriter<AppExit>,
+) {
+    let Some(n) = options.frames else {
+        return;
+    };
+    // Frames are counted from the first one drawn with the ocean (its build and the
+    // pipelines' compilation before it are not a frame's cost).
+    if status.steps < 2 {
+        return;
+    }
+    if stats.counted < n {
+        stats.counted += 1;
+        stats.frame += time.delta_secs_f64() * 1e3;
+        stats.step += status.step_ms;
+        stats.pack += status.pack_ms;
+        stats.upload += upload.ms();
+        stats.wait += status.wait_ms;
+        return;
+    }
+    if let (Some(path), false) = (&options.screenshot, stats.requested) {
+        stats.requested = true;
+        let path = path.clone();
+        commands
+            .spawn(Screenshot::primary_window())
+            .observe(save_to_disk(path))
+            .observe(|_: On<ScreenshotCaptured>, mut commands: Commands| {
+                commands.insert_resource(Saved);
+            });
+        return;
+    }
+    if options.screenshot.is_some() && saved.is_none() {
+        return;
+    }
+    if !stats.saved {
+        stats.saved = true;
+        let k = stats.counted.max(1) as f64;
+        println!(
+            "frames {n}, mean frame {:.2} ms, step {:.2} ms, upload {:.2} ms, pack {:.2} ms, wait {:.2} ms",
+            stats.frame / k,
+            stats.step / k,
+            stats.upload / k,
+            stats.pack / k,
+            stats.wait / k,
+        );
+        exit.write(AppExit::Success);
+    }
+}

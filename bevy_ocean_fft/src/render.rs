@@ -1,0 +1,733 @@
+//! Drawing the sea with Bevy's renderer: the cascade textures (two 2D array textures, a layer
+//! per cascade, RGBA16F with mip chains, uploaded by the render world with
+//! `RenderQueue::write_texture` from the texels the step task packed), a clipmap of ring
+//! meshes that follows the camera, the water material carrying the crate's reference shader,
+//! and a sky dome with the same shader's sky.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
+use std::time::Instant;
+
+use bevy::asset::{uuid_handle, RenderAssetUsages};
+use bevy::camera::visibility::NoFrustumCulling;
+use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
+use bevy::light::{NotShadowCaster, NotShadowReceiver};
+use bevy::mesh::{Indices, MeshVertexBufferLayoutRef, PrimitiveTopology};
+use bevy::pbr::{MaterialPipeline, MaterialPipelineKey, MaterialPlugin};
+use bevy::prelude::*;
+use bevy::render::render_asset::RenderAssets;
+use bevy::render::render_resource::{
+    AsBindGroup, Extent3d, Origin3d, RenderPipelineDescriptor, ShaderType,
+    SpecializedMeshPipelineError, TexelCopyBufferLayout, TexelCopyTextureInfo, TextureAspect,
+    TextureDimension, TextureFormat, TextureUsages, TextureViewDescriptor, TextureViewDimension,
+};
+use bevy::render::renderer::RenderQueue;
+use bevy::render::texture::GpuImage;
+use bevy::render::{Extract, ExtractSchedule, Render, RenderApp, RenderSystems};
+use bevy::shader::{Shader, ShaderRef};
+
+use crate::sim::{OceanInfo, OceanTexels, Texels, MAX_CASCADES, SLOPE_TABLE};
+
+const COMMON_SHADER: Handle<Shader> = uuid_handle!("5b0e3c52-8f0b-4d6e-9a51-0c8f1f5a7e31");
+const WATER_SHADER: Handle<Shader> = uuid_handle!("0b7a2f41-6c3d-4e8a-b1f2-7d9e5c4a3b20");
+const SKY_SHADER: Handle<Shader> = uuid_handle!("c3e91d07-2a4b-4f6c-8e1d-5b7a9f0c2d48");
+
+/// Most rings of the clipmap.
+pub const MAX_RINGS: usize = 16;
+/// Vertex spacing of the finest ring, m.
+pub const FINEST_SPACING: f32 = 0.25;
+/// The mesh reaches this far from the eye, m (the horizon seen from 500 m up is 80 km away).
+pub const MESH_REACH: f32 = 120_000.0;
+/// Radius of the sky dome, m (beyond the mesh's corners).
+pub const SKY_RADIUS: f32 = 400_000.0;
+/// Distance within which the water is exactly the simulated one (no tiling breaker), m.
+pub const EXACT_WITHIN: f32 = 400.0;
+
+/// How the sea and the sky look: the reference shader's palette (linear RGB, in the units
+/// the water is shaded in before Bevy's tone mapping) and its haze. The sun's direction and
+/// colour come from the scene's first `DirectionalLight` (its illuminance times the camera's
+/// exposure, scaled by `sun_scale`); `fallback_sun` is used when the scene has none.
+#[derive(Resource, Debug, Clone, Copy, PartialEq)]
+pub struct OceanAppearance {
+    /// 0 for a clear sky, 1 for a heavy overcast (no sun disc, no glitter).
+    pub overcast: f32,
+    /// Sky radiance at the zenith and at the horizon.
+    pub zenith: Vec3,
+    pub horizon: Vec3,
+    /// The colour of deep water, and the tint of thin, high crests lit from behind.
+    pub deep: Vec3,
+    pub subsurface: Vec3,
+    /// Distance over which the haze takes 63 % of the light, m.
+    pub haze_distance: f32,
+    /// Factor on the palette (the reference shader's exposure).
+    pub exposure: f32,
+    /// The reference shader's sun per unit of Bevy's exposed illuminance (colour × lux ×
+    /// exposure). 1/(0.6π): a white Lambertian body in Bevy shows E·exposure/π, and the
+    /// reference shader's bodies show 0.6 of its sun, so both agree on how bright the sun is.
+    pub sun_scale: f32,
+    /// Without a directional light: unit vector toward the sun, and its colour.
+    pub fallback_sun: Vec3,
+    pub fallback_sun_colour: Vec3,
+    /// Strength of the tiling breaker in [0, 1] (0: every cascade repeats exactly).
+    pub tiling: f32,
+}
+
+impl Default for OceanAppearance {
+    /// A clear day (the viewer's palette for a sun 25° up).
+    fn default() -> Self {
+        OceanAppearance {
+            overcast: 0.0,
+            zenith: Vec3::new(0.06, 0.17, 0.46) * 0.77,
+            horizon: Vec3::new(0.48, 0.58, 0.74) * 0.77 * 0.93,
+            deep: Vec3::new(0.004, 0.030, 0.055),
+            subsurface: Vec3::new(0.03, 0.21, 0.19),
+            haze_distance: 6000.0,
+            exposure: 0.8,
+            sun_scale: 1.0 / (0.6 * std::f32::consts::PI),
+            fallback_sun: Vec3::new(0.8, 0.42, 0.42).normalize(),
+            fallback_sun_colour: Vec3::new(1.0, 0.92, 0.82) * 2.0,
+            tiling: 1.0,
+        }
+    }
+}
+
+impl OceanAppearance {
+    /// A heavy overcast: grey sky and water, no sun disc, a third of the haze distance.
+    pub fn overcast() -> OceanAppearance {
+        OceanAppearance {
+            overcast: 1.0,
+            zenith: Vec3::new(0.42, 0.44, 0.47),
+            horizon: Vec3::new(0.15, 0.16, 0.175),
+            deep: Vec3::new(0.004, 0.008, 0.011),
+            subsurface: Vec3::new(0.010, 0.030, 0.028),
+            haze_distance: 2000.0,
+            ..OceanAppearance::default()
+        }
+    }
+}
+
+/// The water material's uniforms (`OceanUniforms` in src/shaders/water.wgsl).
+#[derive(Debug, Clone, Copy, Default, ShaderType)]
+pub struct OceanUniforms {
+    pub sun: Vec4,
+    pub sun_colour: Vec4,
+    pub zenith: Vec4,
+    pub horizon: Vec4,
+    pub deep: Vec4,
+    pub subsurface: Vec4,
+    pub wind: Vec4,
+    pub tiling: Vec4,
+    pub table: Vec4,
+    pub cascades: [Vec4; MAX_CASCADES],
+    pub origins: [Vec4; MAX_CASCADES],
+    pub slope_table: [Vec4; SLOPE_TABLE],
+}
+
+/// The sky material's uniforms (`SkyUniforms` in src/shaders/sky.wgsl).
+#[derive(Debug, Clone, Copy, Default, ShaderType)]
+pub struct SkyUniforms {
+    pub sun: Vec4,
+    pub sun_colour: Vec4,
+    pub zenith: Vec4,
+    pub horizon: Vec4,
+    pub deep: Vec4,
+    pub subsurface: Vec4,
+}
+
+/// The water: the crate's reference shader with Bevy's bindings (src/shaders/water.wgsl),
+/// a `Material` of its own so that it takes Bevy's directional light, shadows, fog, exposure
+/// and tone mapping.
+#[derive(Asset, AsBindGroup, TypePath, Debug, Clone)]
+pub struct OceanMaterial {
+    /// Layer c: cascade c's `DisplacementFoam` texels (D_x, η, D_z, foam), with the
+    /// vertex stage's sampler (no anisotropy).
+    #[texture(0, dimension = "2d_array")]
+    #[sampler(1)]
+    pub displacement: Handle<Image>,
+    /// Layer c: cascade c's `SlopeJacobianFoam` texels (∂y/∂x, ∂y/∂z, J, foam), with the
+    /// fragment stage's anisotropic sampler.
+    #[texture(2, dimension = "2d_array")]
+    #[sampler(3)]
+    pub slope: Handle<Image>,
+    #[uniform(4)]
+    pub uniforms: OceanUniforms,
+}
+
+impl Material for OceanMaterial {
+    fn vertex_shader() -> ShaderRef {
+        ShaderRef::Handle(WATER_SHADER)
+    }
+
+    fn fragment_shader() -> ShaderRef {
+        ShaderRef::Handle(WATER_SHADER)
+    }
+
+    // The prepasses and shadow maps would draw the undisplaced rings.
+    fn enable_prepass() -> bool {
+        false
+    }
+
+    fn enable_shadows() -> bool {
+        false
+    }
+
+    fn specialize(
+        _pipeline: &MaterialPipeline,
+        descriptor: &mut RenderPipelineDescriptor,
+        _layout: &MeshVertexBufferLayoutRef,
+        _key: MaterialPipelineKey<Self>,
+    ) -> Result<(), SpecializedMeshPipelineError> {
+        // Seen from below too (a camera under a crest).
+        descriptor.primitive.cull_mode = None;
+        Ok(())
+    }
+}
+
+/// The sky dome: the reference shader's `ocean_sky` (src/shaders/sky.wgsl).
+#[derive(Asset, AsBindGroup, TypePath, Debug, Clone)]
+pub struct OceanSkyMaterial {
+    #[uniform(0)]
+    pub uniforms: SkyUniforms,
+}
+
+impl Material for OceanSkyMaterial {
+    fn vertex_shader() -> ShaderRef {
+        ShaderRef::Handle(SKY_SHADER)
+    }
+
+    fn fragment_shader() -> ShaderRef {
+        ShaderRef::Handle(SKY_SHADER)
+    }
+
+    fn enable_prepass() -> bool {
+        false
+    }
+
+    fn enable_shadows() -> bool {
+        false
+    }
+
+    fn specialize(
+        _pipeline: &MaterialPipeline,
+        descriptor: &mut RenderPipelineDescriptor,
+        _layout: &MeshVertexBufferLayoutRef,
+        _key: MaterialPipelineKey<Self>,
+    ) -> Result<(), SpecializedMeshPipelineError> {
+        // Seen from inside.
+        descriptor.primitive.cull_mode = None;
+        Ok(())
+    }
+}
+
+/// Marks the camera the water's rings and the sky follow (without one: the first 3D camera).
+#[derive(Component, Debug, Clone, Copy, Default)]
+pub struct OceanCamera;
+
+/// A ring of the clipmap (0 the finest).
+#[derive(Component, Debug, Clone, Copy)]
+pub struct OceanRing(pub usize);
+
+/// The sky dome.
+#[derive(Component, Debug, Clone, Copy)]
+pub struct OceanSky;
+
+/// The render side's assets.
+#[derive(Resource, Debug, Clone)]
+pub struct OceanRender {
+    pub material: Handle<OceanMaterial>,
+    pub sky: Handle<OceanSkyMaterial>,
+    /// The full square (ring 0) and the rings with their hole at each of the four offsets.
+    pub full: Handle<Mesh>,
+    pub rings: [Handle<Mesh>; 4],
+    /// Half-width of every ring in cells (even).
+    pub half_cells: u32,
+    /// The textures' grid: (N, cascades), and the images.
+    grid: (usize, usize),
+    displacement: Handle<Image>,
+    slope: Handle<Image>,
+    /// The last texels' information.
+    info: OceanInfo,
+}
+
+/// The render world's last upload of the texels (CPU time of the `write_texture` calls), ms,
+/// as f64 bits.
+#[derive(Resource, Debug, Clone, Default)]
+pub struct UploadTime(pub Arc<AtomicU64>);
+
+impl UploadTime {
+    /// The last upload's CPU time, ms.
+    pub fn ms(&self) -> f64 {
+        f64::from_bits(self.0.load(Ordering::Relaxed))
+    }
+}
+
+/// The rendering half of the plugin (added by `OceanPlugin` when the app renders).
+pub(crate) struct OceanRenderPlugin {
+    pub half_cells: u32,
+    pub anisotropy: u16,
+}
+
+impl Plugin for OceanRenderPlugin {
+    fn build(&self, app: &mut App) {
+        let common = Shader::from_wgsl(
+            concat!(
+                "#define_import_path ocean_fft::common\n",
+                include_str!("../../shaders/ocean_common.wgsl")
+            ),
+            "ocean_fft/ocean_common.wgsl",
+        );
+        let mut shaders = app.world_mut().resource_mut::<Assets<Shader>>();
+        for (handle, shader) in [
+            (&COMMON_SHADER, common),
+            (
+                &WATER_SHADER,
+                Shader::from_wgsl(
+                    include_str!("shaders/water.wgsl"),
+                    "bevy_ocean_fft/water.wgsl",
+                ),
+            ),
+            (
+                &SKY_SHADER,
+                Shader::from_wgsl(include_str!("shaders/sky.wgsl"), "bevy_ocean_fft/sky.wgsl"),
+            ),
+        ] {
+            shaders
+                .insert(handle.id(), shader)
+                .expect("a uuid handle is always valid");
+        }
+        let upload = UploadTime::default();
+        app.add_plugins((
+            MaterialPlugin::<OceanMaterial>::default(),
+            MaterialPlugin::<OceanSkyMaterial>::default(),
+        ))
+        .init_resource::<OceanAppearance>()
+        .insert_resource(upload.clone())
+        .insert_resource(RingHalfCells(self.half_cells.clamp(8, 256) & !1))
+        .insert_resource(Anisotropy(self.anisotropy))
+        .add_systems(Startup, setup)
+        .add_systems(
+            PostUpdate,
+            (fit_textures, follow_camera)
+                .chain()
+                .after(bevy::transform::TransformSystems::Propagate),
+        );
+        if let Some(render_app) = app.get_sub_app_mut(RenderApp) {
+            render_app
+                .insert_resource(upload)
+                .add_systems(ExtractSchedule, extract_texels)
+                .add_systems(
+                    Render,
+                    upload_texels.in_set(RenderSystems::PrepareResources),
+                );
+        }
+    }
+}
+
+#[derive(Resource)]
+struct RingHalfCells(u32);
+
+#[derive(Resource)]
+struct Anisotropy(u16);
+
+/// Triangle indices of a (2m + 1)² grid (vertex j·(2m + 1) + i): every cell, or for a ring
+/// every cell outside the square of the next finer ring (its lower corner at cell
+/// (m/2 + dx, m/2 + dz)) except that square's outermost cells, where the finer ring, fully
+/// morphed there into this ring's grid, and this ring draw the same surface (meeting edge to
+/// edge they left hairline cracks). Cells split along the diagonal from (i + 1, j) to
+/// (i, j + 1), as the crate's `triangle_indices`, so that a morphed 2×2 block of the finer
+/// ring has this ring's triangles.
+fn grid_indices(m: u32, hole: Option<(u32, u32)>) -> Vec<u32> {
+    let side = 2 * m + 1;
+    let mut indices = Vec::with_capacity((24 * m * m) as usize);
+    for j in 0..2 * m {
+        for i in 0..2 * m {
+            if let Some((dx, dz)) = hole {
+                let inside = |c: u32, d: u32| c > m / 2 + d && c + 1 < 3 * m / 2 + d;
+                if inside(i, dx) && inside(j, dz) {
+                    continue;
+                }
+            }
+            let a = j * side + i;
+            let (b, c, d) = (a + 1, a + side, a + side + 1);
+            indices.extend_from_slice(&[a, c, b, b, c, d]);
+        }
+    }
+    indices
+}
+
+/// A ring's mesh: vertex (i, j) at (i − m, 0, j − m), in cells from the centre.
+fn ring_mesh(m: u32, hole: Option<(u32, u32)>) -> Mesh {
+    let side = 2 * m + 1;
+    let positions: Vec<[f32; 3]> = (0..side * side)
+        .map(|v| {
+            let (i, j) = (v % side, v / side);
+            [i as f32 - m as f32, 0.0, j as f32 - m as f32]
+        })
+        .collect();
+    Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::RENDER_WORLD,
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
+    .with_inserted_indices(Indices::U32(grid_indices(m, hole)))
+}
+
+/// An RGBA16F 2D array image of `layers` layers of n×n texels with their mip chains, its
+/// contents uploaded by the render world.
+fn cascade_image(n: usize, layers: usize, anisotropy: u16) -> Image {
+    let mut image = Image::new_uninit(
+        Extent3d {
+            width: n as u32,
+            height: n as u32,
+            depth_or_array_layers: layers.max(1) as u32,
+        },
+        TextureDimension::D2,
+        TextureFormat::Rgba16Float,
+        RenderAssetUsages::RENDER_WORLD,
+    );
+    image.texture_descriptor.mip_level_count = crate::sim::mip_levels(n) as u32;
+    image.texture_descriptor.usage = TextureUsages::TEXTURE_BINDING | TextureUsages::COPY_DST;
+    image.texture_view_descriptor = Some(TextureViewDescriptor {
+        dimension: Some(TextureViewDimension::D2Array),
+        ..Default::default()
+    });
+    image.sampler = ImageSampler::Descriptor(ImageSamplerDescriptor {
+        address_mode_u: ImageAddressMode::Repeat,
+        address_mode_v: ImageAddressMode::Repeat,
+        mag_filter: ImageFilterMode::Linear,
+        min_filter: ImageFilterMode::Linear,
+        mipmap_filter: ImageFilterMode::Linear,
+        anisotropy_clamp: anisotropy,
+        ..Default::default()
+    });
+    image
+}
+
+fn setup(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut images: ResMut<Assets<Image>>,
+    mut materials: ResMut<Assets<OceanMaterial>>,
+    mut skies: ResMut<Assets<OceanSkyMaterial>>,
+    half: Res<RingHalfCells>,
+    anisotropy: Res<Anisotropy>,
+) {
+    let m = half.0;
+    let full = meshes.add(ring_mesh(m, None));
+    let rings = [(0, 0), (1, 0), (0, 1), (1, 1)].map(|hole| meshes.add(ring_mesh(m, Some(hole))));
+    // Placeholders until the first ocean's grid is known.
+    let displacement = images.add(cascade_image(2, 1, 1));
+    let slope = images.add(cascade_image(2, 1, anisotropy.0));
+    let material = materials.add(OceanMaterial {
+        displacement: displacement.clone(),
+        slope: slope.clone(),
+        uniforms: OceanUniforms::default(),
+    });
+    let sky = skies.add(OceanSkyMaterial {
+        uniforms: SkyUniforms::default(),
+    });
+    for ring in 0..MAX_RINGS {
+        commands.spawn((
+            Name::new(format!("ocean ring {ring}")),
+            OceanRing(ring),
+            Mesh3d(if ring == 0 {
+                full.clone()
+            } else {
+                rings[0].clone()
+            }),
+            MeshMaterial3d(material.clone()),
+            Transform::default(),
+            Visibility::Hidden,
+            NoFrustumCulling,
+            NotShadowCaster,
+            NotShadowReceiver,
+        ));
+    }
+    commands.spawn((
+        Name::new("ocean sky"),
+        OceanSky,
+        Mesh3d(meshes.add(Sphere::new(1.0).mesh().uv(48, 24))),
+        MeshMaterial3d(sky.clone()),
+        Transform::from_scale(Vec3::splat(SKY_RADIUS)),
+        NoFrustumCulling,
+        NotShadowCaster,
+        NotShadowReceiver,
+    ));
+    commands.insert_resource(OceanRender {
+        material,
+        sky,
+        full,
+        rings,
+        half_cells: m,
+        grid: (0, 0),
+        displacement,
+        slope,
+        info: OceanInfo::default(),
+    });
+}
+
+/// New images when the ocean's grid (N or the number of cascades) changed.
+fn fit_textures(
+    texels: Res<OceanTexels>,
+    render: Option<ResMut<OceanRender>>,
+    mut images: ResMut<Assets<Image>>,
+    mut materials: ResMut<Assets<OceanMaterial>>,
+    anisotropy: Res<Anisotropy>,
+) {
+    let (Some(mut render), Some(frame)) = (render, texels.texels.as_ref()) else {
+        return;
+    };
+    render.info = frame.info;
+    let grid = (frame.info.size, frame.info.cascades);
+    if render.grid == grid {
+        return;
+    }
+    render.grid = grid;
+    render.displacement = images.add(cascade_image(grid.0, grid.1, 1));
+    render.slope = images.add(cascade_image(grid.0, grid.1, anisotropy.0));
+    if let Some(mut material) = materials.get_mut(&render.material) {
+        material.displacement = render.displacement.clone();
+        material.slope = render.slope.clone();
+    }
+}
+
+/// The rings and the sky follow the camera; the uniforms follow the camera, the light and
+/// the ocean.
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+fn follow_camera(
+    render: Option<Res<OceanRender>>,
+    appearance: Res<OceanAppearance>,
+    cameras: Query<(&GlobalTransform, Has<OceanCamera>), With<Camera3d>>,
+    mut rings: Query<
+        (
+            &OceanRing,
+            &mut Transform,
+            &mut GlobalTransform,
+            &mut Visibility,
+            &mut Mesh3d,
+        ),
+        (Without<OceanSky>, Without<Camera3d>),
+    >,
+    mut sky: Query<
+        (&mut Transform, &mut GlobalTransform),
+        (With<OceanSky>, Without<OceanRing>, Without<Camera3d>),
+    >,
+    mut materials: ResMut<Assets<OceanMaterial>>,
+    mut skies: ResMut<Assets<OceanSkyMaterial>>,
+) {
+    let Some(render) = render else {
+        return;
+    };
+    let Some((camera, _)) = cameras
+        .iter()
+        .max_by_key(|(_, marked)| *marked)
+        .map(|(t, m)| (t.translation(), m))
+    else {
+        return;
+    };
+    let info = &render.info;
+    let ready = info.cascades > 0;
+    let half = render.half_cells as f32;
+
+    // Ring levels: spacing FINEST_SPACING·2^l from a first level that grows with the eye's
+    // height, so that the finest cells stay about a pixel's footprint below the eye.
+    let first = ((camera.y.abs().max(1.0) / 8.0).log2().floor().max(0.0) as usize).min(6);
+    let mut levels = Vec::with_capacity(MAX_RINGS);
+    for l in first..first + MAX_RINGS {
+        let spacing = FINEST_SPACING * (1u32 << l) as f32;
+        let snap = 2.0 * spacing;
+        let centre = Vec2::new(
+            (camera.x / snap).floor() * snap,
+            (camera.z / snap).floor() * snap,
+        );
+        levels.push((centre, spacing));
+        if half * spacing >= MESH_REACH {
+            break;
+        }
+    }
+    for (ring, mut transform, mut global, mut visibility, mut mesh) in &mut rings {
+        let Some(&(centre, spacing)) = levels.get(ring.0).filter(|_| ready) else {
+            *visibility = Visibility::Hidden;
+            continue;
+        };
+        *visibility = Visibility::Visible;
+        *transform = Transform::from_xyz(centre.x, 0.0, centre.y)
+            .with_scale(Vec3::new(spacing, 1.0, spacing));
+        *global = GlobalTransform::from(*transform);
+        let wanted = if ring.0 == 0 {
+            &render.full
+        } else {
+            // Where the finer ring's square sits in this ring's cells: 0 or 1 on each axis.
+            let finer = levels[ring.0 - 1].0;
+            let offset = ((finer - centre) / spacing).round();
+            let (dx, dz) = (offset.x.clamp(0.0, 1.0), offset.y.clamp(0.0, 1.0));
+            &render.rings[dx as usize + 2 * dz as usize]
+        };
+        if mesh.0 != *wanted {
+            mesh.0 = wanted.clone();
+        }
+    }
+    for (mut transform, mut global) in &mut sky {
+        transform.translation = camera;
+        *global = GlobalTransform::from(*transform);
+    }
+
+    let a = &*appearance;
+    let light = [
+        a.fallback_sun.normalize_or_zero().extend(a.overcast),
+        a.fallback_sun_colour.extend(a.sun_scale),
+        (a.zenith * a.exposure).extend(a.haze_distance),
+        (a.horizon * a.exposure).extend(a.tiling),
+        (a.deep * a.exposure).extend(info.height_sd),
+        (a.subsurface * a.exposure).extend(info.jacobian_sd),
+    ];
+    if let Some(mut sky) = skies.get_mut(&render.sky) {
+        let u = &mut sky.uniforms;
+        [
+            u.sun,
+            u.sun_colour,
+            u.zenith,
+            u.horizon,
+            u.deep,
+            u.subsurface,
+        ] = light;
+    }
+    let Some(mut material) = materials.get_mut(&render.material) else {
+        return;
+    };
+    let u = &mut material.uniforms;
+    [
+        u.sun,
+        u.sun_colour,
+        u.zenith,
+        u.horizon,
+        u.deep,
+        u.subsurface,
+    ] = light;
+    u.wind = Vec4::new(info.wind[0], info.wind[1], info.subgrid[0], info.subgrid[1]);
+    u.tiling = Vec4::new(
+        0.61 * info.lengths[0],
+        EXACT_WITHIN,
+        info.cascades as f32,
+        half,
+    );
+    let (k0, k1) = (info.slope_table[0][0], info.slope_table[SLOPE_TABLE - 1][0]);
+    u.table = Vec4::new(
+        k0,
+        (SLOPE_TABLE - 1) as f32 / (k1 / k0.max(1e-6)).ln().max(1e-6),
+        SLOPE_TABLE as f32,
+        0.0,
+    );
+    for c in 0..MAX_CASCADES {
+        if c >= info.cascades {
+            u.cascades[c] = Vec4::ZERO;
+            u.origins[c] = Vec4::ZERO;
+            continue;
+        }
+        let l = info.lengths[c];
+        u.cascades[c] = Vec4::new(
+            l,
+            l / info.size as f32,
+            info.size as f32,
+            info.mip_levels as f32,
+        );
+        // The corner of the tile under the eye, in f64 so that it stays a multiple of L.
+        let corner = |v: f32| ((f64::from(v) / f64::from(l)).floor() * f64::from(l)) as f32;
+        u.origins[c] = Vec4::new(corner(camera.x), corner(camera.z), 0.0, 0.0);
+    }
+    for (entry, t) in u.slope_table.iter_mut().zip(&info.slope_table) {
+        *entry = Vec4::new(t[0], t[1], t[2], 0.0);
+    }
+}
+
+/// The texels and the images they go to, in the render world.
+#[derive(Resource, Default)]
+struct ExtractedTexels {
+    generation: u64,
+    texels: Option<Arc<Texels>>,
+    images: Option<(AssetId<Image>, AssetId<Image>)>,
+}
+
+fn extract_texels(
+    mut commands: Commands,
+    texels: Extract<Res<OceanTexels>>,
+    render: Extract<Option<Res<OceanRender>>>,
+) {
+    commands.insert_resource(ExtractedTexels {
+        generation: texels.generation,
+        texels: texels.texels.clone(),
+        images: render.as_ref().map(|r| (r.displacement.id(), r.slope.id())),
+    });
+}
+
+/// Writes a new frame's texels, every layer and mip level, into the images' textures.
+fn upload_texels(
+    extracted: Option<Res<ExtractedTexels>>,
+    images: Res<RenderAssets<GpuImage>>,
+    queue: Res<RenderQueue>,
+    upload: Res<UploadTime>,
+    mut uploaded: Local<u64>,
+) {
+    let Some(extracted) = extracted else {
+        return;
+    };
+    let (Some(texels), Some((displacement, slope))) = (&extracted.texels, extracted.images) else {
+        return;
+    };
+    if extracted.generation == *uploaded {
+        return;
+    }
+    let (Some(displacement), Some(slope)) = (images.get(displacement), images.get(slope)) else {
+        return;
+    };
+    let info = &texels.info;
+    let n = info.size;
+    let fits = |image: &GpuImage| {
+        let size = image.texture_descriptor.size;
+        size.width as usize == n
+            && size.depth_or_array_layers as usize == info.cascades
+            && image.texture_descriptor.mip_level_count as usize == info.mip_levels
+    };
+    if !fits(displacement) || !fits(slope) {
+        // The images for a new grid are not on the GPU yet.
+        return;
+    }
+    let start = Instant::now();
+    for (image, data) in [(displacement, &texels.displacement), (slope, &texels.slope)] {
+        for c in 0..info.cascades {
+            for (m, &offset) in texels.level_offsets.iter().enumerate() {
+                let side = n >> m;
+                let first = c * texels.layer_len + offset;
+                let level = &data[first..first + side * side];
+                queue.write_texture(
+                    TexelCopyTextureInfo {
+                        texture: &image.texture,
+                        mip_level: m as u32,
+                        origin: Origin3d {
+                            x: 0,
+                            y: 0,
+                            z: c as u32,
+                        },
+                        aspect: TextureAspect::All,
+                    },
+                    bytemuck::cast_slice(level),
+                    TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(side as u32 * 8),
+                        rows_per_image: Some(side as u32),
+                    },
+                    Extent3d {
+                        width: side as u32,
+                        height: side as u32,
+                        depth_or_array_layers: 1,
+                    },
+                );
+            }
+        }
+    }
+    upload.0.store(
+        (start.elapsed().as_secs_f64() * 1e3).to_bits(),
+        Ordering::Relaxed,
+    );
+    *uploaded = extracted.generation;
+}
