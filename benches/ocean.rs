@@ -23,6 +23,15 @@
 //!   points and a 100×100 `sample_grid` on the default ocean at 256², with cubic B-spline and
 //!   bilinear interpolation.
 //!
+//! - `ocean_query_batch`: `heights_at_1t`, `surfaces_at_1t`, `heights_at_2t`,
+//!   `surfaces_at_2t` of 100, 1 000, 10 000 and 100 000 points scattered uniformly over a
+//!   2 km square, on the default ocean at 256² (throughput in points: criterion prints the
+//!   time a point), the tiles the points read computed before timing.
+//! - `ocean_first_query`: `step_1t` and `step_and_height_at_1t` (the step and one
+//!   `height_at` after it, which computes the spline tiles it reads), and the same at 2
+//!   threads, on the default ocean at N = 128, 256 and 512: the cost a game loop that steps
+//!   and asks one boat's height pays beyond the step.
+//!
 //! - `ocean_live`: a change of weather on the default ocean at 256² on one thread: `step`
 //!   (a plain step), `set_spectrum_and_step` (`set_spectrum` with a 10 s duration and the
 //!   step after it), `transition_step` (the mean step of a whole change: preparation and
@@ -311,6 +320,100 @@ fn queries(c: &mut Criterion) {
     group.finish();
 }
 
+/// `count` world points scattered uniformly over a 2 km square (a fixed sequence).
+fn scattered(count: usize) -> Vec<[f64; 2]> {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..count)
+        .map(|_| [next() * 2000.0 - 1000.0, next() * 2000.0 - 1000.0])
+        .collect()
+}
+
+fn query_batch(c: &mut Criterion) {
+    let mut group = c.benchmark_group("ocean_query_batch");
+    group
+        .sample_size(20)
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(1));
+    let mut state = ocean_with(256, true, Interpolation::CubicBSpline);
+    state.step(3.0).expect("step");
+    for count in [100, 1_000, 10_000, 100_000] {
+        let points = scattered(count);
+        let mut heights = vec![0.0f32; count];
+        let mut surfaces = vec![SurfaceSample::default(); count];
+        group.throughput(Throughput::Elements(count as u64));
+        for threads in THREADS {
+            let pool = common::pool(threads);
+            group.bench_with_input(
+                BenchmarkId::new(format!("heights_at_{threads}t"), count),
+                &count,
+                |b, _| {
+                    pool.install(|| {
+                        b.iter(|| state.heights_at(&points, &mut heights).expect("heights_at"))
+                    })
+                },
+            );
+            group.bench_with_input(
+                BenchmarkId::new(format!("surfaces_at_{threads}t"), count),
+                &count,
+                |b, _| {
+                    pool.install(|| {
+                        b.iter(|| {
+                            state
+                                .surfaces_at(&points, &mut surfaces)
+                                .expect("surfaces_at")
+                        })
+                    })
+                },
+            );
+        }
+    }
+    group.finish();
+}
+
+fn first_query(c: &mut Criterion) {
+    let mut group = c.benchmark_group("ocean_first_query");
+    group
+        .sample_size(40)
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(1));
+    for size in [128, 256, 512] {
+        group.throughput(Throughput::Elements((size * size) as u64));
+        for threads in THREADS {
+            let pool = common::pool(threads);
+            let mut state = ocean(size, true);
+            group.bench_with_input(
+                BenchmarkId::new(format!("step_{threads}t"), size),
+                &size,
+                |b, _| pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step"))),
+            );
+            // A boat drifting with the current: a new point every frame.
+            let mut x = 0.0;
+            group.bench_with_input(
+                BenchmarkId::new(format!("step_and_height_at_{threads}t"), size),
+                &size,
+                |b, _| {
+                    pool.install(|| {
+                        b.iter(|| {
+                            state.step(black_box(1.0 / 60.0)).expect("step");
+                            x += 0.37;
+                            state.height_at(black_box(x), 12.0).expect("height_at")
+                        })
+                    })
+                },
+            );
+        }
+    }
+    group.finish();
+}
+
 /// The two seas of the `ocean_live` benches: the default breeze and a gale from another
 /// direction.
 fn live_seas() -> (Spectrum, Spectrum) {
@@ -428,6 +531,8 @@ fn main() {
     parallel_cascades(&mut criterion);
     determinism(&mut criterion);
     queries(&mut criterion);
+    query_batch(&mut criterion);
+    first_query(&mut criterion);
     live(&mut criterion);
     second_order(&mut criterion);
     criterion.final_summary();
