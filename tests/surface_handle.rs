@@ -86,14 +86,14 @@ fn a_physics_thread_sees_whole_frames_while_the_ocean_steps() {
                 }
             }
         });
-        for frame in 1..=FRAMES {
+        for (frame, (_, heights)) in expected.iter().enumerate().skip(1) {
             ocean.step(DT).unwrap();
             // The ocean's own answers between steps are that frame's too.
             let own: Vec<f32> = points
                 .iter()
                 .map(|&[x, z]| ocean.height_at(x, z).unwrap())
                 .collect();
-            assert_eq!(bits(&own), bits(&expected[frame].1), "frame {frame}");
+            assert_eq!(bits(&own), bits(heights), "frame {frame}");
             *latest.lock().unwrap() = ocean.surface();
             std::thread::sleep(std::time::Duration::from_millis(2));
         }

@@ -169,8 +169,9 @@ impl Fields for Frame {
     }
 
     #[inline(always)]
+    // The same operations as the ocean's own foam lookup (`Foam::foam_at`), NaN included.
+    #[allow(clippy::manual_clamp)]
     fn foam_at(&self, x: f64, z: f64) -> f32 {
-        // The same arithmetic as the ocean's own foam lookup (`Foam::foam_at`).
         let length = f64::from(self.foam_length);
         super::query::periodic_bilinear(&self.foam, self.foam_n, length, x, z)
             .max(0.0)

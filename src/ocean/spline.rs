@@ -248,8 +248,9 @@ fn compute_tile(source: &Source, n: usize, tile: usize, tx: usize, tz: usize) ->
 }
 
 /// The x pass of R window rows starting at (unwrapped) grid row `first`: a causal pass from
-/// zero before the window, y[i] = f[i] + z·y[i − 1], then the anticausal one with the gain,
-/// c[i] = G·y[i] + z·c[i + 1] from zero after it, kept at the tile's [`STRIDE`] texels.
+/// zero before the window, y\[i\] = f\[i\] + z·y\[i − 1\], then the anticausal one with the
+/// gain, c\[i\] = G·y\[i\] + z·c\[i + 1\] from zero after it, kept at the tile's [`STRIDE`]
+/// texels.
 #[inline(always)]
 fn filter_x<const R: usize>(
     source: &Source,
