@@ -989,8 +989,7 @@ proptest! {
         prop_assert!(ocean_finite(&ocean));
         let mut saved = ocean.snapshot();
         // Handles taken by `OceanOp::Surface`, with the answers they gave then.
-        let mut handles: Vec<(Surface, Vec<[f64; 2]>, Vec<Result<SurfaceSample, Error>>)> =
-            Vec::new();
+        let mut handles: Vec<Held> = Vec::new();
         for op in &ops {
             let before = ocean_bits(&ocean);
             let mutating = matches!(
@@ -1101,6 +1100,9 @@ proptest! {
         }
     }
 }
+
+/// A handle, the points it was asked about and its answers then.
+type Held = (Surface, Vec<[f64; 2]>, Vec<Result<SurfaceSample, Error>>);
 
 fn bits_of(values: &[f32]) -> Vec<u32> {
     values.iter().map(|v| v.to_bits()).collect()
