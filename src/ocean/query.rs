@@ -531,9 +531,26 @@ pub(crate) fn for_each_point<F: Fields, Q: PointQuery<F>>(
     if points.len() < PARALLEL_BATCH {
         chunk(out, points);
     } else {
+        prepare_tiles(fields, points);
         out.par_chunks_mut(TASK_POINTS)
             .zip(points.par_chunks(TASK_POINTS))
             .for_each(|(out, points)| chunk(out, points));
+    }
+}
+
+/// Computes, in parallel, the spline tiles under a batch's `points` that no query computed
+/// yet (the queries' threads would otherwise wait for each other's tiles; the tiles a
+/// query's Newton iterates move on to are computed when they are read, as always).
+fn prepare_tiles<F: Fields>(fields: &F, points: &[[f64; 2]]) {
+    let frame = fields.frame();
+    for (c, grid) in frame.grids.iter().enumerate() {
+        if let Some(tiles) = &grid.tiles {
+            for &[x, z] in points {
+                let (ix, _, iz, _) = cell_in(grid, x, z);
+                tiles.want(ix, iz);
+            }
+            tiles.prepare(fields.source(c), frame.simd);
+        }
     }
 }
 

@@ -16,7 +16,10 @@
 //! tile is computed the same way from the same samples, so its bits do not depend on which
 //! query (or thread) computed it.
 
-use std::sync::OnceLock;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Mutex, OnceLock, PoisonError};
+
+use rayon::prelude::*;
 
 use crate::error::{self, Error};
 use crate::simd::{Kernel, Simd};
@@ -63,9 +66,61 @@ impl Source<'_> {
 /// The coefficients of one tile: [`STRIDE`]² texels, row-major with z as the row.
 pub(crate) type TileData = [Texel; STRIDE * STRIDE];
 
+/// One tile's room: the computed coefficients once a query computed them, and otherwise
+/// the buffer they will be computed into (allocated with the [`Tiles`], moved between the
+/// two without copying the texels).
+#[derive(Debug)]
+struct Slot {
+    /// The coefficients of the current fields. Its state (empty, being computed, ready) is
+    /// the tile's: a query that finds it being computed waits for it (a few µs).
+    ready: OnceLock<Box<TileData>>,
+    /// The buffer while the tile is stale.
+    spare: Mutex<Option<Box<TileData>>>,
+}
+
+impl Slot {
+    fn new() -> Result<Slot, Error> {
+        Ok(Slot {
+            ready: OnceLock::new(),
+            spare: Mutex::new(Some(tile_buffer()?)),
+        })
+    }
+
+    /// The coefficients of tile (`tx`, `tz`), computed from `source` into the spare buffer if
+    /// no query did so yet (only one initialiser runs at a time, so the buffer is there,
+    /// unless one panicked: then a new one is allocated).
+    #[inline(always)]
+    fn get<'s>(
+        &self,
+        grid: [usize; 2],
+        at: [usize; 2],
+        source: impl FnOnce() -> Source<'s>,
+        simd: Simd,
+    ) -> &TileData {
+        self.ready.get_or_init(|| {
+            let spare = self
+                .spare
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner)
+                .take();
+            let mut data = spare.unwrap_or_else(|| Box::new([[0.0; LANES]; STRIDE * STRIDE]));
+            compute_tile_at(simd, &source(), grid, at, &mut data);
+            data
+        })
+    }
+}
+
+/// A zeroed tile buffer on the heap (never on the stack: it is 39 kB).
+fn tile_buffer() -> Result<Box<TileData>, Error> {
+    let boxed = error::try_vec(STRIDE * STRIDE, [0.0f32; LANES])?.into_boxed_slice();
+    Ok(boxed
+        .try_into()
+        .expect("the vector holds STRIDE² texels"))
+}
+
 /// The cubic B-spline coefficients of one N×N cascade, in tiles of [`TILE`]² cells, each
-/// computed by the first query that reads it (see the module's docs) and kept until
-/// [`Tiles::reset`].
+/// computed by the first query that reads it (see the module's docs) into room allocated
+/// here, and kept until [`Tiles::reset`].
 #[derive(Debug)]
 pub(crate) struct Tiles {
     n: usize,
@@ -73,7 +128,9 @@ pub(crate) struct Tiles {
     tile: usize,
     /// Tiles along each axis, ⌈N / tile⌉.
     per_axis: usize,
-    tiles: Vec<OnceLock<TileData>>,
+    slots: Vec<Slot>,
+    /// Tiles a batch is about to read (see [`Tiles::prepare`]).
+    wanted: Vec<AtomicBool>,
 }
 
 impl Tiles {
@@ -81,11 +138,25 @@ impl Tiles {
     pub(crate) fn new(n: usize) -> Result<Tiles, Error> {
         let tile = TILE.min(n);
         let per_axis = n.div_ceil(tile);
+        let count = per_axis * per_axis;
+        let mut slots = Vec::new();
+        slots.try_reserve_exact(count).map_err(|_| Error::OutOfMemory {
+            bytes: Self::memory_bytes(n),
+        })?;
+        for _ in 0..count {
+            slots.push(Slot::new()?);
+        }
+        let mut wanted = Vec::new();
+        wanted.try_reserve_exact(count).map_err(|_| Error::OutOfMemory {
+            bytes: Self::memory_bytes(n),
+        })?;
+        wanted.extend((0..count).map(|_| AtomicBool::new(false)));
         Ok(Tiles {
             n,
             tile,
             per_axis,
-            tiles: error::try_vec(per_axis * per_axis, OnceLock::new())?,
+            slots,
+            wanted,
         })
     }
 
@@ -93,18 +164,32 @@ impl Tiles {
     /// ([`TILE`] + 3)² texels of each of its ⌈N/[`TILE`]⌉² tiles (about 38·N² for large N).
     pub(crate) fn memory_bytes(n: usize) -> usize {
         let per_axis = n.div_ceil(TILE.min(n.max(1)));
-        per_axis
-            .saturating_mul(per_axis)
-            .saturating_mul(std::mem::size_of::<OnceLock<TileData>>())
+        per_axis.saturating_mul(per_axis).saturating_mul(
+            std::mem::size_of::<TileData>()
+                + std::mem::size_of::<Slot>()
+                + std::mem::size_of::<AtomicBool>(),
+        )
     }
 
-    /// Forgets every computed tile (the cascade's buffers changed). Allocates nothing.
+    /// Forgets every computed tile (the cascade's buffers changed), keeping its room.
+    /// Allocates nothing.
     pub(crate) fn reset(&mut self) {
-        for tile in &mut self.tiles {
-            // Only the tiles a query computed hold anything to forget.
-            if tile.get().is_some() {
-                tile.take();
+        for slot in &mut self.slots {
+            if let Some(data) = slot.ready.take() {
+                *slot.spare.get_mut().unwrap_or_else(PoisonError::into_inner) = Some(data);
             }
+        }
+    }
+
+    /// The tile (x, z) holding cell (`ix`, `iz`).
+    #[inline(always)]
+    fn tile_of(&self, ix: usize, iz: usize) -> [usize; 2] {
+        // Tiles of TILE cells divide by a shift (an integer division costs more than the
+        // spline); only grids smaller than a tile have other sizes.
+        if self.tile == TILE {
+            [ix / TILE, iz / TILE]
+        } else {
+            [ix / self.tile, iz / self.tile]
         }
     }
 
@@ -119,16 +204,38 @@ impl Tiles {
         source: impl FnOnce() -> Source<'s>,
         simd: Simd,
     ) -> (&TileData, usize, usize) {
-        // Tiles of TILE cells divide by a shift (an integer division costs more than the
-        // spline); only grids smaller than a tile have other sizes.
-        let (tx, tz) = if self.tile == TILE {
-            (ix / TILE, iz / TILE)
-        } else {
-            (ix / self.tile, iz / self.tile)
-        };
-        let data = self.tiles[tz * self.per_axis + tx]
-            .get_or_init(|| compute_tile_at(simd, &source(), self.n, self.tile, tx, tz));
+        let [tx, tz] = self.tile_of(ix, iz);
+        let data = self.slots[tz * self.per_axis + tx].get(
+            [self.n, self.tile],
+            [tx, tz],
+            source,
+            simd,
+        );
         (data, ix - tx * self.tile, iz - tz * self.tile)
+    }
+
+    /// Marks the tile of cell (`ix`, `iz`) as wanted by the batch being prepared.
+    #[inline(always)]
+    pub(crate) fn want(&self, ix: usize, iz: usize) {
+        let [tx, tz] = self.tile_of(ix, iz);
+        self.wanted[tz * self.per_axis + tx].store(true, Ordering::Relaxed);
+    }
+
+    /// Computes every wanted tile that is not computed yet, in parallel (each by the same
+    /// function as a query's, so to the same bits), and clears the marks. A batch calls it
+    /// before its queries, whose threads would otherwise wait for each other's tiles.
+    pub(crate) fn prepare(&self, source: Source<'_>, simd: Simd) {
+        let grid = [self.n, self.tile];
+        let per_axis = self.per_axis;
+        self.slots
+            .par_iter()
+            .zip(&self.wanted)
+            .enumerate()
+            .for_each(|(i, (slot, wanted))| {
+                if wanted.swap(false, Ordering::Relaxed) {
+                    slot.get(grid, [i % per_axis, i / per_axis], || source, simd);
+                }
+            });
     }
 }
 
@@ -140,58 +247,70 @@ impl Clone for Tiles {
             n: self.n,
             tile: self.tile,
             per_axis: self.per_axis,
-            tiles: (0..self.tiles.len()).map(|_| OnceLock::new()).collect(),
+            slots: (0..self.slots.len())
+                .map(|_| Slot {
+                    ready: OnceLock::new(),
+                    spare: Mutex::new(Some(Box::new([[0.0; LANES]; STRIDE * STRIDE]))),
+                })
+                .collect(),
+            wanted: (0..self.wanted.len())
+                .map(|_| AtomicBool::new(false))
+                .collect(),
         }
     }
 }
 
-/// [`compute_tile`] at SIMD level `simd`; not inlined, so that its large stack frame stays
-/// out of the queries that call it.
+/// [`compute_tile`] at SIMD level `simd`, into `out`; not inlined into the queries.
 #[inline(never)]
 fn compute_tile_at(
     simd: Simd,
     source: &Source,
-    n: usize,
-    tile: usize,
-    tx: usize,
-    tz: usize,
-) -> TileData {
+    grid: [usize; 2],
+    at: [usize; 2],
+    out: &mut TileData,
+) {
     simd.run_kernel(TileKernel {
         source,
-        n,
-        tile,
-        at: [tx, tz],
+        grid,
+        at,
+        out,
     })
 }
 
 /// [`compute_tile`] as a [`Kernel`].
 struct TileKernel<'a, 's> {
     source: &'a Source<'s>,
-    n: usize,
-    tile: usize,
+    /// N and the cells along a tile's side.
+    grid: [usize; 2],
     at: [usize; 2],
+    out: &'a mut TileData,
 }
 
 impl Kernel for TileKernel<'_, '_> {
-    type Output = TileData;
+    type Output = ();
 
     #[inline(always)]
-    fn run(self) -> TileData {
-        compute_tile(self.source, self.n, self.tile, self.at[0], self.at[1])
+    fn run(self) {
+        let [n, tile] = self.grid;
+        compute_tile(self.source, n, tile, self.at, self.out);
     }
 }
 
 /// Window rows the x pass filters together: their recursions are independent, so
-/// interleaving them hides the latency of each one's dependency chain.
-const INTERLEAVE: usize = 4;
+/// interleaving them hides the latency of each one's dependency chain (8 texels of 8 lanes
+/// fill half the AVX registers).
+const INTERLEAVE: usize = 8;
 
-/// The coefficients of tile (`tx`, `tz`) of an N×N grid with `tile` cells a side: texel
-/// (a, b) of the result is the coefficient of grid point (tx·tile − 1 + a, tz·tile − 1 + b),
+/// The coefficients of tile (`tx`, `tz`) of an N×N grid with `tile` cells a side, into
+/// `out`: texel (a, b) is the coefficient of grid point (tx·tile − 1 + a, tz·tile − 1 + b),
 /// wrapped. The x pass runs on every row of the window, each started [`HALO`] samples left
-/// of the tile; the z pass on whole rows of the result (so that it vectorises), started
-/// [`HALO`] rows above. Inlined into its caller's [`Simd::run`].
+/// of the tile; the z pass on whole rows (so that it vectorises), started [`HALO`] rows
+/// above, its causal half folded in as the x pass delivers the rows. The rows above the
+/// tile are needed only for that causal state and the rows below it only for the
+/// anticausal half, so both share one small scratch; the tile's own rows are filtered in
+/// `out`. Inlined into its caller's [`Simd::run`].
 #[inline(always)]
-fn compute_tile(source: &Source, n: usize, tile: usize, tx: usize, tz: usize) -> TileData {
+fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], out: &mut TileData) {
     // Window sample w sits at grid point start + w, wrapped (`offset` is a multiple of n that
     // keeps the start from underflowing).
     let offset = (1 + HALO).div_ceil(n) * n;
@@ -201,66 +320,76 @@ fn compute_tile(source: &Source, n: usize, tile: usize, tx: usize, tz: usize) ->
     for (w, column) in columns.iter_mut().enumerate() {
         *column = (x_start + w) % n;
     }
-    // The x pass of every window row; after the z pass's causal half, rows HALO.. of the
-    // window (the anticausal half starts at the last one and needs no row above the tile).
-    let mut rows = [[[0.0f32; LANES]; STRIDE]; WINDOW];
+    // Window rows 0..HALO (above the tile), then the tile's STRIDE rows (in `out`), then
+    // HALO rows below it, in `scratch` again once the rows above were folded in.
+    let mut scratch = [[[0.0f32; LANES]; STRIDE]; HALO];
+    let mut line = [[[0.0f32; LANES]; INTERLEAVE]; WINDOW];
+    // The z pass's causal state: y[r − 1] of the row before.
+    let mut state = [[0.0f32; LANES]; STRIDE];
     let mut w = 0;
-    while w + INTERLEAVE <= WINDOW {
-        filter_x::<INTERLEAVE>(
-            source,
-            &columns,
-            n,
-            z_start + w,
-            &mut rows[w..w + INTERLEAVE],
-        );
-        w += INTERLEAVE;
-    }
     while w < WINDOW {
-        filter_x::<1>(source, &columns, n, z_start + w, &mut rows[w..w + 1]);
-        w += 1;
-    }
-    // z pass, causal: y[r] = x[r] + z·y[r − 1], whole rows at a time.
-    for r in 1..WINDOW {
-        let (done, rest) = rows.split_at_mut(r);
-        let above = &done[r - 1];
-        for (v, a) in rest[0].iter_mut().zip(above) {
-            for l in 0..LANES {
-                v[l] += POLE * a[l];
+        let rows = if w + INTERLEAVE <= WINDOW {
+            INTERLEAVE
+        } else {
+            1
+        };
+        if rows == INTERLEAVE {
+            filter_x::<INTERLEAVE>(source, &columns, n, z_start + w, &mut line);
+        } else {
+            let mut single = [[[0.0f32; LANES]; 1]; WINDOW];
+            filter_x::<1>(source, &columns, n, z_start + w, &mut single);
+            for (l, s) in line.iter_mut().zip(&single) {
+                l[0] = s[0];
             }
         }
+        for k in 0..rows {
+            let r = w + k;
+            let row: &mut [Texel] = if r < HALO {
+                &mut scratch[r]
+            } else if r < HALO + STRIDE {
+                &mut out[(r - HALO) * STRIDE..][..STRIDE]
+            } else {
+                &mut scratch[r - HALO - STRIDE]
+            };
+            // The x pass's result (its anticausal half kept the tile's STRIDE texels, at
+            // window samples HALO..), then the z pass, causal: y[r] = x[r] + z·y[r − 1].
+            for ((v, s), x) in row.iter_mut().zip(state.iter_mut()).zip(&line[HALO..]) {
+                for l in 0..LANES {
+                    v[l] = x[k][l] + POLE * s[l];
+                }
+                *s = *v;
+            }
+        }
+        w += rows;
     }
-    // Anticausal with the gain, from the last row of the window up to the tile.
+    // Anticausal with the gain, from the last row of the window up to the tile:
+    // c[r] = G·y[r] + z·c[r + 1].
     let mut below = [[0.0f32; LANES]; STRIDE];
-    let mut out = [[0.0f32; LANES]; STRIDE * STRIDE];
-    for r in (HALO..WINDOW).rev() {
-        let row = &mut rows[r];
-        for (v, b) in row.iter_mut().zip(below.iter()) {
+    let tail = scratch.iter_mut().map(|row| &mut row[..]).rev();
+    let rows = out.chunks_exact_mut(STRIDE).rev();
+    for row in tail.chain(rows) {
+        for (v, b) in row.iter_mut().zip(below.iter_mut()) {
             for l in 0..LANES {
                 v[l] = GAIN * v[l] + POLE * b[l];
             }
-        }
-        below = *row;
-        if r < HALO + STRIDE {
-            out[(r - HALO) * STRIDE..(r - HALO + 1) * STRIDE].copy_from_slice(row);
+            *b = *v;
         }
     }
-    out
 }
 
 /// The x pass of R window rows starting at (unwrapped) grid row `first`: a causal pass from
 /// zero before the window, y\[i\] = f\[i\] + z·y\[i − 1\], then the anticausal one with the
-/// gain, c\[i\] = G·y\[i\] + z·c\[i + 1\] from zero after it, kept at the tile's [`STRIDE`]
-/// texels.
+/// gain, c\[i\] = G·y\[i\] + z·c\[i + 1\] from zero after it, in `line` (the tile's texels
+/// are its entries [`HALO`]..[`HALO`] + [`STRIDE`]).
 #[inline(always)]
 fn filter_x<const R: usize>(
     source: &Source,
     columns: &[usize; WINDOW],
     n: usize,
     first: usize,
-    out: &mut [[Texel; STRIDE]],
+    line: &mut [[Texel; R]; WINDOW],
 ) {
     let bases: [usize; R] = std::array::from_fn(|k| (first + k) % n * n);
-    let mut line = [[[0.0f32; LANES]; R]; WINDOW];
     let mut state = [[0.0f32; LANES]; R];
     for (y, &column) in line.iter_mut().zip(columns) {
         for k in 0..R {
@@ -272,17 +401,13 @@ fn filter_x<const R: usize>(
         *y = state;
     }
     let mut state = [[0.0f32; LANES]; R];
-    for i in (HALO..WINDOW).rev() {
+    for y in line[HALO..].iter_mut().rev() {
         for k in 0..R {
             for l in 0..LANES {
-                state[k][l] = GAIN * line[i][k][l] + POLE * state[k][l];
+                state[k][l] = GAIN * y[k][l] + POLE * state[k][l];
             }
         }
-        if i < HALO + STRIDE {
-            for k in 0..R {
-                out[k][i - HALO] = state[k];
-            }
-        }
+        *y = state;
     }
 }
 
