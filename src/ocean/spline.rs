@@ -317,8 +317,11 @@ fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], ou
     let x_start = offset + tx * tile - 1 - HALO;
     let z_start = offset + tz * tile - 1 - HALO;
     let mut columns = [0usize; WINDOW];
-    for (w, column) in columns.iter_mut().enumerate() {
-        *column = (x_start + w) % n;
+    // One division, then a wrap by comparison (n may be smaller than the window).
+    let mut next = x_start % n;
+    for column in &mut columns {
+        *column = next;
+        next = if next + 1 == n { 0 } else { next + 1 };
     }
     // Window rows 0..HALO (above the tile), then the tile's STRIDE rows (in `out`), then
     // HALO rows below it, in `scratch` again once the rows above were folded in.
@@ -353,11 +356,13 @@ fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], ou
             };
             // The x pass's result (its anticausal half kept the tile's STRIDE texels, at
             // window samples HALO..), then the z pass, causal: y[r] = x[r] + z·y[r − 1].
+            // (Each texel computed in a register and stored twice: stored lane by lane and
+            // read back whole, it stalled the store buffer.)
             for ((v, s), x) in row.iter_mut().zip(state.iter_mut()).zip(&line[HALO..]) {
-                for l in 0..LANES {
-                    v[l] = x[k][l] + POLE * s[l];
-                }
-                *s = *v;
+                let x = &x[k];
+                let y: Texel = std::array::from_fn(|l| x[l] + POLE * s[l]);
+                *v = y;
+                *s = y;
             }
         }
         w += rows;
@@ -369,10 +374,9 @@ fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], ou
     let rows = out.chunks_exact_mut(STRIDE).rev();
     for row in tail.chain(rows) {
         for (v, b) in row.iter_mut().zip(below.iter_mut()) {
-            for l in 0..LANES {
-                v[l] = GAIN * v[l] + POLE * b[l];
-            }
-            *b = *v;
+            let c: Texel = std::array::from_fn(|l| GAIN * v[l] + POLE * b[l]);
+            *v = c;
+            *b = c;
         }
     }
 }
@@ -389,11 +393,19 @@ fn filter_x<const R: usize>(
     first: usize,
     line: &mut [[Texel; R]; WINDOW],
 ) {
-    let bases: [usize; R] = std::array::from_fn(|k| (first + k) % n * n);
+    // The rows' samples, as slices of N (so that a column < N needs one check a field).
+    let rows: [Source; R] = std::array::from_fn(|k| {
+        let base = (first + k) % n * n;
+        Source {
+            height: &source.height[base..base + n],
+            displacement: &source.displacement[base..base + n],
+            slope: &source.slope[base..base + n],
+        }
+    });
     let mut state = [[0.0f32; LANES]; R];
     for (y, &column) in line.iter_mut().zip(columns) {
-        for k in 0..R {
-            let f = source.texel(bases[k] + column);
+        for (k, row) in rows.iter().enumerate() {
+            let f = row.texel(column);
             for l in 0..LANES {
                 state[k][l] = f[l] + POLE * state[k][l];
             }
