@@ -543,16 +543,29 @@ pub(crate) fn for_each_point<F: Fields, Q: PointQuery<F>>(
 /// query's Newton iterates move on to are computed when they are read, as always).
 fn prepare_tiles<F: Fields>(fields: &F, points: &[[f64; 2]]) {
     let frame = fields.frame();
+    if frame.grids.iter().all(|grid| grid.tiles.is_none()) {
+        return;
+    }
+    // Marking costs about 30 ns a point and cascade: split like the queries.
+    points.par_chunks(MARK_POINTS).for_each(|points| {
+        for grid in &frame.grids {
+            if let Some(tiles) = &grid.tiles {
+                for &[x, z] in points {
+                    let (ix, _, iz, _) = cell_in(grid, x, z);
+                    tiles.want(ix, iz);
+                }
+            }
+        }
+    });
     for (c, grid) in frame.grids.iter().enumerate() {
         if let Some(tiles) = &grid.tiles {
-            for &[x, z] in points {
-                let (ix, _, iz, _) = cell_in(grid, x, z);
-                tiles.want(ix, iz);
-            }
             tiles.prepare(fields.source(c), frame.simd);
         }
     }
 }
+
+/// Points one parallel task of [`prepare_tiles`] marks.
+const MARK_POINTS: usize = 512;
 
 /// Checks a batch: `out` as long as `points`, every coordinate finite.
 pub(crate) fn check_batch(points: &[[f64; 2]], out_len: usize) -> Result<(), Error> {

@@ -223,7 +223,9 @@ impl Tiles {
 
     /// Computes every wanted tile that is not computed yet, in parallel (each by the same
     /// function as a query's, so to the same bits), and clears the marks. A batch calls it
-    /// before its queries, whose threads would otherwise wait for each other's tiles.
+    /// before its queries, whose threads would otherwise wait for each other's tiles. (Two
+    /// batches preparing at once may clear each other's marks: a tile missed here is
+    /// computed by the query that reads it, to the same bits.)
     pub(crate) fn prepare(&self, source: Source<'_>, simd: Simd) {
         let grid = [self.n, self.tile];
         let per_axis = self.per_axis;
