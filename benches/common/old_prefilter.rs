@@ -68,7 +68,12 @@ impl OldSpline {
     }
 }
 
-fn filter_2d<const C: usize>(data: &mut [[f32; C]], scratch: &mut [[f32; C]], n: usize, parallel: bool) {
+fn filter_2d<const C: usize>(
+    data: &mut [[f32; C]],
+    scratch: &mut [[f32; C]],
+    n: usize,
+    parallel: bool,
+) {
     let rows = |block: &mut [[f32; C]]| {
         let mut groups = block.chunks_exact_mut(INTERLEAVE * n);
         for group in &mut groups {

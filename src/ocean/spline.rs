@@ -113,9 +113,7 @@ impl Slot {
 /// A zeroed tile buffer on the heap (never on the stack: it is 39 kB).
 fn tile_buffer() -> Result<Box<TileData>, Error> {
     let boxed = error::try_vec(STRIDE * STRIDE, [0.0f32; LANES])?.into_boxed_slice();
-    Ok(boxed
-        .try_into()
-        .expect("the vector holds STRIDE² texels"))
+    Ok(boxed.try_into().expect("the vector holds STRIDE² texels"))
 }
 
 /// The cubic B-spline coefficients of one N×N cascade, in tiles of [`TILE`]² cells, each
@@ -140,16 +138,20 @@ impl Tiles {
         let per_axis = n.div_ceil(tile);
         let count = per_axis * per_axis;
         let mut slots = Vec::new();
-        slots.try_reserve_exact(count).map_err(|_| Error::OutOfMemory {
-            bytes: Self::memory_bytes(n),
-        })?;
+        slots
+            .try_reserve_exact(count)
+            .map_err(|_| Error::OutOfMemory {
+                bytes: Self::memory_bytes(n),
+            })?;
         for _ in 0..count {
             slots.push(Slot::new()?);
         }
         let mut wanted = Vec::new();
-        wanted.try_reserve_exact(count).map_err(|_| Error::OutOfMemory {
-            bytes: Self::memory_bytes(n),
-        })?;
+        wanted
+            .try_reserve_exact(count)
+            .map_err(|_| Error::OutOfMemory {
+                bytes: Self::memory_bytes(n),
+            })?;
         wanted.extend((0..count).map(|_| AtomicBool::new(false)));
         Ok(Tiles {
             n,
@@ -205,12 +207,8 @@ impl Tiles {
         simd: Simd,
     ) -> (&TileData, usize, usize) {
         let [tx, tz] = self.tile_of(ix, iz);
-        let data = self.slots[tz * self.per_axis + tx].get(
-            [self.n, self.tile],
-            [tx, tz],
-            source,
-            simd,
-        );
+        let data =
+            self.slots[tz * self.per_axis + tx].get([self.n, self.tile], [tx, tz], source, simd);
         (data, ix - tx * self.tile, iz - tz * self.tile)
     }
 
