@@ -1,5 +1,6 @@
 //! Regenerates docs/benchmarks.md, the one file that holds the project's measured bench
-//! figures: runs the criterion benches `cascade_update`, `ocean_step` and `cascade_scaling`
+//! figures: runs the criterion benches `cascade_update`, `ocean_step`, `ocean_first_query`,
+//! `ocean_query_batch` and `cascade_scaling`
 //! (`cargo bench -p ocean-fft-benches`) a few rounds, reads criterion's samples, and rewrites
 //! the whole file with the tables and the machine, commit and toolchain they ran on. Every
 //! other document links to that file rather than quoting its numbers.
@@ -26,6 +27,8 @@ use ocean_fft::CascadeConfig;
 const SIZES: [usize; 5] = [64, 128, 256, 512, 1024];
 const LARGE_SIZES: [usize; 2] = [2048, 4096];
 const THREADS: [usize; 2] = [1, 2];
+/// Points per batch of `ocean_query_batch`.
+const BATCHES: [usize; 4] = [100, 1_000, 10_000, 100_000];
 
 /// What the generated file says before the tables: what it is and where the explanations are.
 const HEADER: &str = "\
@@ -283,6 +286,34 @@ fn comparison(samples: &Samples, group: &str, variant: &str, floor: &str, title:
     out
 }
 
+/// ns a point of the batch queries, fastest sample over the rounds.
+fn batches(samples: &Samples) -> String {
+    let mut out = String::from(
+        "| points | threads | `heights_at` ns a point | `surfaces_at` ns a point |\n|---|---|---|---|\n",
+    );
+    for points in BATCHES {
+        for threads in THREADS {
+            let per_point = |f: &str| {
+                samples
+                    .get(&(
+                        "ocean_query_batch".to_string(),
+                        format!("{f}_{threads}t"),
+                        points,
+                    ))
+                    .map_or("—".to_string(), |e| {
+                        format!("{:.0}", fastest(e) / points as f64)
+                    })
+            };
+            out += &format!(
+                "| {points} | {threads} | {} | {} |\n",
+                per_point("heights_at"),
+                per_point("surfaces_at")
+            );
+        }
+    }
+    out
+}
+
 fn scaling(samples: &Samples) -> String {
     let mut out = String::from(
         "| N | memory per cascade | bytes per point | `update` (2 threads) | ns per point | `four_ffts` | update ÷ four_ffts |\n\
@@ -349,6 +380,14 @@ fn main() {
         .flat_map(|f| THREADS.iter().map(move |t| format!("{f}_{t}t")))
         .collect();
     let scaling_functions = vec!["update".to_string(), "four_ffts".to_string()];
+    let first_query_functions: Vec<String> = ["step", "step_and_height_at"]
+        .iter()
+        .flat_map(|f| THREADS.iter().map(move |t| format!("{f}_{t}t")))
+        .collect();
+    let batch_functions: Vec<String> = ["heights_at", "surfaces_at"]
+        .iter()
+        .flat_map(|f| THREADS.iter().map(move |t| format!("{f}_{t}t")))
+        .collect();
     let mut live_rounds = Vec::new();
     for round in 0..options.rounds {
         if options.run {
@@ -356,6 +395,8 @@ fn main() {
             run_bench("cascade", "cascade_update");
             run_bench("ocean", "ocean_step");
             run_bench("ocean", "ocean_live");
+            run_bench("ocean", "ocean_first_query");
+            run_bench("ocean", "ocean_query_batch");
         }
         live_rounds.push(
             LIVE.iter()
@@ -378,6 +419,20 @@ fn main() {
             "ocean_step",
             &step_functions,
             &SIZES,
+        );
+        collect(
+            &mut samples,
+            &options.criterion,
+            "ocean_first_query",
+            &first_query_functions,
+            &SIZES,
+        );
+        collect(
+            &mut samples,
+            &options.criterion,
+            "ocean_query_batch",
+            &batch_functions,
+            &BATCHES,
         );
     }
     if options.run && options.scaling {
@@ -424,7 +479,11 @@ fn main() {
          (`ocean_step`; target ≤ 1.2)\n\n{step}\n\
          ## Time and memory per cascade (`cascade_update` at 2 threads and `cascade_scaling`; \
          memory from `CascadeConfig::memory_bytes`)\n\n{scaling}\n\
-         ## A change of weather on the default ocean at 256², one thread (`ocean_live`)\n\n{live}",
+         ## A change of weather on the default ocean at 256², one thread (`ocean_live`)\n\n{live}\n\
+         ## A step and the first `height_at` after it ÷ the step alone (`ocean_first_query`, the \
+         default ocean; target ≤ 1.1)\n\n{first_query}\n\
+         ## Batch queries of points scattered over 2 km × 2 km, default ocean at 256² \
+         (`ocean_query_batch`)\n\n{batches}",
         date = command_output("date", &["-u", "+%Y-%m-%d %H:%M UTC"]),
         commit = command_output("git", &["rev-parse", "--short", "HEAD"]),
         rustc = command_output("rustc", &["--version"]),
@@ -433,6 +492,14 @@ fn main() {
         step = comparison(&samples, "ocean_step", "step", "twelve_ffts", "step ÷ twelve_ffts"),
         scaling = scaling(&samples),
         live = live(&live_rounds, &frames),
+        first_query = comparison(
+            &samples,
+            "ocean_first_query",
+            "step_and_height_at",
+            "step",
+            "(step + height_at) ÷ step"
+        ),
+        batches = batches(&samples),
     );
     match options.out {
         None => println!("{table}"),

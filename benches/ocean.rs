@@ -23,6 +23,23 @@
 //!   points and a 100×100 `sample_grid` on the default ocean at 256², with cubic B-spline and
 //!   bilinear interpolation.
 //!
+//! - `ocean_query_batch`: `heights_at_1t`, `surfaces_at_1t`, `heights_at_2t`,
+//!   `surfaces_at_2t` of 100, 1 000, 10 000 and 100 000 points scattered uniformly over a
+//!   2 km square, on the default ocean at 256² (throughput in points: criterion prints the
+//!   time a point), the tiles the points read computed before timing.
+//! - `ocean_first_query`: `step_1t` and `step_and_height_at_1t` (the step and one
+//!   `height_at` after it, which computes the spline tiles it reads), and the same at 2
+//!   threads, on the default ocean at N = 128, 256 and 512: the cost a game loop that steps
+//!   and asks one boat's height pays beyond the step.
+//!
+//! - `ocean_full_coverage`: at N = 128 and 256, 1 and 2 threads: `step` (a step of the
+//!   default ocean), `step_and_heights_at` (the step and `heights_at` of a 64×64 grid of points
+//!   over the largest cascade's tile, which reads every tile of every cascade),
+//!   `heights_at` (the same batch again, its tiles computed) and `step_and_old_prefilter`
+//!   (the step and the whole-grid prefilter the queries used before issue 25, on every
+//!   cascade): the batch's tiles cost `step_and_heights_at − step − heights_at`, against
+//!   `step_and_old_prefilter − step`.
+//!
 //! - `ocean_live`: a change of weather on the default ocean at 256² on one thread: `step`
 //!   (a plain step), `set_spectrum_and_step` (`set_spectrum` with a 10 s duration and the
 //!   step after it), `transition_step` (the mean step of a whole change: preparation and
@@ -38,6 +55,8 @@
 //! the CPU.
 
 mod common;
+#[path = "common/old_prefilter.rs"]
+mod old_prefilter;
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -311,6 +330,178 @@ fn queries(c: &mut Criterion) {
     group.finish();
 }
 
+/// `count` world points scattered uniformly over a 2 km square (a fixed sequence).
+fn scattered(count: usize) -> Vec<[f64; 2]> {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..count)
+        .map(|_| [next() * 2000.0 - 1000.0, next() * 2000.0 - 1000.0])
+        .collect()
+}
+
+fn query_batch(c: &mut Criterion) {
+    let mut group = c.benchmark_group("ocean_query_batch");
+    group
+        .sample_size(20)
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(1));
+    let mut state = ocean_with(256, true, Interpolation::CubicBSpline);
+    state.step(3.0).expect("step");
+    for count in [100, 1_000, 10_000, 100_000] {
+        let points = scattered(count);
+        let mut heights = vec![0.0f32; count];
+        let mut surfaces = vec![SurfaceSample::default(); count];
+        group.throughput(Throughput::Elements(count as u64));
+        for threads in THREADS {
+            let pool = common::pool(threads);
+            group.bench_with_input(
+                BenchmarkId::new(format!("heights_at_{threads}t"), count),
+                &count,
+                |b, _| {
+                    pool.install(|| {
+                        b.iter(|| state.heights_at(&points, &mut heights).expect("heights_at"))
+                    })
+                },
+            );
+            group.bench_with_input(
+                BenchmarkId::new(format!("surfaces_at_{threads}t"), count),
+                &count,
+                |b, _| {
+                    pool.install(|| {
+                        b.iter(|| {
+                            state
+                                .surfaces_at(&points, &mut surfaces)
+                                .expect("surfaces_at")
+                        })
+                    })
+                },
+            );
+        }
+    }
+    group.finish();
+}
+
+fn first_query(c: &mut Criterion) {
+    let mut group = c.benchmark_group("ocean_first_query");
+    group
+        .sample_size(40)
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(1));
+    for size in [128, 256, 512] {
+        group.throughput(Throughput::Elements((size * size) as u64));
+        for threads in THREADS {
+            let pool = common::pool(threads);
+            let mut state = ocean(size, true);
+            group.bench_with_input(
+                BenchmarkId::new(format!("step_{threads}t"), size),
+                &size,
+                |b, _| pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step"))),
+            );
+            // A boat drifting with the current: a new point every frame.
+            let mut x = 0.0;
+            group.bench_with_input(
+                BenchmarkId::new(format!("step_and_height_at_{threads}t"), size),
+                &size,
+                |b, _| {
+                    pool.install(|| {
+                        b.iter(|| {
+                            state.step(black_box(1.0 / 60.0)).expect("step");
+                            x += 0.37;
+                            state.height_at(black_box(x), 12.0).expect("height_at")
+                        })
+                    })
+                },
+            );
+        }
+    }
+    group.finish();
+}
+
+fn full_coverage(c: &mut Criterion) {
+    let mut group = c.benchmark_group("ocean_full_coverage");
+    group
+        .sample_size(40)
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(1));
+    for size in [128, 256] {
+        group.throughput(Throughput::Elements((size * size) as u64));
+        for threads in THREADS {
+            let pool = common::pool(threads);
+            let mut state = ocean(size, true);
+            let length = f64::from(state.cascades()[0].length());
+            let side = 64;
+            let points: Vec<[f64; 2]> = (0..side * side)
+                .map(|i| {
+                    let spacing = length / side as f64;
+                    [(i % side) as f64 * spacing, (i / side) as f64 * spacing]
+                })
+                .collect();
+            let mut heights = vec![0.0f32; points.len()];
+            let mut old: Vec<old_prefilter::OldSpline> = state
+                .cascades()
+                .iter()
+                .map(|c| old_prefilter::OldSpline::new(c.size()))
+                .collect();
+            group.bench_with_input(
+                BenchmarkId::new(format!("step_{threads}t"), size),
+                &size,
+                |b, _| pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step"))),
+            );
+            group.bench_with_input(
+                BenchmarkId::new(format!("step_and_heights_at_{threads}t"), size),
+                &size,
+                |b, _| {
+                    pool.install(|| {
+                        b.iter(|| {
+                            state.step(black_box(1.0 / 60.0)).expect("step");
+                            state.heights_at(&points, &mut heights).expect("heights_at");
+                            heights[7]
+                        })
+                    })
+                },
+            );
+            group.bench_with_input(
+                BenchmarkId::new(format!("heights_at_{threads}t"), size),
+                &size,
+                |b, _| {
+                    pool.install(|| {
+                        b.iter(|| {
+                            state.heights_at(&points, &mut heights).expect("heights_at");
+                            heights[7]
+                        })
+                    })
+                },
+            );
+            group.bench_with_input(
+                BenchmarkId::new(format!("step_and_old_prefilter_{threads}t"), size),
+                &size,
+                |b, _| {
+                    pool.install(|| {
+                        b.iter(|| {
+                            state.step(black_box(1.0 / 60.0)).expect("step");
+                            let mut probe = 0.0;
+                            for (o, c) in old.iter_mut().zip(state.cascades()) {
+                                o.compute(c.height(), c.displacement(), c.slope());
+                                probe += o.probe();
+                            }
+                            probe
+                        })
+                    })
+                },
+            );
+        }
+    }
+    group.finish();
+}
+
 /// The two seas of the `ocean_live` benches: the default breeze and a gale from another
 /// direction.
 fn live_seas() -> (Spectrum, Spectrum) {
@@ -428,6 +619,9 @@ fn main() {
     parallel_cascades(&mut criterion);
     determinism(&mut criterion);
     queries(&mut criterion);
+    query_batch(&mut criterion);
+    first_query(&mut criterion);
+    full_coverage(&mut criterion);
     live(&mut criterion);
     second_order(&mut criterion);
     criterion.final_summary();

@@ -92,30 +92,6 @@ macro_rules! with_math {
 }
 pub(crate) use with_math;
 
-/// `x` to the integer power `n` by binary exponentiation, the algorithm of compiler-rt's
-/// and compiler-builtins' `__powisf2` (which `f32::powi` calls on x86-64 for a run-time
-/// exponent), written out so that every target runs it: Rust does not specify how `powi`
-/// rounds, and other targets or a constant exponent may compute it otherwise.
-pub(crate) fn powi_f32(mut x: f32, n: i32) -> f32 {
-    let mut power = n.unsigned_abs();
-    let mut product = 1.0f32;
-    loop {
-        if power & 1 != 0 {
-            product *= x;
-        }
-        power >>= 1;
-        if power == 0 {
-            break;
-        }
-        x *= x;
-    }
-    if n < 0 {
-        1.0 / product
-    } else {
-        product
-    }
-}
-
 /// The transcendental functions a simulation calls: [`Std`] or [`Libm`].
 pub(crate) trait Math: Copy + Send + Sync + 'static {
     /// The mode these functions belong to.
@@ -278,19 +254,6 @@ mod tests {
 
     /// Both sets agree with each other to a few ulps on ordinary arguments: they compute the
     /// same functions (a swapped argument or a wrong function would be far off).
-    /// The written-out binary exponentiation gives the bits of this platform's `powi` for a
-    /// run-time exponent (on x86-64 that is the same algorithm, so every bit matches).
-    #[test]
-    #[cfg(target_arch = "x86_64")]
-    fn powi_f32_matches_std_powi() {
-        for n in -70..=70 {
-            for x in [0.267_949_2f32, -0.5, 1.000_001, 3.7, -0.99, 1e-3] {
-                let n = std::hint::black_box(n);
-                assert_eq!(powi_f32(x, n).to_bits(), x.powi(n).to_bits(), "{x}^{n}");
-            }
-        }
-    }
-
     #[test]
     fn std_and_libm_compute_the_same_functions() {
         fn close(a: f64, b: f64) -> bool {

@@ -75,6 +75,41 @@ impl Simd {
     }
 }
 
+/// Work for [`Simd::run_kernel`]: its `run` is `#[inline(always)]`, so that it, and what it
+/// inlines, is compiled at each level (a closure called from the three arms of
+/// [`Simd::run`] may stay a function of its own, compiled for the baseline only, when it is
+/// large).
+pub(crate) trait Kernel {
+    type Output;
+    fn run(self) -> Self::Output;
+}
+
+/// A [`Kernel`] as pulp's work item.
+struct Pulp<K>(K);
+
+impl<K: Kernel> pulp::NullaryFnOnce for Pulp<K> {
+    type Output = K::Output;
+
+    #[inline(always)]
+    fn call(self) -> K::Output {
+        self.0.run()
+    }
+}
+
+impl Simd {
+    /// Runs `kernel` compiled for this level (see [`Kernel`]).
+    #[inline(always)]
+    pub(crate) fn run_kernel<K: Kernel>(self, kernel: K) -> K::Output {
+        match self {
+            Simd::Baseline => kernel.run(),
+            #[cfg(target_arch = "x86_64")]
+            Simd::Avx2(v3) => v3.vectorize(Pulp(kernel)),
+            #[cfg(target_arch = "x86_64")]
+            Simd::Avx512(v4) => v4.vectorize(Pulp(kernel)),
+        }
+    }
+}
+
 impl std::fmt::Debug for Simd {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {

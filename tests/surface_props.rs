@@ -23,7 +23,7 @@ use ocean_fft::inspect;
 use ocean_fft::inspect::{Fft2d, Field};
 use ocean_fft::{
     Cascade, CascadeConfig, DepthFactor, Determinism, Dispersion, Error, FoamConfig, Interpolation,
-    OceanConfig, OceanState, QueryConfig, SeaState, Spectrum, Spreading, SurfaceSample,
+    OceanConfig, OceanState, QueryConfig, SeaState, Spectrum, Spreading, Surface, SurfaceSample,
 };
 use proptest::prelude::*;
 use proptest::test_runner::Config;
@@ -847,6 +847,8 @@ enum OceanOp {
     SetSpectrum(Spectrum, f64),
     SetFoamConfig(FoamConfig),
     FoamAt(f64, f64),
+    /// Takes a `Surface` handle and queries it at these points (and keeps it for the end).
+    Surface(Vec<[f64; 2]>),
 }
 
 fn any_ocean_op() -> impl Strategy<Value = OceanOp> {
@@ -881,6 +883,8 @@ fn any_ocean_op() -> impl Strategy<Value = OceanOp> {
         )
             .prop_map(|(spectrum, duration)| OceanOp::SetSpectrum(spectrum, duration)),
         1 => any_foam().prop_map(OceanOp::SetFoamConfig),
+        1 => prop::collection::vec((any_f64(), any_f64()).prop_map(|(x, z)| [x, z]), 0..20)
+            .prop_map(OceanOp::Surface),
         1 => (
             prop_oneof![3 => 0f64..1.0, 1 => prop::sample::select(vec![-1.0, f64::NAN, f64::INFINITY, 1e300, 0.0])],
             prop_oneof![
@@ -984,6 +988,8 @@ proptest! {
         };
         prop_assert!(ocean_finite(&ocean));
         let mut saved = ocean.snapshot();
+        // Handles taken by `OceanOp::Surface`, with the answers they gave then.
+        let mut handles: Vec<Held> = Vec::new();
         for op in &ops {
             let before = ocean_bits(&ocean);
             let mutating = matches!(
@@ -1026,6 +1032,45 @@ proptest! {
                 OceanOp::SetFoamConfig(foam) => ocean
                     .set_foam_config(foam)
                     .map(|()| assert_eq!(ocean.config().foam, foam)),
+                OceanOp::Surface(ref points) => {
+                    let surface = ocean.surface();
+                    prop_assert_eq!(surface.time(), ocean.time());
+                    // Every query of the handle: the ocean's answer, or the same error.
+                    let answers: Vec<_> = points
+                        .iter()
+                        .map(|&[x, z]| surface.surface_at(x, z))
+                        .collect();
+                    for (&[x, z], answer) in points.iter().zip(&answers) {
+                        prop_assert_eq!(answer, &ocean.surface_at(x, z));
+                        prop_assert_eq!(surface.sample(x, z), ocean.sample(x, z));
+                        prop_assert_eq!(surface.locate(x, z), ocean.locate(x, z));
+                        prop_assert_eq!(
+                            surface.height_at(x, z).map(f32::to_bits),
+                            ocean.height_at(x, z).map(f32::to_bits)
+                        );
+                    }
+                    let mut a = vec![0.0f32; points.len()];
+                    let mut b = vec![0.0f32; points.len()];
+                    prop_assert_eq!(
+                        surface.heights_at(points, &mut a),
+                        ocean.heights_at(points, &mut b)
+                    );
+                    prop_assert_eq!(bits_of(&a), bits_of(&b));
+                    let mut a = vec![SurfaceSample::default(); points.len()];
+                    let mut b = a.clone();
+                    prop_assert_eq!(
+                        surface.surfaces_at(points, &mut a),
+                        ocean.surfaces_at(points, &mut b)
+                    );
+                    prop_assert_eq!(&a, &b);
+                    prop_assert_eq!(
+                        surface.sample_many(points, &mut a),
+                        ocean.sample_many(points, &mut b)
+                    );
+                    prop_assert_eq!(&a, &b);
+                    handles.push((surface, points.clone(), answers));
+                    Ok(())
+                }
                 _ => query(&ocean, op),
             };
             match result {
@@ -1047,7 +1092,20 @@ proptest! {
         if ocean.step(0.0).is_ok() {
             prop_assert!(ocean_finite(&ocean));
         }
+        // Whatever happened to the ocean since, a handle answers as it did when taken.
+        for (surface, points, answers) in &handles {
+            for (&[x, z], answer) in points.iter().zip(answers) {
+                prop_assert_eq!(&surface.surface_at(x, z), answer);
+            }
+        }
     }
+}
+
+/// A handle, the points it was asked about and its answers then.
+type Held = (Surface, Vec<[f64; 2]>, Vec<Result<SurfaceSample, Error>>);
+
+fn bits_of(values: &[f32]) -> Vec<u32> {
+    values.iter().map(|v| v.to_bits()).collect()
 }
 
 /// A value for a field whose valid range ends at the given limits: usually ordinary, often

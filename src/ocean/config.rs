@@ -302,13 +302,15 @@ impl OceanConfig {
 
     /// Bytes the ocean holds: every cascade ([`CascadeConfig::memory_bytes`]), the foam on
     /// cascade 0's grid (about 40·N² and its transform's scratch) and, with
-    /// [`Interpolation::CubicBSpline`], the spline coefficients of the world queries (20·N² per
-    /// cascade). Any config gives an answer, even one [`validate`](Self::validate) refuses.
+    /// [`Interpolation::CubicBSpline`], the spline coefficients of the world queries (about
+    /// 38·N² per cascade; a [`Surface`](crate::Surface) handle kept across steps adds a second
+    /// frame of them and copies of the queried fields, not counted here). Any config gives an
+    /// answer, even one [`validate`](Self::validate) refuses.
     pub fn memory_bytes(&self) -> usize {
         let cascade = crate::cascade::memory_bytes(self.size, self.determinism);
         let foam = super::foam::memory_bytes(self.size, self.determinism);
         let spline = match self.query.interpolation {
-            Interpolation::CubicBSpline => super::spline::Spline::memory_bytes(self.size),
+            Interpolation::CubicBSpline => super::spline::Tiles::memory_bytes(self.size),
             Interpolation::Bilinear => 0,
         };
         let second = if self.second_order {

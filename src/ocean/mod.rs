@@ -3,6 +3,7 @@
 
 mod config;
 mod foam;
+mod frame;
 mod live;
 mod query;
 mod snapshot;
@@ -12,10 +13,10 @@ mod time;
 use crate::cascade::{Cascade, LoopError};
 use crate::error::{self, Error};
 use crate::spectrum::{SlopeVariance, Spectrum};
-use spline::{QuerySplines, Spline};
 
 pub use config::{Interpolation, OceanConfig, QueryConfig};
 pub use foam::{FoamCalibration, FoamConfig, FoamCoverage};
+pub use frame::Surface;
 pub use query::{Location, SurfaceSample};
 pub use snapshot::OceanSnapshot;
 
@@ -41,9 +42,10 @@ pub struct OceanState {
     pub(crate) config: OceanConfig,
     pub(crate) cascades: Vec<Cascade>,
     pub(crate) foam: foam::Foam,
-    /// Cubic B-spline coefficients of each cascade's fields for the world queries, computed
-    /// on the first query after an update (none with [`Interpolation::Bilinear`]).
-    pub(crate) splines: QuerySplines,
+    /// What the world queries read about the current frame (the cubic B-spline
+    /// coefficients, computed tile by tile by the queries that read them), and the frame
+    /// before it while a [`Surface`] handle may hold it.
+    pub(crate) frames: frame::Frames,
     pub(crate) time: f64,
     /// The choppiness the cascades' buffers were last computed with (a new choppiness takes
     /// effect at the next update).
@@ -79,21 +81,14 @@ impl OceanState {
             }
         }
         let foam = foam::Foam::new(&mut cascades, &config.foam, &spectrum)?;
-        let cubic = config.query.interpolation == Interpolation::CubicBSpline;
-        let splines = QuerySplines::new(
-            cascades
-                .iter()
-                .filter(|_| cubic)
-                .map(|c| Spline::new(c.size()))
-                .collect::<Result<Vec<_>, _>>()?,
-        );
+        let frames = frame::Frames::new(frame::Frame::new(&config, &cascades, &foam, 0.0)?);
         Ok(OceanState {
             spectrum,
             applied_choppiness: config.choppiness,
             config,
             cascades,
             foam,
-            splines,
+            frames,
             time: 0.0,
             change: None,
         })
@@ -103,6 +98,8 @@ impl OceanState {
     /// time, stays).
     pub fn clear_foam(&mut self) {
         self.foam.clear();
+        // Handles taken before keep the foam they saw.
+        self.frames.advance(self.time, self.config.query);
     }
 
     /// Simulated time in seconds.

@@ -7,11 +7,11 @@ use std::ops::Bound::{Excluded, Included};
 
 use rayon::prelude::*;
 
-use super::spline::{Spline, SplineStencil};
+use super::frame::{Fields, Grid, Live, Surface};
+use super::spline::{self, weight_slopes, weights, Texel, LANES};
 use super::OceanState;
-use crate::cascade::Cascade;
-use crate::determinism::{with_math, Math};
 use crate::error::{self, Error};
+use crate::simd::Kernel;
 
 /// The surface at one undisplaced world point, summed over the cascades.
 ///
@@ -62,7 +62,8 @@ pub struct Location {
     /// Distance in metres between the query point and where the water at `undisplaced`
     /// actually lands (0 for an exact inversion).
     pub miss: f32,
-    /// Fixed-point iterations it took to reach `undisplaced`.
+    /// Newton steps it took to reach `undisplaced` (0: the query point itself), at most
+    /// [`QueryConfig::max_iterations`](crate::QueryConfig::max_iterations).
     pub iterations: usize,
     /// Whether `miss` is below [`QueryConfig::tolerance`](crate::QueryConfig::tolerance).
     pub converged: bool,
@@ -78,16 +79,50 @@ struct Stencil {
 
 /// The grid cell (ix, iz) of world point (x, z) on a periodic N×N grid of side `length`, and
 /// the fractions (fx, fz) in [0, 1] of the way across it, wrapped in f64.
+#[inline(always)]
 fn cell(x: f64, z: f64, length: f64, n: usize) -> (usize, f32, usize, f32) {
-    let cells = n as f64 / length;
-    let gx = x.rem_euclid(length) * cells;
-    let gz = z.rem_euclid(length) * cells;
+    cell_on(x, z, &Period::new(length, n))
+}
+
+/// A periodic grid's side L (m), 1/L and cells per metre N/L, and N: what [`cell_on`] needs,
+/// computed once.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Period {
+    length: f64,
+    inverse: f64,
+    cells: f64,
+    n: usize,
+}
+
+impl Period {
+    pub(crate) fn new(length: f64, n: usize) -> Period {
+        Period {
+            length,
+            inverse: 1.0 / length,
+            cells: n as f64 / length,
+            n,
+        }
+    }
+}
+
+/// [`cell`] on a [`Period`].
+#[inline(always)]
+fn cell_on(x: f64, z: f64, period: &Period) -> (usize, f32, usize, f32) {
+    let Period {
+        length,
+        inverse,
+        cells,
+        n,
+    } = *period;
+    let gx = wrap(x, length, inverse) * cells;
+    let gz = wrap(z, length, inverse) * cells;
     let (ix, fx) = split(gx, n);
     let (iz, fz) = split(gz, n);
     (ix, fx, iz, fz)
 }
 
 impl Stencil {
+    #[inline(always)]
     fn new((ix, fx, iz, fz): (usize, f32, usize, f32), n: usize) -> Stencil {
         let ix1 = (ix + 1) % n;
         let iz1 = (iz + 1) % n;
@@ -102,12 +137,12 @@ impl Stencil {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn scalar(&self, values: &[f32]) -> f32 {
         (0..4).map(|c| values[self.index[c]] * self.weight[c]).sum()
     }
 
-    #[inline]
+    #[inline(always)]
     fn vector(&self, values: &[[f32; 2]]) -> Vec2 {
         (0..4)
             .map(|c| Vec2::from_array(values[self.index[c]]) * self.weight[c])
@@ -117,20 +152,45 @@ impl Stencil {
 
 /// Periodic bilinear interpolation of `values`, a field on an N×N grid of side `length` m
 /// (grid point (i, j) at (i, j)·`length`/N, index j·N + i), at world (x, z).
+#[inline(always)]
 pub(crate) fn periodic_bilinear(values: &[f32], n: usize, length: f64, x: f64, z: f64) -> f32 {
     Stencil::new(cell(x, z, length, n), n).scalar(values)
 }
 
+/// `x` modulo `length` (> 0, `inverse` its reciprocal), in [0, `length`]:
+/// `x.rem_euclid(length)` without its software `fmod`, which costs more than a query's
+/// arithmetic. Below 2²⁹ periods q = ⌊x/L⌋ times an f32 length is exact in f64 and so is
+/// x − qL (at most two periods, on x's grid of ulps), so the remainder is exact; a q one off
+/// by the rounding of x·(1/L) is corrected.
+#[inline(always)]
+fn wrap(x: f64, length: f64, inverse: f64) -> f64 {
+    let periods = (x * inverse).floor();
+    if periods.abs() >= (1u64 << 29) as f64 {
+        return x.rem_euclid(length);
+    }
+    let r = x - periods * length;
+    if r < 0.0 {
+        r + length
+    } else if r >= length {
+        r - length
+    } else {
+        r
+    }
+}
+
 /// Integer cell and fraction of grid coordinate `g` in [0, n]; rounding can give exactly n,
 /// which wraps to cell 0.
+#[inline(always)]
 fn split(g: f64, n: usize) -> (usize, f32) {
     let cell = g.floor();
     let fraction = (g - cell) as f32;
-    ((cell as usize) % n, fraction)
+    // g ≤ n (a subtraction, not `%`: an integer division costs more than the spline).
+    let cell = cell as usize;
+    (if cell >= n { cell - n } else { cell }, fraction)
 }
 
 /// Checks a world point: both coordinates finite (any finite value: the cascades wrap).
-fn check_point(x: f64, z: f64) -> Result<(), Error> {
+pub(crate) fn check_point(x: f64, z: f64) -> Result<(), Error> {
     for (name, value) in [("x", x), ("z", z)] {
         if !value.is_finite() {
             return Err(Error::NonFinite { name });
@@ -139,16 +199,398 @@ fn check_point(x: f64, z: f64) -> Result<(), Error> {
     Ok(())
 }
 
-/// The cell of (x, z) on `cascade`'s grid.
-#[inline]
-fn cell_of(cascade: &Cascade, x: f64, z: f64) -> (usize, f32, usize, f32) {
-    cell(x, z, f64::from(cascade.length()), cascade.size())
+/// The cell of (x, z) on `grid`.
+#[inline(always)]
+fn cell_in(grid: &Grid, x: f64, z: f64) -> (usize, f32, usize, f32) {
+    cell_on(x, z, &grid.period)
 }
 
-/// The cubic B-spline stencil of a cell on an N×N grid.
-#[inline]
-fn spline_of((ix, fx, iz, fz): (usize, f32, usize, f32), n: usize) -> SplineStencil {
-    SplineStencil::new(ix, fx, iz, fz, n)
+/// The fields of cascades `range` at undisplaced world (x, z), summed in cascade order:
+/// `[D_x, D_z, η, ∂y/∂x, ∂y/∂z, 0, 0, 0]`, and with `JACOBIAN` the derivatives of the summed
+/// displacement `[∂D_x/∂x, ∂D_x/∂z, ∂D_z/∂x, ∂D_z/∂z]` (per metre; zero without). The values do
+/// not depend on `JACOBIAN`: the same operations in the same order.
+#[inline(always)]
+fn evaluate<F: Fields, const JACOBIAN: bool>(
+    fields: &F,
+    x: f64,
+    z: f64,
+    range: std::ops::Range<usize>,
+) -> (Texel, [f32; 4]) {
+    let frame = fields.frame();
+    let mut total = [0.0f32; LANES];
+    let mut jacobian = [0.0f32; 4];
+    for c in range {
+        let grid = &frame.grids[c];
+        let at = cell_in(grid, x, z);
+        let (ix, fx, iz, fz) = at;
+        let per_metre = grid.per_metre;
+        let (value, [gx, gz]) = match &grid.tiles {
+            Some(tiles) => {
+                let (tile, lx, lz) = tiles.cell(ix, iz, || fields.source(c), frame.simd);
+                let (wx, wz) = (weights(fx), weights(fz));
+                if JACOBIAN {
+                    let (dx, dz) = (weight_slopes(fx), weight_slopes(fz));
+                    let [value, gx, gz] =
+                        spline::value_and_gradient(tile, lx, lz, [&wx, &wz], [&dx, &dz]);
+                    (value, [[gx[0], gx[1]], [gz[0], gz[1]]])
+                } else {
+                    (spline::value(tile, lx, lz, &wx, &wz), [[0.0; 2]; 2])
+                }
+            }
+            None => {
+                let source = fields.source(c);
+                let bilinear = Stencil::new(at, grid.n);
+                let height = bilinear.scalar(source.height);
+                let displacement = bilinear.vector(source.displacement);
+                let slope = bilinear.vector(source.slope);
+                let mut value = [0.0f32; LANES];
+                value[..5].copy_from_slice(&[
+                    displacement.x,
+                    displacement.y,
+                    height,
+                    slope.x,
+                    slope.y,
+                ]);
+                let gradient = if JACOBIAN {
+                    let d = bilinear
+                        .index
+                        .map(|i| Vec2::from_array(source.displacement[i]));
+                    let gx = (d[1] - d[0]) * (1.0 - fz) + (d[3] - d[2]) * fz;
+                    let gz = (d[2] - d[0]) * (1.0 - fx) + (d[3] - d[1]) * fx;
+                    [gx.to_array(), gz.to_array()]
+                } else {
+                    [[0.0; 2]; 2]
+                };
+                (value, gradient)
+            }
+        };
+        for l in 0..LANES {
+            total[l] += value[l];
+        }
+        if JACOBIAN {
+            jacobian[0] += gx[0] * per_metre;
+            jacobian[1] += gz[0] * per_metre;
+            jacobian[2] += gx[1] * per_metre;
+            jacobian[3] += gz[1] * per_metre;
+        }
+    }
+    (total, jacobian)
+}
+
+/// The [`SurfaceSample`] of summed fields `value` and foam `foam`.
+#[inline(always)]
+fn surface_sample(value: Texel, foam: f32) -> SurfaceSample {
+    let slope = Vec2::new(value[3], value[4]);
+    SurfaceSample {
+        height: value[2],
+        displacement: [value[0], value[1]],
+        slope: slope.to_array(),
+        normal: normal_from_slope(slope).to_array(),
+        foam,
+    }
+}
+
+/// The surface at undisplaced world (x, z), summed over the cascades in `range` (the foam
+/// only if cascade 0 is among them).
+#[inline(always)]
+pub(crate) fn sample<F: Fields>(
+    fields: &F,
+    x: f64,
+    z: f64,
+    range: std::ops::Range<usize>,
+) -> SurfaceSample {
+    let foam = if range.contains(&0) {
+        fields.foam_at(x, z)
+    } else {
+        0.0
+    };
+    surface_sample(evaluate::<F, false>(fields, x, z, range).0, foam)
+}
+
+/// Smallest determinant of I + ∇D for which a Newton step is taken; below it (a surface that
+/// folds, or nearly) the step is the fixed point's, p − x₀ − D(x₀).
+const MIN_DETERMINANT: f64 = 0.05;
+
+/// The undisplaced point whose water lands on world (x, z), by Newton's method on
+/// x₀ + D(x₀) = p from x₀ = p (see [`OceanState::locate`]), and the summed fields there.
+#[inline(always)]
+pub(crate) fn locate<F: Fields>(fields: &F, x: f64, z: f64) -> (Location, Texel) {
+    let frame = fields.frame();
+    let query = frame.query;
+    let cascades = 0..frame.grids.len();
+    let mut best = Location {
+        undisplaced: [x, z],
+        miss: f32::INFINITY,
+        iterations: 0,
+        converged: false,
+    };
+    let mut best_value = [0.0f32; LANES];
+    // The last step taken from the best point, and the fraction of it being tried: halved
+    // whenever the miss does not shrink (a step that overshoots, near a fold).
+    let (mut base, mut step, mut fraction) = ([x, z], [0.0f64; 2], 1.0f64);
+    let mut x0 = [x, z];
+    for iteration in 0..=query.max_iterations {
+        let (value, j) = evaluate::<F, true>(fields, x0[0], x0[1], cascades.clone());
+        let landed = [x0[0] + f64::from(value[0]), x0[1] + f64::from(value[1])];
+        let residual = [x - landed[0], z - landed[1]];
+        // A correctly rounded square root: the same bits in both determinism modes (no
+        // overflow: a residual is at most a few displacements).
+        let miss = (residual[0] * residual[0] + residual[1] * residual[1]).sqrt() as f32;
+        if miss < best.miss {
+            best = Location {
+                undisplaced: x0,
+                miss,
+                iterations: iteration,
+                converged: miss < query.tolerance,
+            };
+            best_value = value;
+            if best.converged {
+                break;
+            }
+            // Newton: (I + ∇D) δ = residual.
+            let [a, b, c, d] = j.map(f64::from);
+            let (a, d) = (1.0 + a, 1.0 + d);
+            let determinant = a * d - b * c;
+            step = if determinant > MIN_DETERMINANT {
+                [
+                    (d * residual[0] - b * residual[1]) / determinant,
+                    (a * residual[1] - c * residual[0]) / determinant,
+                ]
+            } else {
+                residual
+            };
+            base = x0;
+            fraction = 1.0;
+        } else {
+            fraction *= 0.5;
+        }
+        x0 = [base[0] + fraction * step[0], base[1] + fraction * step[1]];
+    }
+    (best, best_value)
+}
+
+/// The surface where the water at world (x, z) comes from: the sample at the located point.
+#[inline(always)]
+pub(crate) fn surface_at<F: Fields>(fields: &F, x: f64, z: f64) -> SurfaceSample {
+    let (location, value) = locate(fields, x, z);
+    let [x0, z0] = location.undisplaced;
+    surface_sample(value, fields.foam_at(x0, z0))
+}
+
+/// The water height at world (x, z).
+#[inline(always)]
+pub(crate) fn height_at<F: Fields>(fields: &F, x: f64, z: f64) -> f32 {
+    locate(fields, x, z).1[2]
+}
+
+/// A query at one world point, for [`run`] and [`for_each_point`]: plain functions of the
+/// fields rather than closures, so that each is compiled at the frame's SIMD level (see
+/// [`Kernel`]).
+pub(crate) trait PointQuery<F: Fields>: Sync {
+    type Output: Send;
+    fn at(&self, fields: &F, x: f64, z: f64) -> Self::Output;
+}
+
+/// [`sample`] over a range of cascades.
+pub(crate) struct Sample(pub(crate) std::ops::Range<usize>);
+/// [`locate`].
+pub(crate) struct Locate;
+/// [`surface_at`].
+pub(crate) struct SurfaceAt;
+/// [`height_at`].
+pub(crate) struct HeightAt;
+
+impl<F: Fields> PointQuery<F> for Sample {
+    type Output = SurfaceSample;
+    #[inline(always)]
+    fn at(&self, fields: &F, x: f64, z: f64) -> SurfaceSample {
+        sample(fields, x, z, self.0.clone())
+    }
+}
+
+impl<F: Fields> PointQuery<F> for Locate {
+    type Output = Location;
+    #[inline(always)]
+    fn at(&self, fields: &F, x: f64, z: f64) -> Location {
+        locate(fields, x, z).0
+    }
+}
+
+impl<F: Fields> PointQuery<F> for SurfaceAt {
+    type Output = SurfaceSample;
+    #[inline(always)]
+    fn at(&self, fields: &F, x: f64, z: f64) -> SurfaceSample {
+        surface_at(fields, x, z)
+    }
+}
+
+impl<F: Fields> PointQuery<F> for HeightAt {
+    type Output = f32;
+    #[inline(always)]
+    fn at(&self, fields: &F, x: f64, z: f64) -> f32 {
+        height_at(fields, x, z)
+    }
+}
+
+/// `query` at world (x, z), at the frame's SIMD level.
+#[inline(always)]
+pub(crate) fn run<F: Fields, Q: PointQuery<F>>(fields: &F, query: Q, x: f64, z: f64) -> Q::Output {
+    fields.frame().simd.run_kernel(One {
+        fields,
+        query,
+        point: [x, z],
+    })
+}
+
+/// One point's query, as a [`Kernel`].
+struct One<'a, F, Q> {
+    fields: &'a F,
+    query: Q,
+    point: [f64; 2],
+}
+
+impl<F: Fields, Q: PointQuery<F>> Kernel for One<'_, F, Q> {
+    type Output = Q::Output;
+
+    #[inline(always)]
+    fn run(self) -> Q::Output {
+        self.query.at(self.fields, self.point[0], self.point[1])
+    }
+}
+
+/// A batch's query of each point into `out`, as a [`Kernel`].
+struct Batch<'a, F, T, Q> {
+    fields: &'a F,
+    points: &'a [[f64; 2]],
+    out: &'a mut [T],
+    query: &'a Q,
+}
+
+impl<F: Fields, Q: PointQuery<F>> Kernel for Batch<'_, F, Q::Output, Q> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run(self) {
+        for (value, &[x, z]) in self.out.iter_mut().zip(self.points) {
+            *value = self.query.at(self.fields, x, z);
+        }
+    }
+}
+
+/// One row of [`OceanState::sample_grid`], as a [`Kernel`].
+struct GridRow<'a, F> {
+    fields: &'a F,
+    /// The row's first point `[x, z]`, in metres.
+    start: [f64; 2],
+    spacing: f64,
+    row: &'a mut [SurfaceSample],
+    cascades: &'a std::ops::Range<usize>,
+}
+
+impl<F: Fields> Kernel for GridRow<'_, F> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run(self) {
+        let [x, z] = self.start;
+        for (c, s) in self.row.iter_mut().enumerate() {
+            *s = sample(
+                self.fields,
+                x + c as f64 * self.spacing,
+                z,
+                self.cascades.clone(),
+            );
+        }
+    }
+}
+
+/// Batches of at least this many points are spread over rayon's threads; smaller ones (a
+/// boat's few hull points) run on the calling thread, where handing them to the pool would
+/// cost more than it saves.
+const PARALLEL_BATCH: usize = 64;
+/// Points one parallel task answers (a fixed split: the results do not depend on it anyway).
+const TASK_POINTS: usize = 32;
+
+/// `query` of every point into `out`, at the frame's SIMD level.
+pub(crate) fn for_each_point<F: Fields, Q: PointQuery<F>>(
+    fields: &F,
+    points: &[[f64; 2]],
+    out: &mut [Q::Output],
+    query: Q,
+) {
+    let simd = fields.frame().simd;
+    let query = &query;
+    let chunk = |out: &mut [Q::Output], points: &[[f64; 2]]| {
+        simd.run_kernel(Batch {
+            fields,
+            points,
+            out,
+            query,
+        })
+    };
+    if points.len() < PARALLEL_BATCH {
+        chunk(out, points);
+    } else {
+        prepare_tiles(fields, points);
+        out.par_chunks_mut(TASK_POINTS)
+            .zip(points.par_chunks(TASK_POINTS))
+            .for_each(|(out, points)| chunk(out, points));
+    }
+}
+
+/// Computes, in parallel, the spline tiles under a batch's `points` that no query computed
+/// yet (the queries' threads would otherwise wait for each other's tiles; the tiles a
+/// query's Newton iterates move on to are computed when they are read, as always).
+fn prepare_tiles<F: Fields>(fields: &F, points: &[[f64; 2]]) {
+    let frame = fields.frame();
+    if frame.grids.iter().all(|grid| grid.tiles.is_none()) {
+        return;
+    }
+    // Marking costs about 30 ns a point and cascade: split like the queries.
+    points.par_chunks(MARK_POINTS).for_each(|points| {
+        for grid in &frame.grids {
+            if let Some(tiles) = &grid.tiles {
+                for &[x, z] in points {
+                    let (ix, _, iz, _) = cell_in(grid, x, z);
+                    tiles.want(ix, iz);
+                }
+            }
+        }
+    });
+    for (c, grid) in frame.grids.iter().enumerate() {
+        if let Some(tiles) = &grid.tiles {
+            tiles.prepare(fields.source(c), frame.simd);
+        }
+    }
+}
+
+/// Points one parallel task of [`prepare_tiles`] marks.
+const MARK_POINTS: usize = 512;
+
+/// Checks a batch: `out` as long as `points`, every coordinate finite.
+pub(crate) fn check_batch(points: &[[f64; 2]], out_len: usize) -> Result<(), Error> {
+    error::length("out", out_len, points.len())?;
+    points.iter().try_for_each(|&[x, z]| check_point(x, z))
+}
+
+/// Checks a range of cascades of an ocean with `count` of them.
+pub(crate) fn check_range(range: &std::ops::Range<usize>, count: usize) -> Result<(), Error> {
+    if (range.start..=count).contains(&range.end) {
+        Ok(())
+    } else {
+        Err(Error::CountOutOfRange {
+            name: "cascades.end",
+            count: range.end,
+            min: range.start,
+            max: count,
+        })
+    }
+}
+
+/// Unit normal (−s_x, 1, −s_z)/|…| of a surface with slope `slope`.
+#[inline(always)]
+pub(crate) fn normal_from_slope(slope: Vec2) -> Vec3 {
+    Vec3::new(-slope.x, 1.0, -slope.y).normalize_or(Vec3::Y)
 }
 
 impl OceanState {
@@ -160,21 +602,16 @@ impl OceanState {
     /// [`Interpolation::Bilinear`](crate::Interpolation::Bilinear) every field is
     /// bilinear.
     ///
+    /// The spline's coefficients are computed in tiles of 32×32 grid cells, each by the
+    /// first query after a step that reads it (about 10 µs a tile); a query reads one tile
+    /// of each cascade, rarely two.
+    ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn sample(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
-        Ok(self.sample_unchecked(x, z, &self.fresh_splines()))
-    }
-
-    /// The spline coefficients the queries need, fresh (computed now if the last update made
-    /// them stale).
-    fn fresh_splines(&self) -> super::spline::FreshSplines<'_> {
-        self.splines.fresh(&self.cascades)
-    }
-
-    fn sample_unchecked(&self, x: f64, z: f64, splines: &[Spline]) -> SurfaceSample {
-        self.sample_range(x, z, 0..self.cascades.len(), splines)
+        let cascades = 0..self.cascades.len();
+        Ok(run(&Live(self), Sample(cascades), x, z))
     }
 
     /// [`OceanState::sample`] summed over the cascades in `cascades` only (indices into
@@ -192,87 +629,19 @@ impl OceanState {
         cascades: std::ops::Range<usize>,
     ) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
-        if !(cascades.start..=self.cascades.len()).contains(&cascades.end) {
-            return Err(Error::CountOutOfRange {
-                name: "cascades.end",
-                count: cascades.end,
-                min: cascades.start,
-                max: self.cascades.len(),
-            });
-        }
-        Ok(self.sample_range(x, z, cascades, &self.fresh_splines()))
-    }
-
-    fn sample_range(
-        &self,
-        x: f64,
-        z: f64,
-        range: std::ops::Range<usize>,
-        splines: &[Spline],
-    ) -> SurfaceSample {
-        let (mut height, mut displacement, mut slope) = (0.0f32, Vec2::ZERO, Vec2::ZERO);
-        let foam = if range.contains(&0) {
-            self.foam.foam_at(x, z)
-        } else {
-            0.0
-        };
-        let cascades = &self.cascades[range.clone()];
-        // Empty with bilinear queries.
-        let splines = splines.get(range).unwrap_or_default();
-        for (c, cascade) in cascades.iter().enumerate() {
-            let n = cascade.size();
-            let at = cell_of(cascade, x, z);
-            if let Some(spline) = splines.get(c) {
-                let s = spline_of(at, n);
-                let [eta, sx, sz] = s.apply(&spline.surface);
-                height += eta;
-                displacement += Vec2::from_array(s.apply(&spline.displacement));
-                slope += Vec2::new(sx, sz);
-            } else {
-                let bilinear = Stencil::new(at, n);
-                height += bilinear.scalar(cascade.height());
-                displacement += bilinear.vector(cascade.displacement());
-                slope += bilinear.vector(cascade.slope());
-            }
-        }
-        SurfaceSample {
-            height,
-            displacement: displacement.to_array(),
-            slope: slope.to_array(),
-            normal: normal_from_slope(slope).to_array(),
-            foam,
-        }
-    }
-
-    /// Summed horizontal displacement at the undisplaced point, in metres.
-    fn displacement_at(&self, x: f64, z: f64, splines: &[Spline]) -> Vec2 {
-        if splines.is_empty() {
-            return self
-                .cascades
-                .iter()
-                .map(|cascade| {
-                    Stencil::new(cell_of(cascade, x, z), cascade.size())
-                        .vector(cascade.displacement())
-                })
-                .sum();
-        }
-        self.cascades
-            .iter()
-            .zip(splines)
-            .map(|(cascade, spline)| {
-                let s = spline_of(cell_of(cascade, x, z), cascade.size());
-                Vec2::from_array(s.apply(&spline.displacement))
-            })
-            .sum()
+        check_range(&cascades, self.cascades.len())?;
+        Ok(run(&Live(self), Sample(cascades), x, z))
     }
 
     /// Finds the undisplaced point x₀ whose water lands on world point (`x`, `z`), i.e.
-    /// x₀ + D(x₀) = (x, z), by the fixed-point iteration x₀ ← p − D(x₀) (at most
-    /// [`QueryConfig::max_iterations`], stopping once within [`QueryConfig::tolerance`]), and
-    /// says how well it did. The iteration converges where the surface does not fold (J > 0
-    /// and the displacement's gradient contracts); where it folds (high choppiness, breaking
-    /// crests) several points land on (x, z) or none does exactly, and the best iterate found
-    /// is returned with `converged: false`.
+    /// x₀ + D(x₀) = (x, z), by Newton's method from x₀ = (x, z) with the Jacobian of the
+    /// interpolated displacement (at most [`QueryConfig::max_iterations`] steps, stopping
+    /// once within [`QueryConfig::tolerance`]; two or three steps on the default sea), and
+    /// says how well it did. A step that does not bring the water closer is halved, and
+    /// where the surface (nearly) folds the step is the fixed point's x₀ ← p − D(x₀), so it
+    /// converges wherever the surface does not fold (J > 0); where it folds (high
+    /// choppiness, breaking crests) several points land on (x, z) or none does exactly, and
+    /// the best iterate found is returned with `converged: false`.
     ///
     /// [`QueryConfig::max_iterations`]: crate::QueryConfig::max_iterations
     /// [`QueryConfig::tolerance`]: crate::QueryConfig::tolerance
@@ -292,53 +661,7 @@ impl OceanState {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn locate(&self, x: f64, z: f64) -> Result<Location, Error> {
         check_point(x, z)?;
-        Ok(self.locate_unchecked(x, z, &self.fresh_splines()))
-    }
-
-    fn locate_unchecked(&self, x: f64, z: f64, splines: &[Spline]) -> Location {
-        let query = self.config.query;
-        let mut d = self.displacement_at(x, z, splines);
-        let mut x0 = [x - f64::from(d.x), z - f64::from(d.y)];
-        let mut best = Location {
-            undisplaced: x0,
-            miss: f32::INFINITY,
-            iterations: 0,
-            converged: false,
-        };
-        // Relaxation factor ω of x₀ ← x₀ + ω (p − x₀ − D(x₀)); ω = 1 is the plain fixed point
-        // x₀ ← p − D(x₀). Where the surface is stretched by more than its own size (|∇D| > 1
-        // in troughs at high choppiness) the plain iteration overshoots; halving ω whenever
-        // the miss grows restores convergence wherever the surface does not fold.
-        let mut omega = 1.0;
-        let mut previous = f32::INFINITY;
-        for iteration in 1..=query.max_iterations {
-            d = self.displacement_at(x0[0], x0[1], splines);
-            let landed = [x0[0] + f64::from(d.x), x0[1] + f64::from(d.y)];
-            let residual = [x - landed[0], z - landed[1]];
-            let miss =
-                with_math!(self.config.determinism, M => M::hypot(residual[0], residual[1])) as f32;
-            if miss < best.miss {
-                best = Location {
-                    undisplaced: x0,
-                    miss,
-                    iterations: iteration,
-                    converged: miss < query.tolerance,
-                };
-            }
-            if best.converged {
-                break;
-            }
-            if miss > previous {
-                omega *= 0.5;
-            }
-            previous = miss;
-            x0 = if omega == 1.0 {
-                [x - f64::from(d.x), z - f64::from(d.y)]
-            } else {
-                [x0[0] + omega * residual[0], x0[1] + omega * residual[1]]
-            };
-        }
-        best
+        Ok(run(&Live(self), Locate, x, z))
     }
 
     /// The surface at world point (`x`, `z`) after horizontal displacement: the sample of
@@ -350,34 +673,37 @@ impl OceanState {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn surface_at(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
-        let splines = self.fresh_splines();
-        let x0 = self.locate_unchecked(x, z, &splines).undisplaced;
-        Ok(self.sample_unchecked(x0[0], x0[1], &splines))
+        Ok(run(&Live(self), SurfaceAt, x, z))
     }
 
     /// Water height y in metres at world point (`x`, `z`), after horizontal displacement —
     /// the query buoyancy and gameplay need. Where the surface folds the inversion may not
     /// converge; [`OceanState::locate`] reports how close it came.
     ///
+    /// Cost (default ocean, three 256² cascades, one thread; `docs/performance.md`): about
+    /// 0.2 µs once the tiles it reads are computed; the first query after a step computes
+    /// them (a tile of 32×32 cells of each cascade, rarely two: tens of µs, a few per cent of
+    /// the step), so stepping and asking one boat's height costs little more than the step.
+    /// For many points use [`OceanState::heights_at`]; to query from other threads while the
+    /// ocean steps, [`OceanState::surface`].
+    ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn height_at(&self, x: f64, z: f64) -> Result<f32, Error> {
-        self.surface_at(x, z).map(|s| s.height)
+        check_point(x, z)?;
+        Ok(run(&Live(self), HeightAt, x, z))
     }
 
     /// [`OceanState::height_at`] for many world points (x, z), into `out` (same length as
-    /// `points`), in parallel from 64 points on (fewer run on the calling thread).
+    /// `points`), in parallel from 64 points on (fewer run on the calling thread); each
+    /// result has the same bits as [`OceanState::height_at`] gives.
     ///
     /// # Errors
     /// [`Error::LengthMismatch`] unless `out` is as long as `points`; [`Error::NonFinite`]
     /// for a NaN or infinite coordinate. Nothing is written then.
     pub fn heights_at(&self, points: &[[f64; 2]], out: &mut [f32]) -> Result<(), Error> {
         check_batch(points, out.len())?;
-        let splines = self.fresh_splines();
-        for_each_point(points, out, |[x, z]| {
-            let x0 = self.locate_unchecked(x, z, &splines).undisplaced;
-            self.sample_unchecked(x0[0], x0[1], &splines).height
-        });
+        for_each_point(&Live(self), points, out, HeightAt);
         Ok(())
     }
 
@@ -388,11 +714,7 @@ impl OceanState {
     /// As [`OceanState::heights_at`].
     pub fn surfaces_at(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
-        let splines = self.fresh_splines();
-        for_each_point(points, out, |[x, z]| {
-            let x0 = self.locate_unchecked(x, z, &splines).undisplaced;
-            self.sample_unchecked(x0[0], x0[1], &splines)
-        });
+        for_each_point(&Live(self), points, out, SurfaceAt);
         Ok(())
     }
 
@@ -403,9 +725,26 @@ impl OceanState {
     /// As [`OceanState::heights_at`].
     pub fn sample_many(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
-        let splines = self.fresh_splines();
-        for_each_point(points, out, |[x, z]| self.sample_unchecked(x, z, &splines));
+        let cascades = 0..self.cascades.len();
+        for_each_point(&Live(self), points, out, Sample(cascades));
         Ok(())
+    }
+
+    /// A handle on the water as it is now, for queries from other threads while the ocean
+    /// steps on: the [`Surface`] keeps answering about this frame's time, with the same bits
+    /// as this ocean's own queries give now. The first handle of a frame copies the fields
+    /// the queries read (the height, displacement and slope of every cascade and the foam,
+    /// about 24·N² bytes per cascade: a few hundred µs at the default size); later handles
+    /// of the same frame share it. See [`Surface`] for what a step does while a handle is
+    /// held.
+    pub fn surface(&mut self) -> Surface {
+        let OceanState {
+            frames,
+            cascades,
+            foam,
+            ..
+        } = self;
+        frames.surface(cascades, foam)
     }
 
     /// The surface over a world-space window that sums every cascade: a `columns` × `rows`
@@ -461,48 +800,20 @@ impl OceanState {
             max: usize::MAX / columns,
         })?;
         error::length("out", out.len(), len)?;
-        let splines = self.fresh_splines();
-        let splines: &[Spline] = &splines;
+        let fields = Live(self);
+        let cascades = 0..self.cascades.len();
+        let simd = self.frames.current.simd;
         out.par_chunks_mut(columns)
             .enumerate()
             .for_each(|(r, row)| {
-                let z = origin[1] + r as f64 * spacing;
-                for (c, sample) in row.iter_mut().enumerate() {
-                    *sample = self.sample_unchecked(origin[0] + c as f64 * spacing, z, splines);
-                }
+                simd.run_kernel(GridRow {
+                    fields: &fields,
+                    start: [origin[0], origin[1] + r as f64 * spacing],
+                    spacing,
+                    row,
+                    cascades: &cascades,
+                })
             });
         Ok(())
     }
-}
-
-/// Batches of at least this many points are spread over rayon's threads; smaller ones (a
-/// boat's few hull points) run on the calling thread, where handing them to the pool would
-/// cost more than it saves.
-const PARALLEL_BATCH: usize = 64;
-
-fn for_each_point<T: Send>(
-    points: &[[f64; 2]],
-    out: &mut [T],
-    query: impl Fn([f64; 2]) -> T + Sync,
-) {
-    if points.len() < PARALLEL_BATCH {
-        for (value, &point) in out.iter_mut().zip(points) {
-            *value = query(point);
-        }
-    } else {
-        out.par_iter_mut()
-            .zip(points)
-            .with_min_len(PARALLEL_BATCH / 2)
-            .for_each(|(value, &point)| *value = query(point));
-    }
-}
-
-fn check_batch(points: &[[f64; 2]], out_len: usize) -> Result<(), Error> {
-    error::length("out", out_len, points.len())?;
-    points.iter().try_for_each(|&[x, z]| check_point(x, z))
-}
-
-/// Unit normal (−s_x, 1, −s_z)/|…| of a surface with slope `slope`.
-pub(crate) fn normal_from_slope(slope: Vec2) -> Vec3 {
-    Vec3::new(-slope.x, 1.0, -slope.y).normalize_or(Vec3::Y)
 }

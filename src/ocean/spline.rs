@@ -1,265 +1,432 @@
 //! Cubic B-spline interpolation of the cascades' fields for the world queries: the
-//! coefficients (the prefilter, computed once per update) and the 4×4 stencil of a point.
+//! coefficients, computed tile by tile when a query first reads a tile, and the 4×4 stencil
+//! of a point (values and derivatives).
 //!
 //! A field f sampled on the periodic grid is represented as f(x) = Σ_n c\[n\] β³(x/Δ − n),
 //! β³ the cubic B-spline. Interpolating the samples means (c\[n−1\] + 4c\[n\] + c\[n+1\])/6 = f\[n\]
 //! along each axis, solved by the recursive filter of Unser, Aldroubi & Eden (1991): with
 //! the pole z = √3 − 2, a causal pass y\[n\] = f\[n\] + z·y\[n−1\], an anticausal pass
-//! c\[n\] = y\[n\] + z·c\[n+1\], and the gain −6z, each pass started from its exact periodic
-//! initial value (a geometric sum over the period; terms beyond z²⁴ ≈ 2·10⁻¹⁴ dropped).
+//! c\[n\] = y\[n\] + z·c\[n+1\], and the gain −6z. Its impulse response is √3·z^|m|, so a
+//! coefficient depends on the samples around it with a weight that falls by |z| ≈ 0.268 a
+//! grid point: a tile's coefficients need only the samples within [`HALO`] points of it.
+//! Each pass starts from zero [`HALO`] points outside the tile (wrapping periodically), which
+//! drops the terms beyond z¹⁶ of the exact periodic filter: in 2D at most about
+//! 20·|z|¹⁷/(1 − |z|) ≈ 5·10⁻⁹ of the largest value of the field, below f32 rounding
+//! (6·10⁻⁸), so the coefficients are the exact periodic ones to f32 precision. Every
+//! tile is computed the same way from the same samples, so its bits do not depend on which
+//! query (or thread) computed it.
 
-use std::sync::{PoisonError, RwLock, RwLockReadGuard};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Mutex, OnceLock, PoisonError};
 
 use rayon::prelude::*;
 
-use crate::cascade::Cascade;
 use crate::error::{self, Error};
+use crate::simd::{Kernel, Simd};
 
 /// The pole √3 − 2 of the cubic B-spline's interpolation filter.
 const POLE: f32 = -0.267_949_2;
 /// Gain −6z of the two passes together: 1/(1 − z)² times it is 1, so constants pass.
 const GAIN: f32 = 1.607_695_2;
-/// Terms of the periodic initial sums (z^24 ≈ 2·10⁻¹⁴, far below f32 precision).
-const INIT_TERMS: usize = 24;
-/// Rows one parallel task of the row pass filters.
-const ROWS_PER_TASK: usize = 32;
-/// Smallest grid whose coefficients are computed with parallel tasks.
-const PARALLEL_SIZE: usize = 256;
+/// Cells along each side of a tile (fewer on grids smaller than this).
+pub(crate) const TILE: usize = 32;
+/// Samples each pass runs through before it reaches the tile: |z|¹⁷ ≈ 2·10⁻¹⁰ (see the
+/// module's docs).
+const HALO: usize = 16;
+/// Coefficients along each side of a stored tile: its cells and the stencil's reach of one
+/// before and two after, so that every point of a cell finds its 4×4 taps in one tile.
+pub(crate) const STRIDE: usize = TILE + 3;
+/// Samples along each side of the window a tile is filtered from.
+const WINDOW: usize = STRIDE + 2 * HALO;
 
-/// The cubic B-spline coefficients of one cascade's displacement `[D_x, D_z]` and surface
-/// `[η, ∂y/∂x, ∂y/∂z]` (z rows, as the cascade's buffers), with the scratch rows of the
-/// column pass.
-#[derive(Debug, Clone)]
-pub(crate) struct Spline {
-    n: usize,
-    pub(crate) displacement: Vec<[f32; 2]>,
-    pub(crate) surface: Vec<[f32; 3]>,
-    scratch2: Vec<[f32; 2]>,
-    scratch3: Vec<[f32; 3]>,
+/// Values a query interpolates at a grid point, in one 32-byte texel (the lanes vectorise
+/// across the fields): `[D_x, D_z, η, ∂y/∂x, ∂y/∂z, 0, 0, 0]`.
+pub(crate) const LANES: usize = 8;
+/// One texel: [`LANES`] values.
+pub(crate) type Texel = [f32; LANES];
+
+/// The samples of one cascade the queries read: its height, displacement and slope buffers.
+#[derive(Clone, Copy)]
+pub(crate) struct Source<'a> {
+    pub(crate) height: &'a [f32],
+    pub(crate) displacement: &'a [[f32; 2]],
+    pub(crate) slope: &'a [[f32; 2]],
 }
 
-impl Spline {
-    /// Allocates the coefficients of an N×N cascade (all zero until [`Spline::compute`]).
-    pub(crate) fn new(n: usize) -> Result<Spline, Error> {
-        Ok(Spline {
-            n,
-            displacement: error::try_vec(n * n, [0.0; 2])?,
-            surface: error::try_vec(n * n, [0.0; 3])?,
-            scratch2: error::try_vec(n, [0.0; 2])?,
-            scratch3: error::try_vec(n, [0.0; 3])?,
+impl Source<'_> {
+    /// The texel of grid point `index`.
+    #[inline(always)]
+    pub(crate) fn texel(&self, index: usize) -> Texel {
+        let [dx, dz] = self.displacement[index];
+        let [sx, sz] = self.slope[index];
+        [dx, dz, self.height[index], sx, sz, 0.0, 0.0, 0.0]
+    }
+}
+
+/// The coefficients of one tile: [`STRIDE`]² texels, row-major with z as the row.
+pub(crate) type TileData = [Texel; STRIDE * STRIDE];
+
+/// One tile's room: the computed coefficients once a query computed them, and otherwise
+/// the buffer they will be computed into (allocated with the [`Tiles`], moved between the
+/// two without copying the texels).
+#[derive(Debug)]
+struct Slot {
+    /// The coefficients of the current fields. Its state (empty, being computed, ready) is
+    /// the tile's: a query that finds it being computed waits for it (a few µs).
+    ready: OnceLock<Box<TileData>>,
+    /// The buffer while the tile is stale.
+    spare: Mutex<Option<Box<TileData>>>,
+}
+
+impl Slot {
+    fn new() -> Result<Slot, Error> {
+        Ok(Slot {
+            ready: OnceLock::new(),
+            spare: Mutex::new(Some(tile_buffer()?)),
         })
     }
 
-    /// Bytes the coefficients of an N×N cascade hold: 20·N² and two scratch rows.
-    pub(crate) fn memory_bytes(n: usize) -> usize {
-        n.saturating_mul(n)
-            .saturating_mul(20)
-            .saturating_add(n.saturating_mul(20))
-    }
-
-    /// Recomputes the coefficients from the cascade's buffers: each array a copy, a row pass
-    /// and a column pass (whole rows at a time, so that it vectorises). From N =
-    /// [`PARALLEL_SIZE`] on the two arrays and the row blocks run in parallel; below, the
-    /// work is too small to be worth handing to the pool. Allocates nothing; the split into
-    /// tasks depends only on N, and every value is computed the same way in any task, so
-    /// the result does not depend on the number of threads.
-    pub(crate) fn compute(&mut self, cascade: &Cascade) {
-        let n = self.n;
-        let parallel = n >= PARALLEL_SIZE;
-        let Spline {
-            displacement,
-            surface,
-            scratch2,
-            scratch3,
-            ..
-        } = self;
-        let mut first = || {
-            displacement.copy_from_slice(cascade.displacement());
-            filter_2d(displacement, scratch2, n, parallel);
-        };
-        let mut second = || {
-            for ((c, &eta), s) in surface
-                .iter_mut()
-                .zip(cascade.height())
-                .zip(cascade.slope())
-            {
-                *c = [eta, s[0], s[1]];
-            }
-            filter_2d(surface, scratch3, n, parallel);
-        };
-        if parallel {
-            rayon::join(first, second);
-        } else {
-            first();
-            second();
-        }
+    /// The coefficients of tile (`tx`, `tz`), computed from `source` into the spare buffer if
+    /// no query did so yet (only one initialiser runs at a time, so the buffer is there,
+    /// unless one panicked: then a new one is allocated).
+    #[inline(always)]
+    fn get<'s>(
+        &self,
+        grid: [usize; 2],
+        at: [usize; 2],
+        source: impl FnOnce() -> Source<'s>,
+        simd: Simd,
+    ) -> &TileData {
+        self.ready.get_or_init(|| {
+            let spare = self
+                .spare
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner)
+                .take();
+            let mut data = spare.unwrap_or_else(|| Box::new([[0.0; LANES]; STRIDE * STRIDE]));
+            compute_tile_at(simd, &source(), grid, at, &mut data);
+            data
+        })
     }
 }
 
-/// The interpolation filter along both axes of an N×N periodic grid, in place; the row
-/// blocks in parallel if `parallel`.
-fn filter_2d<const C: usize>(
-    data: &mut [[f32; C]],
-    scratch: &mut [[f32; C]],
+/// A zeroed tile buffer on the heap (never on the stack: it is 39 kB).
+fn tile_buffer() -> Result<Box<TileData>, Error> {
+    let boxed = error::try_vec(STRIDE * STRIDE, [0.0f32; LANES])?.into_boxed_slice();
+    Ok(boxed.try_into().expect("the vector holds STRIDE² texels"))
+}
+
+/// The cubic B-spline coefficients of one N×N cascade, in tiles of [`TILE`]² cells, each
+/// computed by the first query that reads it (see the module's docs) into room allocated
+/// here, and kept until [`Tiles::reset`].
+#[derive(Debug)]
+pub(crate) struct Tiles {
     n: usize,
-    parallel: bool,
-) {
-    let rows = |block: &mut [[f32; C]]| {
-        let mut groups = block.chunks_exact_mut(INTERLEAVE * n);
-        for group in &mut groups {
-            filter_rows::<C, INTERLEAVE>(group, n);
-        }
-        for row in groups.into_remainder().chunks_mut(n) {
-            filter_rows::<C, 1>(row, n);
-        }
-    };
-    if parallel {
-        data.par_chunks_mut(ROWS_PER_TASK * n).for_each(rows);
-    } else {
-        rows(data);
-    }
-    filter_columns(data, scratch, n);
+    /// Cells along a tile's side: [`TILE`], or N if smaller.
+    tile: usize,
+    /// Tiles along each axis, ⌈N / tile⌉.
+    per_axis: usize,
+    slots: Vec<Slot>,
+    /// Tiles a batch is about to read (see [`Tiles::prepare`]).
+    wanted: Vec<AtomicBool>,
 }
 
-/// Rows filtered together by [`filter_rows`]: their recursions are independent, so
-/// interleaving them hides the latency of each one's dependency chain.
+impl Tiles {
+    /// Room for the coefficients of an N×N cascade, none computed.
+    pub(crate) fn new(n: usize) -> Result<Tiles, Error> {
+        let tile = TILE.min(n);
+        let per_axis = n.div_ceil(tile);
+        let count = per_axis * per_axis;
+        let mut slots = Vec::new();
+        slots
+            .try_reserve_exact(count)
+            .map_err(|_| Error::OutOfMemory {
+                bytes: Self::memory_bytes(n),
+            })?;
+        for _ in 0..count {
+            slots.push(Slot::new()?);
+        }
+        let mut wanted = Vec::new();
+        wanted
+            .try_reserve_exact(count)
+            .map_err(|_| Error::OutOfMemory {
+                bytes: Self::memory_bytes(n),
+            })?;
+        wanted.extend((0..count).map(|_| AtomicBool::new(false)));
+        Ok(Tiles {
+            n,
+            tile,
+            per_axis,
+            slots,
+            wanted,
+        })
+    }
+
+    /// Bytes the coefficients of an N×N cascade take: 32 bytes for each of the
+    /// ([`TILE`] + 3)² texels of each of its ⌈N/[`TILE`]⌉² tiles (about 38·N² for large N).
+    pub(crate) fn memory_bytes(n: usize) -> usize {
+        let per_axis = n.div_ceil(TILE.min(n.max(1)));
+        per_axis.saturating_mul(per_axis).saturating_mul(
+            std::mem::size_of::<TileData>()
+                + std::mem::size_of::<Slot>()
+                + std::mem::size_of::<AtomicBool>(),
+        )
+    }
+
+    /// Forgets every computed tile (the cascade's buffers changed), keeping its room.
+    /// Allocates nothing.
+    pub(crate) fn reset(&mut self) {
+        for slot in &mut self.slots {
+            if let Some(data) = slot.ready.take() {
+                *slot.spare.get_mut().unwrap_or_else(PoisonError::into_inner) = Some(data);
+            }
+        }
+    }
+
+    /// The tile (x, z) holding cell (`ix`, `iz`).
+    #[inline(always)]
+    fn tile_of(&self, ix: usize, iz: usize) -> [usize; 2] {
+        // Tiles of TILE cells divide by a shift (an integer division costs more than the
+        // spline); only grids smaller than a tile have other sizes.
+        if self.tile == TILE {
+            [ix / TILE, iz / TILE]
+        } else {
+            [ix / self.tile, iz / self.tile]
+        }
+    }
+
+    /// The tile holding cell (`ix`, `iz`) and the cell's position in it (`lx`, `lz`: its
+    /// taps are the texels `lx..lx + 4` of rows `lz..lz + 4`), computed from `source` (the
+    /// samples these tiles belong to) at SIMD level `simd` if no query did so yet.
+    #[inline(always)]
+    pub(crate) fn cell<'s>(
+        &self,
+        ix: usize,
+        iz: usize,
+        source: impl FnOnce() -> Source<'s>,
+        simd: Simd,
+    ) -> (&TileData, usize, usize) {
+        let [tx, tz] = self.tile_of(ix, iz);
+        let data =
+            self.slots[tz * self.per_axis + tx].get([self.n, self.tile], [tx, tz], source, simd);
+        (data, ix - tx * self.tile, iz - tz * self.tile)
+    }
+
+    /// Marks the tile of cell (`ix`, `iz`) as wanted by the batch being prepared.
+    #[inline(always)]
+    pub(crate) fn want(&self, ix: usize, iz: usize) {
+        let [tx, tz] = self.tile_of(ix, iz);
+        self.wanted[tz * self.per_axis + tx].store(true, Ordering::Relaxed);
+    }
+
+    /// Computes every wanted tile that is not computed yet, in parallel (each by the same
+    /// function as a query's, so to the same bits), and clears the marks. A batch calls it
+    /// before its queries, whose threads would otherwise wait for each other's tiles. (Two
+    /// batches preparing at once may clear each other's marks: a tile missed here is
+    /// computed by the query that reads it, to the same bits.)
+    pub(crate) fn prepare(&self, source: Source<'_>, simd: Simd) {
+        let grid = [self.n, self.tile];
+        let per_axis = self.per_axis;
+        self.slots
+            .par_iter()
+            .zip(&self.wanted)
+            .enumerate()
+            .for_each(|(i, (slot, wanted))| {
+                if wanted.swap(false, Ordering::Relaxed) {
+                    slot.get(grid, [i % per_axis, i / per_axis], || source, simd);
+                }
+            });
+    }
+}
+
+impl Clone for Tiles {
+    /// Room for the same grid's coefficients, none computed (a clone recomputes what it
+    /// reads, to the same bits).
+    fn clone(&self) -> Self {
+        Tiles {
+            n: self.n,
+            tile: self.tile,
+            per_axis: self.per_axis,
+            slots: (0..self.slots.len())
+                .map(|_| Slot {
+                    ready: OnceLock::new(),
+                    spare: Mutex::new(Some(Box::new([[0.0; LANES]; STRIDE * STRIDE]))),
+                })
+                .collect(),
+            wanted: (0..self.wanted.len())
+                .map(|_| AtomicBool::new(false))
+                .collect(),
+        }
+    }
+}
+
+/// [`compute_tile`] at SIMD level `simd`, into `out`; not inlined into the queries.
+#[inline(never)]
+fn compute_tile_at(
+    simd: Simd,
+    source: &Source,
+    grid: [usize; 2],
+    at: [usize; 2],
+    out: &mut TileData,
+) {
+    simd.run_kernel(TileKernel {
+        source,
+        grid,
+        at,
+        out,
+    })
+}
+
+/// [`compute_tile`] as a [`Kernel`].
+struct TileKernel<'a, 's> {
+    source: &'a Source<'s>,
+    /// N and the cells along a tile's side.
+    grid: [usize; 2],
+    at: [usize; 2],
+    out: &'a mut TileData,
+}
+
+impl Kernel for TileKernel<'_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run(self) {
+        let [n, tile] = self.grid;
+        compute_tile(self.source, n, tile, self.at, self.out);
+    }
+}
+
+/// Window rows the x pass filters together: their recursions are independent, so
+/// interleaving them hides the latency of each one's dependency chain (8 texels of 8 lanes
+/// fill half the AVX registers).
 const INTERLEAVE: usize = 8;
 
-/// 1/(1 − z^N), the correction of the periodic initial sums (1 to f32 precision for large
-/// N, exact for small ones, whose sums run over the whole period).
-fn periodic_factor(n: usize) -> f32 {
-    1.0 / (1.0 - crate::determinism::powi_f32(POLE, n.min(64) as i32))
-}
-
-/// The interpolation filter along each of the R periodic rows of N values in `group`, in
-/// place, the R recursions interleaved. The gain is applied in the anticausal pass,
-/// c'\[n\] = G·y\[n\] + z·c'\[n + 1\] (the same as G·c, without a pass of its own).
-fn filter_rows<const C: usize, const R: usize>(group: &mut [[f32; C]], n: usize) {
-    let mut chunks = group.chunks_exact_mut(n);
-    let rows: [&mut [[f32; C]]; R] =
-        std::array::from_fn(|_| chunks.next().expect("the group holds R rows of N values"));
-    let terms = n.min(INIT_TERMS);
-    let factor = periodic_factor(n);
-    // Causal: y[−1] = Σ_k z^k f[N − 1 − k] / (1 − z^N).
-    let mut state = [[0.0f32; C]; R];
-    for (s, row) in state.iter_mut().zip(rows.iter()) {
-        let mut weight = factor;
-        for k in 0..terms {
-            let v = row[n - 1 - k];
-            for ch in 0..C {
-                s[ch] += weight * v[ch];
+/// The coefficients of tile (`tx`, `tz`) of an N×N grid with `tile` cells a side, into
+/// `out`: texel (a, b) is the coefficient of grid point (tx·tile − 1 + a, tz·tile − 1 + b),
+/// wrapped. The x pass runs on every row of the window, each started [`HALO`] samples left
+/// of the tile; the z pass on whole rows (so that it vectorises), started [`HALO`] rows
+/// above, its causal half folded in as the x pass delivers the rows. The rows above the
+/// tile are needed only for that causal state and the rows below it only for the
+/// anticausal half, so both share one small scratch; the tile's own rows are filtered in
+/// `out`. Inlined into its caller's [`Simd::run`].
+#[inline(always)]
+fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], out: &mut TileData) {
+    // Window sample w sits at grid point start + w, wrapped (`offset` is a multiple of n that
+    // keeps the start from underflowing).
+    let offset = (1 + HALO).div_ceil(n) * n;
+    let x_start = offset + tx * tile - 1 - HALO;
+    let z_start = offset + tz * tile - 1 - HALO;
+    let mut columns = [0usize; WINDOW];
+    // One division, then a wrap by comparison (n may be smaller than the window).
+    let mut next = x_start % n;
+    for column in &mut columns {
+        *column = next;
+        next = if next + 1 == n { 0 } else { next + 1 };
+    }
+    // Window rows 0..HALO (above the tile), then the tile's STRIDE rows (in `out`), then
+    // HALO rows below it, in `scratch` again once the rows above were folded in.
+    let mut scratch = [[[0.0f32; LANES]; STRIDE]; HALO];
+    let mut line = [[[0.0f32; LANES]; INTERLEAVE]; WINDOW];
+    // The z pass's causal state: y[r − 1] of the row before.
+    let mut state = [[0.0f32; LANES]; STRIDE];
+    let mut w = 0;
+    while w < WINDOW {
+        let rows = if w + INTERLEAVE <= WINDOW {
+            INTERLEAVE
+        } else {
+            1
+        };
+        if rows == INTERLEAVE {
+            filter_x::<INTERLEAVE>(source, &columns, n, z_start + w, &mut line);
+        } else {
+            let mut single = [[[0.0f32; LANES]; 1]; WINDOW];
+            filter_x::<1>(source, &columns, n, z_start + w, &mut single);
+            for (l, s) in line.iter_mut().zip(&single) {
+                l[0] = s[0];
             }
-            weight *= POLE;
         }
-    }
-    let mut rows = rows;
-    for i in 0..n {
-        for (s, row) in state.iter_mut().zip(rows.iter_mut()) {
-            let v = &mut row[i];
-            for ch in 0..C {
-                v[ch] += POLE * s[ch];
+        for k in 0..rows {
+            let r = w + k;
+            let row: &mut [Texel] = if r < HALO {
+                &mut scratch[r]
+            } else if r < HALO + STRIDE {
+                &mut out[(r - HALO) * STRIDE..][..STRIDE]
+            } else {
+                &mut scratch[r - HALO - STRIDE]
+            };
+            // The x pass's result (its anticausal half kept the tile's STRIDE texels, at
+            // window samples HALO..), then the z pass, causal: y[r] = x[r] + z·y[r − 1].
+            // (Each texel computed in a register and stored twice: stored lane by lane and
+            // read back whole, it stalled the store buffer.)
+            for ((v, s), x) in row.iter_mut().zip(state.iter_mut()).zip(&line[HALO..]) {
+                let x = &x[k];
+                let y: Texel = std::array::from_fn(|l| x[l] + POLE * s[l]);
+                *v = y;
+                *s = y;
             }
-            *s = *v;
         }
+        w += rows;
     }
-    // Anticausal: c'[N − 1] = G Σ_k z^k y[(N − 1 + k) mod N] / (1 − z^N).
-    for (s, row) in state.iter_mut().zip(rows.iter_mut()) {
-        *s = [0.0; C];
-        let mut weight = GAIN * factor;
-        for k in 0..terms {
-            let v = row[(n - 1 + k) % n];
-            for ch in 0..C {
-                s[ch] += weight * v[ch];
-            }
-            weight *= POLE;
+    // Anticausal with the gain, from the last row of the window up to the tile:
+    // c[r] = G·y[r] + z·c[r + 1].
+    let mut below = [[0.0f32; LANES]; STRIDE];
+    let tail = scratch.iter_mut().map(|row| &mut row[..]).rev();
+    let rows = out.chunks_exact_mut(STRIDE).rev();
+    for row in tail.chain(rows) {
+        for (v, b) in row.iter_mut().zip(below.iter_mut()) {
+            let c: Texel = std::array::from_fn(|l| GAIN * v[l] + POLE * b[l]);
+            *v = c;
+            *b = c;
         }
-        row[n - 1] = *s;
-    }
-    for i in (0..n - 1).rev() {
-        for (s, row) in state.iter_mut().zip(rows.iter_mut()) {
-            let v = &mut row[i];
-            for ch in 0..C {
-                v[ch] = GAIN * v[ch] + POLE * s[ch];
-            }
-            *s = *v;
-        }
-    }
-}
-
-/// The interpolation filter along z (down the columns) of an N×N grid, in place, a whole
-/// row at a time, on the rows as flat f32 slices (so that it vectorises whatever C is);
-/// `scratch` holds one row. The gain is applied in the anticausal pass, as in
-/// [`filter_rows`].
-fn filter_columns<const C: usize>(data: &mut [[f32; C]], scratch: &mut [[f32; C]], n: usize) {
-    let data = data.as_flattened_mut();
-    let scratch = scratch.as_flattened_mut();
-    let width = C * n;
-    let terms = n.min(INIT_TERMS);
-    let factor = periodic_factor(n);
-    // Causal: the row y[−1] = Σ_k z^k f[N − 1 − k] / (1 − z^N), into the scratch row.
-    weighted_sum(data, scratch, width, (0..terms).map(|k| n - 1 - k), factor);
-    recurse(&mut data[..width], scratch, 1.0);
-    for j in 1..n {
-        let (done, rest) = data.split_at_mut(j * width);
-        recurse(&mut rest[..width], &done[(j - 1) * width..], 1.0);
-    }
-    // Anticausal: c'[N − 1] = G Σ_k z^k y[(N − 1 + k) mod N] / (1 − z^N).
-    weighted_sum(
-        data,
-        scratch,
-        width,
-        (0..terms).map(|k| (n - 1 + k) % n),
-        GAIN * factor,
-    );
-    data[(n - 1) * width..].copy_from_slice(scratch);
-    for j in (0..n - 1).rev() {
-        let (head, tail) = data.split_at_mut((j + 1) * width);
-        recurse(&mut head[j * width..], &tail[..width], GAIN);
     }
 }
 
-/// `out` = factor · Σ_k z^k · row(rows_k), rows of `width` values.
-fn weighted_sum(
-    data: &[f32],
-    out: &mut [f32],
-    width: usize,
-    rows: impl Iterator<Item = usize>,
-    factor: f32,
+/// The x pass of R window rows starting at (unwrapped) grid row `first`: a causal pass from
+/// zero before the window, y\[i\] = f\[i\] + z·y\[i − 1\], then the anticausal one with the
+/// gain, c\[i\] = G·y\[i\] + z·c\[i + 1\] from zero after it, in `line` (the tile's texels
+/// are its entries [`HALO`]..[`HALO`] + [`STRIDE`]).
+#[inline(always)]
+fn filter_x<const R: usize>(
+    source: &Source,
+    columns: &[usize; WINDOW],
+    n: usize,
+    first: usize,
+    line: &mut [[Texel; R]; WINDOW],
 ) {
-    out.fill(0.0);
-    let mut weight = factor;
-    for j in rows {
-        for (o, v) in out.iter_mut().zip(&data[j * width..(j + 1) * width]) {
-            *o += weight * v;
+    // The rows' samples, as slices of N (so that a column < N needs one check a field).
+    let rows: [Source; R] = std::array::from_fn(|k| {
+        let base = (first + k) % n * n;
+        Source {
+            height: &source.height[base..base + n],
+            displacement: &source.displacement[base..base + n],
+            slope: &source.slope[base..base + n],
         }
-        weight *= POLE;
+    });
+    let mut state = [[0.0f32; LANES]; R];
+    for (y, &column) in line.iter_mut().zip(columns) {
+        for (k, row) in rows.iter().enumerate() {
+            let f = row.texel(column);
+            for l in 0..LANES {
+                state[k][l] = f[l] + POLE * state[k][l];
+            }
+        }
+        *y = state;
     }
-}
-
-/// `row` = `gain` · `row` + z · `other`, element-wise.
-#[inline]
-fn recurse(row: &mut [f32], other: &[f32], gain: f32) {
-    for (v, o) in row.iter_mut().zip(other) {
-        *v = gain * *v + POLE * o;
+    let mut state = [[0.0f32; LANES]; R];
+    for y in line[HALO..].iter_mut().rev() {
+        for k in 0..R {
+            for l in 0..LANES {
+                state[k][l] = GAIN * y[k][l] + POLE * state[k][l];
+            }
+        }
+        *y = state;
     }
-}
-
-/// The 16 taps of world point (x, z) on a periodic N×N grid of side `length`: the rows
-/// (start indices j·N) and columns of the 4×4 neighbourhood and the cubic B-spline weights
-/// along each axis. The wrap is done in f64, so a point a million metres out keeps the
-/// grid's sub-millimetre resolution.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct SplineStencil {
-    rows: [usize; 4],
-    columns: [usize; 4],
-    wx: [f32; 4],
-    wz: [f32; 4],
 }
 
 /// Cubic B-spline weights of the taps at offsets −1, 0, 1, 2 from the cell's node, for the
 /// fraction `t` ∈ [0, 1] of the way to the next node. They sum to 1; at t = 0 they are
 /// (1, 4, 1, 0)/6.
-#[inline]
+#[inline(always)]
 pub(crate) fn weights(t: f32) -> [f32; 4] {
     let s = 1.0 - t;
     let t2 = t * t;
@@ -272,121 +439,162 @@ pub(crate) fn weights(t: f32) -> [f32; 4] {
     ]
 }
 
-impl SplineStencil {
-    /// From the grid cell (`ix`, `iz`) and the fractions (`fx`, `fz`) within it.
-    #[inline]
-    pub(crate) fn new(ix: usize, fx: f32, iz: usize, fz: f32, n: usize) -> SplineStencil {
-        let around = |i: usize| [(i + n - 1) % n, i, (i + 1) % n, (i + 2) % n];
-        let columns = around(ix);
-        let rows = around(iz).map(|j| j * n);
-        SplineStencil {
-            rows,
-            columns,
-            wx: weights(fx),
-            wz: weights(fz),
+/// The derivatives of [`weights`] with respect to `t` (per cell; they sum to 0).
+#[inline(always)]
+pub(crate) fn weight_slopes(t: f32) -> [f32; 4] {
+    let s = 1.0 - t;
+    [
+        -0.5 * s * s,
+        t * (1.5 * t - 2.0),
+        0.5 + t * (1.0 - 1.5 * t),
+        0.5 * t * t,
+    ]
+}
+
+/// Σ w_x w_z c over the 4×4 taps from texel (`lx`, `lz`) of `tile`: the interpolated
+/// value of every lane.
+#[inline(always)]
+pub(crate) fn value(tile: &TileData, lx: usize, lz: usize, wx: &[f32; 4], wz: &[f32; 4]) -> Texel {
+    let mut sum = [0.0f32; LANES];
+    for (r, &wz) in wz.iter().enumerate() {
+        let taps = &tile[(lz + r) * STRIDE + lx..][..4];
+        let mut line = [0.0f32; LANES];
+        for (c, &wx) in taps.iter().zip(wx) {
+            for l in 0..LANES {
+                line[l] += wx * c[l];
+            }
+        }
+        for l in 0..LANES {
+            sum[l] += wz * line[l];
         }
     }
+    sum
+}
 
-    /// Σ w_x w_z c over the 16 taps of `coefficients`.
-    #[inline]
-    pub(crate) fn apply<const C: usize>(&self, coefficients: &[[f32; C]]) -> [f32; C] {
-        let mut sum = [0.0f32; C];
-        for (&row, &wz) in self.rows.iter().zip(&self.wz) {
-            let mut line = [0.0f32; C];
-            for (&column, &wx) in self.columns.iter().zip(&self.wx) {
-                let c = coefficients[row + column];
-                for ch in 0..C {
-                    line[ch] += wx * c[ch];
+/// [`value`] (the same operations, so the same bits) and its derivatives along x and z per
+/// cell, from the weights' derivatives `dx`, `dz`.
+#[inline(always)]
+pub(crate) fn value_and_gradient(
+    tile: &TileData,
+    lx: usize,
+    lz: usize,
+    [wx, wz]: [&[f32; 4]; 2],
+    [dx, dz]: [&[f32; 4]; 2],
+) -> [Texel; 3] {
+    let mut sum = [0.0f32; LANES];
+    let mut sum_x = [0.0f32; LANES];
+    let mut sum_z = [0.0f32; LANES];
+    for r in 0..4 {
+        let taps = &tile[(lz + r) * STRIDE + lx..][..4];
+        let mut line = [0.0f32; LANES];
+        let mut line_x = [0.0f32; LANES];
+        for ((c, &wx), &dx) in taps.iter().zip(wx).zip(dx) {
+            for l in 0..LANES {
+                line[l] += wx * c[l];
+                line_x[l] += dx * c[l];
+            }
+        }
+        for l in 0..LANES {
+            sum[l] += wz[r] * line[l];
+            sum_x[l] += wz[r] * line_x[l];
+            sum_z[l] += dz[r] * line[l];
+        }
+    }
+    [sum, sum_x, sum_z]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The exact periodic interpolation filter along one axis, in f64, by solving the
+    /// circulant system in the frequency domain (an independent computation): c = f / B̂
+    /// with B̂(k) = (4 + 2 cos(2πk/N))/6, through a direct DFT.
+    // Reference maths in the standard library's functions: a test, not simulation code.
+    #[allow(clippy::disallowed_methods)]
+    fn exact_1d(values: &[f64]) -> Vec<f64> {
+        use std::f64::consts::TAU;
+        let n = values.len();
+        let spectrum: Vec<(f64, f64)> = (0..n)
+            .map(|k| {
+                let b = (4.0 + 2.0 * (TAU * k as f64 / n as f64).cos()) / 6.0;
+                let (mut re, mut im) = (0.0, 0.0);
+                for (x, v) in values.iter().enumerate() {
+                    let phase = TAU * ((k * x) % n) as f64 / n as f64;
+                    re += v * phase.cos();
+                    im -= v * phase.sin();
+                }
+                (re / b, im / b)
+            })
+            .collect();
+        (0..n)
+            .map(|x| {
+                let sum: f64 = spectrum
+                    .iter()
+                    .enumerate()
+                    .map(|(k, (re, im))| {
+                        let phase = TAU * ((k * x) % n) as f64 / n as f64;
+                        re * phase.cos() - im * phase.sin()
+                    })
+                    .sum();
+                sum / n as f64
+            })
+            .collect()
+    }
+
+    /// The exact 2D coefficients: along x on every row, then along z on every column.
+    fn exact(values: &[f64], n: usize) -> Vec<f64> {
+        let mut rows: Vec<f64> = values.chunks(n).flat_map(exact_1d).collect();
+        for i in 0..n {
+            let column: Vec<f64> = (0..n).map(|j| rows[j * n + i]).collect();
+            for (j, c) in exact_1d(&column).into_iter().enumerate() {
+                rows[j * n + i] = c;
+            }
+        }
+        rows
+    }
+
+    #[test]
+    fn tiles_hold_the_periodic_coefficients_to_f32_precision() {
+        // One tile (wrapping several times), whole tiles, and a partial last tile (100).
+        for n in [4usize, 6, 10, 16, 64, 100] {
+            let height: Vec<f32> = (0..n * n)
+                .map(|i| ((i * 7919) % 101) as f32 / 50.0 - 1.0)
+                .collect();
+            let pairs: Vec<[f32; 2]> = height.iter().map(|&h| [h * 0.5, -h]).collect();
+            let source = Source {
+                height: &height,
+                displacement: &pairs,
+                slope: &pairs,
+            };
+            let reference = exact(&height.iter().map(|&h| f64::from(h)).collect::<Vec<_>>(), n);
+            let tiles = Tiles::new(n).unwrap();
+            let mut worst = 0.0f64;
+            for iz in 0..n {
+                for ix in 0..n {
+                    let (data, lx, lz) = tiles.cell(ix, iz, || source, Simd::Baseline);
+                    // The cell's 4×4 taps are grid points ix − 1 … ix + 2, iz − 1 … iz + 2.
+                    for b in 0..4 {
+                        for a in 0..4 {
+                            let (i, j) = ((ix + n + a - 1) % n, (iz + n + b - 1) % n);
+                            let got = data[(lz + b) * STRIDE + lx + a];
+                            worst = worst.max((f64::from(got[2]) - reference[j * n + i]).abs());
+                            // The lanes are filtered independently (scaling by a power of two
+                            // commutes with every rounding).
+                            assert_eq!(got[0], got[2] * 0.5);
+                            assert_eq!(got[1], -got[2]);
+                            assert_eq!(got[5..], [0.0; 3]);
+                        }
+                    }
                 }
             }
-            for ch in 0..C {
-                sum[ch] += wz * line[ch];
-            }
-        }
-        sum
-    }
-}
-
-/// The spline coefficients of every cascade for the world queries, computed on the first query
-/// after an update rather than in the step: a step whose ocean is never queried (a game that
-/// only draws the buffers, a bake) does not pay for them, and one that is queried pays once.
-///
-/// Queries take `&self` and may run on many threads at once, so the coefficients sit behind a
-/// read–write lock: a query takes the read lock (uncontended, a few nanoseconds); the first
-/// one after an update finds them stale, takes the write lock and computes them (any
-/// concurrent query waits for it). The computation does not depend on which thread does it,
-/// so the results are the same bits however the queries are scheduled.
-#[derive(Debug)]
-pub(crate) struct QuerySplines {
-    state: RwLock<SplineState>,
-}
-
-#[derive(Debug, Clone)]
-struct SplineState {
-    /// Whether `splines` hold the coefficients of the cascades' current buffers.
-    fresh: bool,
-    /// One per cascade; empty with bilinear queries.
-    splines: Vec<Spline>,
-}
-
-/// Read access to coefficients that are fresh: the cascades' splines, largest first (empty
-/// with bilinear queries).
-pub(crate) struct FreshSplines<'a>(RwLockReadGuard<'a, SplineState>);
-
-impl std::ops::Deref for FreshSplines<'_> {
-    type Target = [Spline];
-
-    fn deref(&self) -> &[Spline] {
-        &self.0.splines
-    }
-}
-
-impl QuerySplines {
-    /// Holds `splines` (one per cascade, or none), stale until the first query.
-    pub(crate) fn new(splines: Vec<Spline>) -> Self {
-        QuerySplines {
-            state: RwLock::new(SplineState {
-                fresh: false,
-                splines,
-            }),
-        }
-    }
-
-    /// Marks the coefficients stale after the cascades changed (no locking: `&mut self`).
-    pub(crate) fn invalidate(&mut self) {
-        let state = self.state.get_mut().unwrap_or_else(PoisonError::into_inner);
-        state.fresh = false;
-    }
-
-    /// The coefficients of `cascades` as their buffers are now, computing them first if an
-    /// update made them stale. Allocates nothing.
-    pub(crate) fn fresh(&self, cascades: &[Cascade]) -> FreshSplines<'_> {
-        {
-            let state = self.state.read().unwrap_or_else(PoisonError::into_inner);
-            if state.fresh || state.splines.is_empty() {
-                return FreshSplines(state);
-            }
-        }
-        {
-            let mut state = self.state.write().unwrap_or_else(PoisonError::into_inner);
-            if !state.fresh {
-                state
-                    .splines
-                    .par_iter_mut()
-                    .zip(cascades)
-                    .for_each(|(spline, cascade)| spline.compute(cascade));
-                state.fresh = true;
-            }
-        }
-        FreshSplines(self.state.read().unwrap_or_else(PoisonError::into_inner))
-    }
-}
-
-impl Clone for QuerySplines {
-    fn clone(&self) -> Self {
-        let state = self.state.read().unwrap_or_else(PoisonError::into_inner);
-        QuerySplines {
-            state: RwLock::new(state.clone()),
+            // Each of the four recursions rounds once a step; the errors are summed with the
+            // weights |z|^k (Σ 1.37) and the gain (1.6) per pass, so they stay within a few
+            // f32 ε of the largest coefficient (measured: 1.7 ε). Dropping the terms beyond
+            // z^8 instead of z^16 would show about 20·|z|^9 ≈ 1.4e-4 of it, 1000 ε.
+            let largest = reference.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+            let bound = 8.0 * f64::from(f32::EPSILON) * largest;
+            assert!(worst < bound, "N = {n}: worst {worst:e}, bound {bound:e}");
         }
     }
 }

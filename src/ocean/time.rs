@@ -160,7 +160,7 @@ impl OceanState {
     }
 
     /// Moves the ocean to the checked time `t`: the cascades of `scope` (the choppiness last
-    /// set applied, the query splines made stale), then the foam as `foam` says, then the
+    /// set applied), then the foam as `foam` says, then the
     /// clock. One job handed to rayon (see `Cascade::update`), so nothing allocates inside a
     /// pool.
     pub(super) fn advance(&mut self, t: f64, foam: FoamMotion, scope: Scope) {
@@ -173,6 +173,7 @@ impl OceanState {
                 FoamMotion::Keep => {}
             }
             self.time = t;
+            self.frames.advance(t, self.config.query);
         });
     }
 
@@ -180,7 +181,6 @@ impl OceanState {
     /// which keeps its displacement gradient.
     fn update_cascades(&mut self, t: f64, scope: Scope) {
         self.applied_choppiness = self.config.choppiness;
-        self.splines.invalidate();
         let Some((first, rest)) = self.cascades.split_first_mut() else {
             return;
         };

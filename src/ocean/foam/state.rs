@@ -46,12 +46,12 @@ pub(super) const FLUSH: f32 = 1e-6;
 /// transport step (all allocated once).
 #[derive(Debug, Clone)]
 pub(crate) struct Foam {
-    pub(super) n: usize,
+    pub(crate) n: usize,
     /// Side of the foam grid's tile, L of cascade 0, in metres.
-    pub(super) length: f32,
+    pub(crate) length: f32,
     pub(super) active: Vec<f32>,
     pub(super) residual: Vec<f32>,
-    pub(super) total: Vec<f32>,
+    pub(crate) total: Vec<f32>,
     pub(super) breaking: Vec<f32>,
     pub(super) coverage: FoamCoverage,
     pub(super) calibration: FoamCalibration,
@@ -531,6 +531,7 @@ impl Foam {
 
     /// Periodic bilinear interpolation of `values` (a foam-grid buffer) at world (x, z), at
     /// least 0.
+    #[inline(always)]
     fn interpolate(&self, values: &[f32], x: f64, z: f64) -> f32 {
         let length = f64::from(self.length);
         crate::ocean::query::periodic_bilinear(values, self.n, length, x, z).max(0.0)
@@ -542,6 +543,7 @@ impl Foam {
     }
 
     /// The total foam at undisplaced world (x, z), in [0, 1].
+    #[inline(always)]
     pub(crate) fn foam_at(&self, x: f64, z: f64) -> f32 {
         self.interpolate(&self.total, x, z).min(1.0)
     }
