@@ -400,6 +400,16 @@ mod tests {
                         .collect();
                     let mut handle = vec![0.0f32; points.len()];
                     ocean.surface().heights_at(&points, &mut handle).unwrap();
+                    // The other batches against their single queries too (groups of points
+                    // interleaved, the last one partial).
+                    for (&[x, z], batch) in points.iter().zip(&surfaces) {
+                        assert_eq!(ocean.surface_at(x, z).unwrap(), *batch);
+                    }
+                    let mut samples = vec![SurfaceSample::default(); points.len()];
+                    ocean.sample_many(&points, &mut samples).unwrap();
+                    for (&[x, z], batch) in points.iter().zip(&samples) {
+                        assert_eq!(ocean.sample(x, z).unwrap(), *batch);
+                    }
                     (heights, surfaces, singles, handle)
                 });
                 let bits = |v: &[f32]| v.iter().map(|h| h.to_bits()).collect::<Vec<_>>();

@@ -8,8 +8,8 @@ use std::ops::Bound::{Excluded, Included};
 use rayon::prelude::*;
 
 use super::frame::{Fields, Grid, Live, Surface};
-use super::spline::{self, weight_slopes, weights, Texel, LANES};
-use super::OceanState;
+use super::spline::{self, Source, TileData, Weights};
+use super::{OceanState, QueryConfig};
 use crate::error::{self, Error};
 use crate::simd::Kernel;
 
@@ -205,86 +205,162 @@ fn cell_in(grid: &Grid, x: f64, z: f64) -> (usize, f32, usize, f32) {
     cell_on(x, z, &grid.period)
 }
 
-/// The fields of cascades `range` at undisplaced world (x, z), summed in cascade order:
-/// `[D_x, D_z, η, ∂y/∂x, ∂y/∂z, 0, 0, 0]`, and with `JACOBIAN` the derivatives of the summed
-/// displacement `[∂D_x/∂x, ∂D_x/∂z, ∂D_z/∂x, ∂D_z/∂z]` (per metre; zero without). The values do
-/// not depend on `JACOBIAN`: the same operations in the same order.
+/// What a query sums over the cascades at one undisplaced point (what it did not ask for is
+/// zero).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Summed {
+    /// `[D_x, D_z]` in metres.
+    displacement: [f32; 2],
+    /// `[∂D_x/∂x, ∂D_x/∂z, ∂D_z/∂x, ∂D_z/∂z]` of the summed displacement.
+    jacobian: [f32; 4],
+    /// η in metres.
+    height: f32,
+    /// `[∂y/∂x, ∂y/∂z]`.
+    slope: [f32; 2],
+}
+
+/// Where a point lies on one cascade: its spline taps (tile, cell in the tile, weights), or
+/// its bilinear stencil.
+enum Taps<'a> {
+    Spline(&'a TileData, usize, usize, Weights),
+    Bilinear(Stencil, Source<'a>, f32, f32),
+}
+
+/// The taps of undisplaced world (x, z) on cascade `c` (the weights' derivatives with
+/// `GRADIENT`), computing the spline tile it reads if no query did so yet.
 #[inline(always)]
-fn evaluate<F: Fields, const JACOBIAN: bool>(
+fn taps<F: Fields, const GRADIENT: bool>(fields: &F, c: usize, x: f64, z: f64) -> Taps<'_> {
+    let frame = fields.frame();
+    let grid = &frame.grids[c];
+    let at = cell_in(grid, x, z);
+    let (ix, fx, iz, fz) = at;
+    match &grid.tiles {
+        Some(tiles) => {
+            let (tile, lx, lz) = tiles.cell(ix, iz, || fields.source(c), frame.simd);
+            Taps::Spline(tile, lx, lz, Weights::new::<GRADIENT>(fx, fz))
+        }
+        None => Taps::Bilinear(Stencil::new(at, grid.n), fields.source(c), fx, fz),
+    }
+}
+
+/// Adds the fields of cascade `c` at undisplaced world (x, z) to `total`: the
+/// displacement with `DISPLACEMENT`, and with `JACOBIAN` its derivatives (per metre), the
+/// height with `HEIGHT`, the slope with `SLOPE`. A field's value does not depend on what
+/// else is asked: the same operations in the same order. Summing the cascades in order
+/// from [`Summed::default`] gives the queries' values, whether one point is summed at a
+/// time or several in turn (see [`PointQuery::group`]).
+#[inline(always)]
+fn accumulate<
+    F: Fields,
+    const DISPLACEMENT: bool,
+    const JACOBIAN: bool,
+    const HEIGHT: bool,
+    const SLOPE: bool,
+>(
+    fields: &F,
+    c: usize,
+    [x, z]: [f64; 2],
+    total: &mut Summed,
+) {
+    let frame = fields.frame();
+    let (per_metre, simd) = (frame.grids[c].per_metre, frame.simd);
+    let (displacement, [gx, gz], height, slope) = match taps::<F, JACOBIAN>(fields, c, x, z) {
+        Taps::Spline(tile, lx, lz, w) => {
+            let [displacement, gx, gz] = if DISPLACEMENT || JACOBIAN {
+                spline::displacement::<JACOBIAN>(simd, tile, lx, lz, &w)
+            } else {
+                [[0.0; 2]; 3]
+            };
+            let height = if HEIGHT {
+                spline::height(tile, lx, lz, &w)
+            } else {
+                0.0
+            };
+            let slope = if SLOPE {
+                spline::slope(simd, tile, lx, lz, &w)
+            } else {
+                [0.0; 2]
+            };
+            (displacement, [gx, gz], height, slope)
+        }
+        Taps::Bilinear(bilinear, source, fx, fz) => {
+            let displacement = if DISPLACEMENT || JACOBIAN {
+                bilinear.vector(source.displacement).to_array()
+            } else {
+                [0.0; 2]
+            };
+            let gradient = if JACOBIAN {
+                let d = bilinear
+                    .index
+                    .map(|i| Vec2::from_array(source.displacement[i]));
+                let gx = (d[1] - d[0]) * (1.0 - fz) + (d[3] - d[2]) * fz;
+                let gz = (d[2] - d[0]) * (1.0 - fx) + (d[3] - d[1]) * fx;
+                [gx.to_array(), gz.to_array()]
+            } else {
+                [[0.0; 2]; 2]
+            };
+            let height = if HEIGHT {
+                bilinear.scalar(source.height)
+            } else {
+                0.0
+            };
+            let slope = if SLOPE {
+                bilinear.vector(source.slope).to_array()
+            } else {
+                [0.0; 2]
+            };
+            (displacement, gradient, height, slope)
+        }
+    };
+    if DISPLACEMENT || JACOBIAN {
+        total.displacement[0] += displacement[0];
+        total.displacement[1] += displacement[1];
+    }
+    if JACOBIAN {
+        total.jacobian[0] += gx[0] * per_metre;
+        total.jacobian[1] += gz[0] * per_metre;
+        total.jacobian[2] += gx[1] * per_metre;
+        total.jacobian[3] += gz[1] * per_metre;
+    }
+    if HEIGHT {
+        total.height += height;
+    }
+    if SLOPE {
+        total.slope[0] += slope[0];
+        total.slope[1] += slope[1];
+    }
+}
+
+/// [`accumulate`] of cascades `range` at undisplaced world (x, z), in order.
+#[inline(always)]
+fn evaluate<
+    F: Fields,
+    const DISPLACEMENT: bool,
+    const JACOBIAN: bool,
+    const HEIGHT: bool,
+    const SLOPE: bool,
+>(
     fields: &F,
     x: f64,
     z: f64,
     range: std::ops::Range<usize>,
-) -> (Texel, [f32; 4]) {
-    let frame = fields.frame();
-    let mut total = [0.0f32; LANES];
-    let mut jacobian = [0.0f32; 4];
+) -> Summed {
+    let mut total = Summed::default();
     for c in range {
-        let grid = &frame.grids[c];
-        let at = cell_in(grid, x, z);
-        let (ix, fx, iz, fz) = at;
-        let per_metre = grid.per_metre;
-        let (value, [gx, gz]) = match &grid.tiles {
-            Some(tiles) => {
-                let (tile, lx, lz) = tiles.cell(ix, iz, || fields.source(c), frame.simd);
-                let (wx, wz) = (weights(fx), weights(fz));
-                if JACOBIAN {
-                    let (dx, dz) = (weight_slopes(fx), weight_slopes(fz));
-                    let [value, gx, gz] =
-                        spline::value_and_gradient(tile, lx, lz, [&wx, &wz], [&dx, &dz]);
-                    (value, [[gx[0], gx[1]], [gz[0], gz[1]]])
-                } else {
-                    (spline::value(tile, lx, lz, &wx, &wz), [[0.0; 2]; 2])
-                }
-            }
-            None => {
-                let source = fields.source(c);
-                let bilinear = Stencil::new(at, grid.n);
-                let height = bilinear.scalar(source.height);
-                let displacement = bilinear.vector(source.displacement);
-                let slope = bilinear.vector(source.slope);
-                let mut value = [0.0f32; LANES];
-                value[..5].copy_from_slice(&[
-                    displacement.x,
-                    displacement.y,
-                    height,
-                    slope.x,
-                    slope.y,
-                ]);
-                let gradient = if JACOBIAN {
-                    let d = bilinear
-                        .index
-                        .map(|i| Vec2::from_array(source.displacement[i]));
-                    let gx = (d[1] - d[0]) * (1.0 - fz) + (d[3] - d[2]) * fz;
-                    let gz = (d[2] - d[0]) * (1.0 - fx) + (d[3] - d[1]) * fx;
-                    [gx.to_array(), gz.to_array()]
-                } else {
-                    [[0.0; 2]; 2]
-                };
-                (value, gradient)
-            }
-        };
-        for l in 0..LANES {
-            total[l] += value[l];
-        }
-        if JACOBIAN {
-            jacobian[0] += gx[0] * per_metre;
-            jacobian[1] += gz[0] * per_metre;
-            jacobian[2] += gx[1] * per_metre;
-            jacobian[3] += gz[1] * per_metre;
-        }
+        accumulate::<F, DISPLACEMENT, JACOBIAN, HEIGHT, SLOPE>(fields, c, [x, z], &mut total);
     }
-    (total, jacobian)
+    total
 }
 
-/// The [`SurfaceSample`] of summed fields `value` and foam `foam`.
+/// The [`SurfaceSample`] of displacement `displacement`, height and slope `fields` and foam
+/// `foam`.
 #[inline(always)]
-fn surface_sample(value: Texel, foam: f32) -> SurfaceSample {
-    let slope = Vec2::new(value[3], value[4]);
+fn surface_sample(displacement: [f32; 2], fields: Summed, foam: f32) -> SurfaceSample {
+    let slope = Vec2::from_array(fields.slope);
     SurfaceSample {
-        height: value[2],
-        displacement: [value[0], value[1]],
-        slope: slope.to_array(),
+        height: fields.height,
+        displacement,
+        slope: fields.slope,
         normal: normal_from_slope(slope).to_array(),
         foam,
     }
@@ -304,54 +380,92 @@ pub(crate) fn sample<F: Fields>(
     } else {
         0.0
     };
-    surface_sample(evaluate::<F, false>(fields, x, z, range).0, foam)
+    let summed = evaluate::<F, true, false, true, true>(fields, x, z, range);
+    surface_sample(summed.displacement, summed, foam)
 }
 
 /// Smallest determinant of I + ∇D for which a Newton step is taken; below it (a surface that
 /// folds, or nearly) the step is the fixed point's, p − x₀ − D(x₀).
 const MIN_DETERMINANT: f64 = 0.05;
 
-/// The undisplaced point whose water lands on world (x, z), by Newton's method on
-/// x₀ + D(x₀) = p from x₀ = p (see [`OceanState::locate`]), and the summed fields there.
-#[inline(always)]
-pub(crate) fn locate<F: Fields>(fields: &F, x: f64, z: f64) -> (Location, Texel) {
-    let frame = fields.frame();
-    let query = frame.query;
-    let cascades = 0..frame.grids.len();
-    let mut best = Location {
-        undisplaced: [x, z],
-        miss: f32::INFINITY,
-        iterations: 0,
-        converged: false,
-    };
-    let mut best_value = [0.0f32; LANES];
-    // The last step taken from the best point, and the fraction of it being tried: halved
-    // whenever the miss does not shrink (a step that overshoots, near a fold).
-    let (mut base, mut step, mut fraction) = ([x, z], [0.0f64; 2], 1.0f64);
-    let mut x0 = [x, z];
-    for iteration in 0..=query.max_iterations {
-        let (value, j) = evaluate::<F, true>(fields, x0[0], x0[1], cascades.clone());
-        let landed = [x0[0] + f64::from(value[0]), x0[1] + f64::from(value[1])];
+/// One point's search for the undisplaced point whose water lands on it, by Newton's
+/// method on x₀ + D(x₀) = p from x₀ = p (see [`OceanState::locate`]): the iterate to
+/// evaluate next and what the evaluations so far found.
+#[derive(Debug, Clone, Copy)]
+struct Search {
+    /// The query point p.
+    target: [f64; 2],
+    /// The best iterate so far.
+    best: Location,
+    /// The summed displacement at the best iterate.
+    displacement: [f32; 2],
+    /// The last step taken from the best point, and the fraction of it being tried: halved
+    /// whenever the miss does not shrink (a step that overshoots, near a fold).
+    base: [f64; 2],
+    step: [f64; 2],
+    fraction: f64,
+    /// The iterate to evaluate next.
+    next: [f64; 2],
+    /// Whether the search is over (converged, or out of iterations).
+    done: bool,
+}
+
+impl Search {
+    #[inline(always)]
+    fn new(x: f64, z: f64) -> Search {
+        Search {
+            target: [x, z],
+            best: Location {
+                undisplaced: [x, z],
+                miss: f32::INFINITY,
+                iterations: 0,
+                converged: false,
+            },
+            displacement: [0.0; 2],
+            base: [x, z],
+            step: [0.0; 2],
+            fraction: 1.0,
+            next: [x, z],
+            done: false,
+        }
+    }
+
+    /// Takes the summed displacement and Jacobian at [`Search::next`] (evaluation number
+    /// `iteration`), and sets the iterate after it or ends the search.
+    #[inline(always)]
+    fn update(&mut self, iteration: usize, fields: &Summed, query: &QueryConfig) {
+        let [x, z] = self.target;
+        let x0 = self.next;
+        let Summed {
+            displacement,
+            jacobian,
+            ..
+        } = *fields;
+        let landed = [
+            x0[0] + f64::from(displacement[0]),
+            x0[1] + f64::from(displacement[1]),
+        ];
         let residual = [x - landed[0], z - landed[1]];
         // A correctly rounded square root: the same bits in both determinism modes (no
         // overflow: a residual is at most a few displacements).
         let miss = (residual[0] * residual[0] + residual[1] * residual[1]).sqrt() as f32;
-        if miss < best.miss {
-            best = Location {
+        if miss < self.best.miss {
+            self.best = Location {
                 undisplaced: x0,
                 miss,
                 iterations: iteration,
                 converged: miss < query.tolerance,
             };
-            best_value = value;
-            if best.converged {
-                break;
+            self.displacement = displacement;
+            if self.best.converged {
+                self.done = true;
+                return;
             }
             // Newton: (I + ∇D) δ = residual.
-            let [a, b, c, d] = j.map(f64::from);
+            let [a, b, c, d] = jacobian.map(f64::from);
             let (a, d) = (1.0 + a, 1.0 + d);
             let determinant = a * d - b * c;
-            step = if determinant > MIN_DETERMINANT {
+            self.step = if determinant > MIN_DETERMINANT {
                 [
                     (d * residual[0] - b * residual[1]) / determinant,
                     (a * residual[1] - c * residual[0]) / determinant,
@@ -359,28 +473,108 @@ pub(crate) fn locate<F: Fields>(fields: &F, x: f64, z: f64) -> (Location, Texel)
             } else {
                 residual
             };
-            base = x0;
-            fraction = 1.0;
+            self.base = x0;
+            self.fraction = 1.0;
         } else {
-            fraction *= 0.5;
+            self.fraction *= 0.5;
         }
-        x0 = [base[0] + fraction * step[0], base[1] + fraction * step[1]];
+        self.done = iteration == query.max_iterations;
+        self.next = [
+            self.base[0] + self.fraction * self.step[0],
+            self.base[1] + self.fraction * self.step[1],
+        ];
     }
-    (best, best_value)
+}
+
+/// The undisplaced point whose water lands on world (x, z), by Newton's method on
+/// x₀ + D(x₀) = p from x₀ = p (see [`OceanState::locate`]), and the summed displacement
+/// there.
+#[inline(always)]
+pub(crate) fn locate<F: Fields>(fields: &F, x: f64, z: f64) -> (Location, [f32; 2]) {
+    let frame = fields.frame();
+    let mut search = Search::new(x, z);
+    for iteration in 0..=frame.query.max_iterations {
+        let [x0, z0] = search.next;
+        let summed = evaluate::<F, true, true, false, false>(fields, x0, z0, 0..frame.grids.len());
+        search.update(iteration, &summed, &frame.query);
+        if search.done {
+            break;
+        }
+    }
+    (search.best, search.displacement)
+}
+
+/// Points whose queries [`PointQuery::group`] interleaves: enough independent work for the
+/// CPU to overlap one point's memory reads with the others' arithmetic.
+const GROUP: usize = 8;
+
+/// [`locate`] of each of `points` (at most [`GROUP`]) into `searches`, the points' Newton
+/// iterations in step and each iteration's cascades visited point after point (the same
+/// operations for each point as [`locate`]'s, so the same bits).
+#[inline(always)]
+fn locate_group<F: Fields>(fields: &F, points: &[[f64; 2]], searches: &mut [Search; GROUP]) {
+    let frame = fields.frame();
+    let count = points.len();
+    for (search, &[x, z]) in searches.iter_mut().zip(points) {
+        *search = Search::new(x, z);
+    }
+    for iteration in 0..=frame.query.max_iterations {
+        let mut sums = [Summed::default(); GROUP];
+        for c in 0..frame.grids.len() {
+            for (sum, search) in sums.iter_mut().zip(&searches[..count]) {
+                if !search.done {
+                    accumulate::<F, true, true, false, false>(fields, c, search.next, sum);
+                }
+            }
+        }
+        let mut done = true;
+        for (sum, search) in sums.iter().zip(&mut searches[..count]) {
+            if !search.done {
+                search.update(iteration, sum, &frame.query);
+                done &= search.done;
+            }
+        }
+        if done {
+            break;
+        }
+    }
+}
+
+/// The height (and with `SLOPE` the slope) of cascades `range` at each of `points` (at most
+/// [`GROUP`]), the cascades visited point after point (the same operations for each point
+/// as [`evaluate`]'s, so the same bits).
+#[inline(always)]
+fn evaluate_group<F: Fields, const DISPLACEMENT: bool, const SLOPE: bool>(
+    fields: &F,
+    points: impl Fn(usize) -> [f64; 2],
+    count: usize,
+    range: std::ops::Range<usize>,
+) -> [Summed; GROUP] {
+    let mut sums = [Summed::default(); GROUP];
+    for c in range {
+        for (p, sum) in sums[..count].iter_mut().enumerate() {
+            accumulate::<F, DISPLACEMENT, false, true, SLOPE>(fields, c, points(p), sum);
+        }
+    }
+    sums
 }
 
 /// The surface where the water at world (x, z) comes from: the sample at the located point.
 #[inline(always)]
 pub(crate) fn surface_at<F: Fields>(fields: &F, x: f64, z: f64) -> SurfaceSample {
-    let (location, value) = locate(fields, x, z);
+    let (location, displacement) = locate(fields, x, z);
     let [x0, z0] = location.undisplaced;
-    surface_sample(value, fields.foam_at(x0, z0))
+    let cascades = 0..fields.frame().grids.len();
+    let summed = evaluate::<F, false, false, true, true>(fields, x0, z0, cascades);
+    surface_sample(displacement, summed, fields.foam_at(x0, z0))
 }
 
 /// The water height at world (x, z).
 #[inline(always)]
 pub(crate) fn height_at<F: Fields>(fields: &F, x: f64, z: f64) -> f32 {
-    locate(fields, x, z).1[2]
+    let [x0, z0] = locate(fields, x, z).0.undisplaced;
+    let cascades = 0..fields.frame().grids.len();
+    evaluate::<F, false, false, true, false>(fields, x0, z0, cascades).height
 }
 
 /// A query at one world point, for [`run`] and [`for_each_point`]: plain functions of the
@@ -389,6 +583,15 @@ pub(crate) fn height_at<F: Fields>(fields: &F, x: f64, z: f64) -> f32 {
 pub(crate) trait PointQuery<F: Fields>: Sync {
     type Output: Send;
     fn at(&self, fields: &F, x: f64, z: f64) -> Self::Output;
+
+    /// [`PointQuery::at`] of each of `points` (at most [`GROUP`]) into `out`, with the same
+    /// bits; the queries that read the spline interleave the points (see [`locate_group`]).
+    #[inline(always)]
+    fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [Self::Output]) {
+        for (value, &[x, z]) in out.iter_mut().zip(points) {
+            *value = self.at(fields, x, z);
+        }
+    }
 }
 
 /// [`sample`] over a range of cascades.
@@ -406,6 +609,20 @@ impl<F: Fields> PointQuery<F> for Sample {
     fn at(&self, fields: &F, x: f64, z: f64) -> SurfaceSample {
         sample(fields, x, z, self.0.clone())
     }
+
+    #[inline(always)]
+    fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
+        let sums =
+            evaluate_group::<F, true, true>(fields, |p| points[p], points.len(), self.0.clone());
+        for ((value, sum), &[x, z]) in out.iter_mut().zip(&sums).zip(points) {
+            let foam = if self.0.contains(&0) {
+                fields.foam_at(x, z)
+            } else {
+                0.0
+            };
+            *value = surface_sample(sum.displacement, *sum, foam);
+        }
+    }
 }
 
 impl<F: Fields> PointQuery<F> for Locate {
@@ -413,6 +630,15 @@ impl<F: Fields> PointQuery<F> for Locate {
     #[inline(always)]
     fn at(&self, fields: &F, x: f64, z: f64) -> Location {
         locate(fields, x, z).0
+    }
+
+    #[inline(always)]
+    fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [Location]) {
+        let mut searches = [Search::new(0.0, 0.0); GROUP];
+        locate_group(fields, points, &mut searches);
+        for (value, search) in out.iter_mut().zip(&searches) {
+            *value = search.best;
+        }
     }
 }
 
@@ -422,6 +648,19 @@ impl<F: Fields> PointQuery<F> for SurfaceAt {
     fn at(&self, fields: &F, x: f64, z: f64) -> SurfaceSample {
         surface_at(fields, x, z)
     }
+
+    #[inline(always)]
+    fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
+        let mut searches = [Search::new(0.0, 0.0); GROUP];
+        locate_group(fields, points, &mut searches);
+        let at = |p: usize| searches[p].best.undisplaced;
+        let cascades = 0..fields.frame().grids.len();
+        let sums = evaluate_group::<F, false, true>(fields, at, points.len(), cascades);
+        for ((value, sum), search) in out.iter_mut().zip(&sums).zip(&searches) {
+            let [x0, z0] = search.best.undisplaced;
+            *value = surface_sample(search.displacement, *sum, fields.foam_at(x0, z0));
+        }
+    }
 }
 
 impl<F: Fields> PointQuery<F> for HeightAt {
@@ -429,6 +668,18 @@ impl<F: Fields> PointQuery<F> for HeightAt {
     #[inline(always)]
     fn at(&self, fields: &F, x: f64, z: f64) -> f32 {
         height_at(fields, x, z)
+    }
+
+    #[inline(always)]
+    fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [f32]) {
+        let mut searches = [Search::new(0.0, 0.0); GROUP];
+        locate_group(fields, points, &mut searches);
+        let at = |p: usize| searches[p].best.undisplaced;
+        let cascades = 0..fields.frame().grids.len();
+        let sums = evaluate_group::<F, false, false>(fields, at, points.len(), cascades);
+        for (value, sum) in out.iter_mut().zip(&sums) {
+            *value = sum.height;
+        }
     }
 }
 
@@ -471,8 +722,9 @@ impl<F: Fields, Q: PointQuery<F>> Kernel for Batch<'_, F, Q::Output, Q> {
 
     #[inline(always)]
     fn run(self) {
-        for (value, &[x, z]) in self.out.iter_mut().zip(self.points) {
-            *value = self.query.at(self.fields, x, z);
+        let groups = self.out.chunks_mut(GROUP).zip(self.points.chunks(GROUP));
+        for (out, points) in groups {
+            self.query.group(self.fields, points, out);
         }
     }
 }
@@ -546,20 +798,39 @@ fn prepare_tiles<F: Fields>(fields: &F, points: &[[f64; 2]]) {
     if frame.grids.iter().all(|grid| grid.tiles.is_none()) {
         return;
     }
-    // Marking costs about 30 ns a point and cascade: split like the queries.
+    // Marking costs a few ns a point and cascade: split like the queries, at the frame's
+    // SIMD level (the baseline has no instruction for the cell's floor).
     points.par_chunks(MARK_POINTS).for_each(|points| {
-        for grid in &frame.grids {
-            if let Some(tiles) = &grid.tiles {
-                for &[x, z] in points {
-                    let (ix, _, iz, _) = cell_in(grid, x, z);
-                    tiles.want(ix, iz);
-                }
-            }
-        }
+        frame.simd.run_kernel(Mark {
+            grids: &frame.grids,
+            points,
+        })
     });
     for (c, grid) in frame.grids.iter().enumerate() {
         if let Some(tiles) = &grid.tiles {
             tiles.prepare(fields.source(c), frame.simd);
+        }
+    }
+}
+
+/// The marking of the tiles under some of a batch's points, as a [`Kernel`].
+struct Mark<'a> {
+    grids: &'a [Grid],
+    points: &'a [[f64; 2]],
+}
+
+impl Kernel for Mark<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run(self) {
+        for grid in self.grids {
+            if let Some(tiles) = &grid.tiles {
+                for &[x, z] in self.points {
+                    let (ix, _, iz, _) = cell_in(grid, x, z);
+                    tiles.want(ix, iz);
+                }
+            }
         }
     }
 }

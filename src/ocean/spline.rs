@@ -39,11 +39,18 @@ pub(crate) const STRIDE: usize = TILE + 3;
 /// Samples along each side of the window a tile is filtered from.
 const WINDOW: usize = STRIDE + 2 * HALO;
 
-/// Values a query interpolates at a grid point, in one 32-byte texel (the lanes vectorise
-/// across the fields): `[D_x, D_z, η, ∂y/∂x, ∂y/∂z, 0, 0, 0]`.
-pub(crate) const LANES: usize = 8;
-/// One texel: [`LANES`] values.
-pub(crate) type Texel = [f32; LANES];
+/// Values the filter computes together at a grid point, in one 32-byte texel (the lanes
+/// vectorise across the fields): `[D_x, D_z, η, ∂y/∂x, ∂y/∂z, 0, 0, 0]`.
+const LANES: usize = 8;
+/// One texel of the filter: [`LANES`] values.
+type Texel = [f32; LANES];
+
+/// Coefficients in a tile: [`STRIDE`]² of each field.
+const TEXELS: usize = STRIDE * STRIDE;
+/// Where the height's coefficients start in [`TileData`] (after the displacement's pairs).
+const HEIGHT: usize = 2 * TEXELS;
+/// Where the slope's pairs start in [`TileData`].
+const SLOPE: usize = 3 * TEXELS;
 
 /// The samples of one cascade the queries read: its height, displacement and slope buffers.
 #[derive(Clone, Copy)]
@@ -56,15 +63,18 @@ pub(crate) struct Source<'a> {
 impl Source<'_> {
     /// The texel of grid point `index`.
     #[inline(always)]
-    pub(crate) fn texel(&self, index: usize) -> Texel {
+    fn texel(&self, index: usize) -> Texel {
         let [dx, dz] = self.displacement[index];
         let [sx, sz] = self.slope[index];
         [dx, dz, self.height[index], sx, sz, 0.0, 0.0, 0.0]
     }
 }
 
-/// The coefficients of one tile: [`STRIDE`]² texels, row-major with z as the row.
-pub(crate) type TileData = [Texel; STRIDE * STRIDE];
+/// The coefficients of one tile, each field apart so that a query reads only the fields it
+/// needs (the inversion only the displacement): the [`STRIDE`]² displacement pairs
+/// `[D_x, D_z]`, then the heights, then the slope pairs `[∂y/∂x, ∂y/∂z]`, each row-major with
+/// z as the row (20 bytes a grid point).
+pub(crate) type TileData = [f32; 5 * TEXELS];
 
 /// One tile's room: the computed coefficients once a query computed them, and otherwise
 /// the buffer they will be computed into (allocated with the [`Tiles`], moved between the
@@ -103,16 +113,16 @@ impl Slot {
                 .lock()
                 .unwrap_or_else(PoisonError::into_inner)
                 .take();
-            let mut data = spare.unwrap_or_else(|| Box::new([[0.0; LANES]; STRIDE * STRIDE]));
+            let mut data = spare.unwrap_or_else(|| Box::new([0.0; 5 * TEXELS]));
             compute_tile_at(simd, &source(), grid, at, &mut data);
             data
         })
     }
 }
 
-/// A zeroed tile buffer on the heap (never on the stack: it is 39 kB).
+/// A zeroed tile buffer on the heap (never on the stack: it is 25 kB).
 fn tile_buffer() -> Result<Box<TileData>, Error> {
-    let boxed = error::try_vec(STRIDE * STRIDE, [0.0f32; LANES])?.into_boxed_slice();
+    let boxed = error::try_vec(5 * TEXELS, 0.0f32)?.into_boxed_slice();
     Ok(boxed.try_into().expect("the vector holds STRIDE² texels"))
 }
 
@@ -162,8 +172,9 @@ impl Tiles {
         })
     }
 
-    /// Bytes the coefficients of an N×N cascade take: 32 bytes for each of the
-    /// ([`TILE`] + 3)² texels of each of its ⌈N/[`TILE`]⌉² tiles (about 38·N² for large N).
+    /// Bytes the coefficients of an N×N cascade take: 20 bytes for each of the
+    /// ([`TILE`] + 3)² grid points of each of its ⌈N/[`TILE`]⌉² tiles (about 24·N² for large
+    /// N).
     pub(crate) fn memory_bytes(n: usize) -> usize {
         let per_axis = n.div_ceil(TILE.min(n.max(1)));
         per_axis.saturating_mul(per_axis).saturating_mul(
@@ -250,7 +261,7 @@ impl Clone for Tiles {
             slots: (0..self.slots.len())
                 .map(|_| Slot {
                     ready: OnceLock::new(),
-                    spare: Mutex::new(Some(Box::new([[0.0; LANES]; STRIDE * STRIDE]))),
+                    spare: Mutex::new(Some(Box::new([0.0; 5 * TEXELS]))),
                 })
                 .collect(),
             wanted: (0..self.wanted.len())
@@ -302,13 +313,14 @@ impl Kernel for TileKernel<'_, '_> {
 const INTERLEAVE: usize = 8;
 
 /// The coefficients of tile (`tx`, `tz`) of an N×N grid with `tile` cells a side, into
-/// `out`: texel (a, b) is the coefficient of grid point (tx·tile − 1 + a, tz·tile − 1 + b),
-/// wrapped. The x pass runs on every row of the window, each started [`HALO`] samples left
-/// of the tile; the z pass on whole rows (so that it vectorises), started [`HALO`] rows
-/// above, its causal half folded in as the x pass delivers the rows. The rows above the
-/// tile are needed only for that causal state and the rows below it only for the
-/// anticausal half, so both share one small scratch; the tile's own rows are filtered in
-/// `out`. Inlined into its caller's [`Simd::run`].
+/// `out`: its entry (a, b) of each field is the coefficient of grid point
+/// (tx·tile − 1 + a, tz·tile − 1 + b), wrapped. The x pass runs on every row of the window,
+/// each started [`HALO`] samples left of the tile; the z pass on whole rows (so that it
+/// vectorises), started [`HALO`] rows above, its causal half folded in as the x pass
+/// delivers the rows. The rows above the tile are needed only for that causal state and the
+/// rows below it only for the anticausal half, so both share one small scratch; the tile's
+/// own rows are filtered in a texel scratch and split into the fields of `out` as the
+/// anticausal half finishes them. Inlined into its caller's [`Simd::run`].
 #[inline(always)]
 fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], out: &mut TileData) {
     // Window sample w sits at grid point start + w, wrapped (`offset` is a multiple of n that
@@ -323,20 +335,21 @@ fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], ou
         *column = next;
         next = if next + 1 == n { 0 } else { next + 1 };
     }
-    // Window rows 0..HALO (above the tile), then the tile's STRIDE rows (in `out`), then
+    // Window rows 0..HALO (above the tile), then the tile's STRIDE rows (in `rows`), then
     // HALO rows below it, in `scratch` again once the rows above were folded in.
     let mut scratch = [[[0.0f32; LANES]; STRIDE]; HALO];
+    let mut rows = [[[0.0f32; LANES]; STRIDE]; STRIDE];
     let mut line = [[[0.0f32; LANES]; INTERLEAVE]; WINDOW];
     // The z pass's causal state: y[r − 1] of the row before.
     let mut state = [[0.0f32; LANES]; STRIDE];
     let mut w = 0;
     while w < WINDOW {
-        let rows = if w + INTERLEAVE <= WINDOW {
+        let count = if w + INTERLEAVE <= WINDOW {
             INTERLEAVE
         } else {
             1
         };
-        if rows == INTERLEAVE {
+        if count == INTERLEAVE {
             filter_x::<INTERLEAVE>(source, &columns, n, z_start + w, &mut line);
         } else {
             let mut single = [[[0.0f32; LANES]; 1]; WINDOW];
@@ -345,12 +358,12 @@ fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], ou
                 l[0] = s[0];
             }
         }
-        for k in 0..rows {
+        for k in 0..count {
             let r = w + k;
-            let row: &mut [Texel] = if r < HALO {
+            let row: &mut [Texel; STRIDE] = if r < HALO {
                 &mut scratch[r]
             } else if r < HALO + STRIDE {
-                &mut out[(r - HALO) * STRIDE..][..STRIDE]
+                &mut rows[r - HALO]
             } else {
                 &mut scratch[r - HALO - STRIDE]
             };
@@ -365,18 +378,34 @@ fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], ou
                 *s = y;
             }
         }
-        w += rows;
+        w += count;
     }
     // Anticausal with the gain, from the last row of the window up to the tile:
     // c[r] = G·y[r] + z·c[r + 1].
     let mut below = [[0.0f32; LANES]; STRIDE];
-    let tail = scratch.iter_mut().map(|row| &mut row[..]).rev();
-    let rows = out.chunks_exact_mut(STRIDE).rev();
-    for row in tail.chain(rows) {
+    for row in scratch.iter_mut().rev() {
         for (v, b) in row.iter_mut().zip(below.iter_mut()) {
+            *b = std::array::from_fn(|l| GAIN * v[l] + POLE * b[l]);
+        }
+    }
+    let (displacement, rest) = out.split_at_mut(HEIGHT);
+    let (height, slope) = rest.split_at_mut(TEXELS);
+    let rows = rows
+        .iter()
+        .zip(displacement.chunks_exact_mut(2 * STRIDE))
+        .zip(height.chunks_exact_mut(STRIDE))
+        .zip(slope.chunks_exact_mut(2 * STRIDE));
+    for (((row, displacement), height), slope) in rows.rev() {
+        let fields = displacement
+            .chunks_exact_mut(2)
+            .zip(height.iter_mut())
+            .zip(slope.chunks_exact_mut(2));
+        for ((v, b), ((d, h), s)) in row.iter().zip(below.iter_mut()).zip(fields) {
             let c: Texel = std::array::from_fn(|l| GAIN * v[l] + POLE * b[l]);
-            *v = c;
             *b = c;
+            d.copy_from_slice(&c[..2]);
+            *h = c[2];
+            s.copy_from_slice(&c[3..5]);
         }
     }
 }
@@ -427,21 +456,23 @@ fn filter_x<const R: usize>(
 /// fraction `t` ∈ [0, 1] of the way to the next node. They sum to 1; at t = 0 they are
 /// (1, 4, 1, 0)/6.
 #[inline(always)]
-pub(crate) fn weights(t: f32) -> [f32; 4] {
+fn weights(t: f32) -> [f32; 4] {
+    // × 1/6 rather than ÷ 6: a division costs ten multiplications' time.
+    const SIXTH: f32 = 1.0 / 6.0;
     let s = 1.0 - t;
     let t2 = t * t;
     let t3 = t2 * t;
     [
-        s * s * s / 6.0,
-        (4.0 - 6.0 * t2 + 3.0 * t3) / 6.0,
-        (1.0 + 3.0 * (t + t2 - t3)) / 6.0,
-        t3 / 6.0,
+        s * s * s * SIXTH,
+        (4.0 - 6.0 * t2 + 3.0 * t3) * SIXTH,
+        (1.0 + 3.0 * (t + t2 - t3)) * SIXTH,
+        t3 * SIXTH,
     ]
 }
 
 /// The derivatives of [`weights`] with respect to `t` (per cell; they sum to 0).
 #[inline(always)]
-pub(crate) fn weight_slopes(t: f32) -> [f32; 4] {
+fn weight_slopes(t: f32) -> [f32; 4] {
     let s = 1.0 - t;
     [
         -0.5 * s * s,
@@ -451,56 +482,169 @@ pub(crate) fn weight_slopes(t: f32) -> [f32; 4] {
     ]
 }
 
-/// Σ w_x w_z c over the 4×4 taps from texel (`lx`, `lz`) of `tile`: the interpolated
-/// value of every lane.
-#[inline(always)]
-pub(crate) fn value(tile: &TileData, lx: usize, lz: usize, wx: &[f32; 4], wz: &[f32; 4]) -> Texel {
-    let mut sum = [0.0f32; LANES];
-    for (r, &wz) in wz.iter().enumerate() {
-        let taps = &tile[(lz + r) * STRIDE + lx..][..4];
-        let mut line = [0.0f32; LANES];
-        for (c, &wx) in taps.iter().zip(wx) {
-            for l in 0..LANES {
-                line[l] += wx * c[l];
-            }
-        }
-        for l in 0..LANES {
-            sum[l] += wz * line[l];
-        }
-    }
-    sum
+/// The cubic B-spline weights of a point's 4×4 taps along x and z ([`weights`]), and
+/// with `GRADIENT` their derivatives ([`weight_slopes`]; zero without), for the evaluations
+/// below.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Weights {
+    x: [f32; 4],
+    z: [f32; 4],
+    dx: [f32; 4],
+    dz: [f32; 4],
 }
 
-/// [`value`] (the same operations, so the same bits) and its derivatives along x and z per
-/// cell, from the weights' derivatives `dx`, `dz`.
+impl Weights {
+    /// The weights at fractions (`fx`, `fz`) ∈ [0, 1] of the way across a cell, with their
+    /// derivatives if `GRADIENT`.
+    #[inline(always)]
+    pub(crate) fn new<const GRADIENT: bool>(fx: f32, fz: f32) -> Weights {
+        let (dx, dz) = if GRADIENT {
+            (weight_slopes(fx), weight_slopes(fz))
+        } else {
+            ([0.0; 4], [0.0; 4])
+        };
+        Weights {
+            x: weights(fx),
+            z: weights(fz),
+            dx,
+            dz,
+        }
+    }
+}
+
+/// The four taps' weights `w` each twice, for a row of four pairs.
 #[inline(always)]
-pub(crate) fn value_and_gradient(
+fn paired(w: &[f32; 4]) -> [f32; 8] {
+    [w[0], w[0], w[1], w[1], w[2], w[2], w[3], w[3]]
+}
+
+/// The sum of each pair's lane over the four taps of `v` (taps 0 + 2 and 1 + 3 first).
+#[inline(always)]
+fn reduce_pairs(v: &[f32; 8]) -> [f32; 2] {
+    let half: [f32; 4] = std::array::from_fn(|l| v[l] + v[l + 4]);
+    [half[0] + half[2], half[1] + half[3]]
+}
+
+/// The four rows of four pairs from (`lx`, `lz`) of the field of pairs starting at `start`.
+#[inline(always)]
+fn pair_rows(tile: &TileData, start: usize, lx: usize, lz: usize) -> [[f32; 8]; 4] {
+    std::array::from_fn(|r| {
+        let at = start + 2 * ((lz + r) * STRIDE + lx);
+        tile[at..at + 8].try_into().expect("four pairs")
+    })
+}
+
+/// Σ w_x w_z c of a field of pairs starting at `start` in `tile`, over the 4×4 taps from
+/// (`lx`, `lz`), and with `GRADIENT` its derivatives along x and z per cell (zero without;
+/// the value's operations are the same either way, so its bits are too). A row of four
+/// taps is one 32-byte vector: per row, L = w_x ⊙ taps, then S += w_z·L, S_x += w_z·(d_x ⊙
+/// taps), S_z += d_z·L, and each sum's four taps are added at the end. With AVX2 the rows
+/// are written with pulp's 8-lane operations (the vectoriser, left to itself, paired the
+/// lanes badly); the same operations in the same order as the plain code, so the same bits.
+#[inline(always)]
+fn pairs<const GRADIENT: bool>(
+    simd: Simd,
+    tile: &TileData,
+    start: usize,
+    lx: usize,
+    lz: usize,
+    w: &Weights,
+) -> [[f32; 2]; 3] {
+    let rows = pair_rows(tile, start, lx, lz);
+    let (wx, dx) = (paired(&w.x), paired(&w.dx));
+    let [sum, sum_x, sum_z] = match simd {
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2(v3) => pairs_v3::<GRADIENT>(v3, &rows, wx, dx, w),
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx512(v4) => pairs_v3::<GRADIENT>(*v4, &rows, wx, dx, w),
+        Simd::Baseline => {
+            let mut sum = [0.0f32; 8];
+            let mut sum_x = [0.0f32; 8];
+            let mut sum_z = [0.0f32; 8];
+            for (r, taps) in rows.iter().enumerate() {
+                let line: [f32; 8] = std::array::from_fn(|l| wx[l] * taps[l]);
+                for l in 0..8 {
+                    sum[l] += w.z[r] * line[l];
+                }
+                if GRADIENT {
+                    let line_x: [f32; 8] = std::array::from_fn(|l| dx[l] * taps[l]);
+                    for l in 0..8 {
+                        sum_x[l] += w.z[r] * line_x[l];
+                        sum_z[l] += w.dz[r] * line[l];
+                    }
+                }
+            }
+            [sum, sum_x, sum_z]
+        }
+    };
+    [
+        reduce_pairs(&sum),
+        reduce_pairs(&sum_x),
+        reduce_pairs(&sum_z),
+    ]
+}
+
+/// [`pairs`]' sums over the rows with AVX2's 8-lane multiply and add.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn pairs_v3<const GRADIENT: bool>(
+    v3: pulp::x86::V3,
+    rows: &[[f32; 8]; 4],
+    wx: [f32; 8],
+    dx: [f32; 8],
+    w: &Weights,
+) -> [[f32; 8]; 3] {
+    use pulp::{cast, Simd as _};
+    let zero = v3.splat_f32s(0.0);
+    let (mut sum, mut sum_x, mut sum_z) = (zero, zero, zero);
+    let (wx, dx) = (cast::<_, pulp::f32x8>(wx), cast::<_, pulp::f32x8>(dx));
+    for (r, &taps) in rows.iter().enumerate() {
+        let taps = cast::<_, pulp::f32x8>(taps);
+        let line = v3.mul_f32s(wx, taps);
+        let wz = v3.splat_f32s(w.z[r]);
+        sum = v3.add_f32s(sum, v3.mul_f32s(wz, line));
+        if GRADIENT {
+            let line_x = v3.mul_f32s(dx, taps);
+            sum_x = v3.add_f32s(sum_x, v3.mul_f32s(wz, line_x));
+            sum_z = v3.add_f32s(sum_z, v3.mul_f32s(v3.splat_f32s(w.dz[r]), line));
+        }
+    }
+    [cast(sum), cast(sum_x), cast(sum_z)]
+}
+
+/// The displacement `[D_x, D_z]` at a point of the tile's cell (`lx`, `lz`) (its taps are
+/// the coefficients `lx..lx + 4` of rows `lz..lz + 4`), and with `GRADIENT` its
+/// derivatives along x and z per cell.
+#[inline(always)]
+pub(crate) fn displacement<const GRADIENT: bool>(
+    simd: Simd,
     tile: &TileData,
     lx: usize,
     lz: usize,
-    [wx, wz]: [&[f32; 4]; 2],
-    [dx, dz]: [&[f32; 4]; 2],
-) -> [Texel; 3] {
-    let mut sum = [0.0f32; LANES];
-    let mut sum_x = [0.0f32; LANES];
-    let mut sum_z = [0.0f32; LANES];
+    w: &Weights,
+) -> [[f32; 2]; 3] {
+    pairs::<GRADIENT>(simd, tile, 0, lx, lz, w)
+}
+
+/// The slope `[∂y/∂x, ∂y/∂z]` at a point of the tile's cell (`lx`, `lz`).
+#[inline(always)]
+pub(crate) fn slope(simd: Simd, tile: &TileData, lx: usize, lz: usize, w: &Weights) -> [f32; 2] {
+    pairs::<false>(simd, tile, SLOPE, lx, lz, w)[0]
+}
+
+/// The height η at a point of the tile's cell (`lx`, `lz`).
+#[inline(always)]
+pub(crate) fn height(tile: &TileData, lx: usize, lz: usize, w: &Weights) -> f32 {
+    let mut sum = [0.0f32; 4];
     for r in 0..4 {
-        let taps = &tile[(lz + r) * STRIDE + lx..][..4];
-        let mut line = [0.0f32; LANES];
-        let mut line_x = [0.0f32; LANES];
-        for ((c, &wx), &dx) in taps.iter().zip(wx).zip(dx) {
-            for l in 0..LANES {
-                line[l] += wx * c[l];
-                line_x[l] += dx * c[l];
-            }
-        }
-        for l in 0..LANES {
-            sum[l] += wz[r] * line[l];
-            sum_x[l] += wz[r] * line_x[l];
-            sum_z[l] += dz[r] * line[l];
+        let at = HEIGHT + (lz + r) * STRIDE + lx;
+        let taps: &[f32; 4] = tile[at..at + 4].try_into().expect("four taps");
+        let line: [f32; 4] = std::array::from_fn(|l| w.x[l] * taps[l]);
+        for l in 0..4 {
+            sum[l] += w.z[r] * line[l];
         }
     }
-    [sum, sum_x, sum_z]
+    (sum[0] + sum[2]) + (sum[1] + sum[3])
 }
 
 #[cfg(test)]
@@ -577,13 +721,13 @@ mod tests {
                     for b in 0..4 {
                         for a in 0..4 {
                             let (i, j) = ((ix + n + a - 1) % n, (iz + n + b - 1) % n);
-                            let got = data[(lz + b) * STRIDE + lx + a];
-                            worst = worst.max((f64::from(got[2]) - reference[j * n + i]).abs());
-                            // The lanes are filtered independently (scaling by a power of two
+                            let at = (lz + b) * STRIDE + lx + a;
+                            let h = data[HEIGHT + at];
+                            worst = worst.max((f64::from(h) - reference[j * n + i]).abs());
+                            // The fields are filtered independently (scaling by a power of two
                             // commutes with every rounding).
-                            assert_eq!(got[0], got[2] * 0.5);
-                            assert_eq!(got[1], -got[2]);
-                            assert_eq!(got[5..], [0.0; 3]);
+                            assert_eq!(data[2 * at..2 * at + 2], [h * 0.5, -h]);
+                            assert_eq!(data[SLOPE + 2 * at..SLOPE + 2 * at + 2], [h * 0.5, -h]);
                         }
                     }
                 }
