@@ -303,7 +303,7 @@ impl OceanConfig {
     /// Bytes the ocean holds: every cascade ([`CascadeConfig::memory_bytes`]), the foam on
     /// cascade 0's grid (about 40·N² and its transform's scratch) and, with
     /// [`Interpolation::CubicBSpline`], the spline coefficients of the world queries (about
-    /// 38·N² per cascade; a [`Surface`](crate::Surface) handle kept across steps adds a second
+    /// 24·N² per cascade; a [`Surface`](crate::Surface) handle kept across steps adds a second
     /// frame of them and copies of the queried fields, not counted here). Any config gives an
     /// answer, even one [`validate`](Self::validate) refuses.
     pub fn memory_bytes(&self) -> usize {

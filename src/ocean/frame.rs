@@ -258,7 +258,7 @@ impl Clone for Frames {
 /// two frames: a step writes the one no handle reads and makes it current, so taking a
 /// handle every frame and dropping it within the next step costs no allocation and never
 /// makes the step wait. A handle kept across two steps makes the second one allocate a third
-/// frame (as large as the query data of every cascade: about 38·N² bytes per cascade and
+/// frame (as large as the query data of every cascade: about 24·N² bytes per cascade and
 /// the fields' 20·N²); the old frame is freed when its last handle drops.
 ///
 /// ```
