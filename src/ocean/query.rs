@@ -631,15 +631,6 @@ impl<F: Fields> PointQuery<F> for Locate {
     fn at(&self, fields: &F, x: f64, z: f64) -> Location {
         locate(fields, x, z).0
     }
-
-    #[inline(always)]
-    fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [Location]) {
-        let mut searches = [Search::new(0.0, 0.0); GROUP];
-        locate_group(fields, points, &mut searches);
-        for (value, search) in out.iter_mut().zip(&searches) {
-            *value = search.best;
-        }
-    }
 }
 
 impl<F: Fields> PointQuery<F> for SurfaceAt {
@@ -951,12 +942,14 @@ impl OceanState {
     /// the query buoyancy and gameplay need. Where the surface folds the inversion may not
     /// converge; [`OceanState::locate`] reports how close it came.
     ///
-    /// Cost (default ocean, three 256² cascades, one thread; `docs/performance.md`): about
-    /// 0.2 µs once the tiles it reads are computed; the first query after a step computes
-    /// them (a tile of 32×32 cells of each cascade, rarely two: tens of µs, a few per cent of
-    /// the step), so stepping and asking one boat's height costs little more than the step.
-    /// For many points use [`OceanState::heights_at`]; to query from other threads while the
-    /// ocean steps, [`OceanState::surface`].
+    /// Cost (default ocean, three 256² cascades, one thread of an AMD EPYC Zen 3;
+    /// `docs/performance.md`): about 0.6 µs once the tiles it reads are computed (three or
+    /// four evaluations of the displacement, one of the height); the first query after a
+    /// step computes them (a tile of 32×32 cells of each cascade, rarely two: tens of µs, a
+    /// few per cent of the step), so stepping and asking one boat's height costs little more
+    /// than the step. For many points use [`OceanState::heights_at`] (about 0.5–0.7 µs a
+    /// point on one thread, its points' memory reads overlapped); to query from other
+    /// threads while the ocean steps, [`OceanState::surface`].
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
