@@ -319,8 +319,8 @@ const INTERLEAVE: usize = 8;
 /// vectorises), started [`HALO`] rows above, its causal half folded in as the x pass
 /// delivers the rows. The rows above the tile are needed only for that causal state and the
 /// rows below it only for the anticausal half, so both share one small scratch; the tile's
-/// own rows are filtered in a texel scratch and split into the fields of `out` as the
-/// anticausal half finishes them. Inlined into its caller's [`Simd::run`].
+/// own rows go through `out`, split into its fields (no 39 kB scratch to zero for them).
+/// Inlined into its caller's [`Simd::run`].
 #[inline(always)]
 fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], out: &mut TileData) {
     // Window sample w sits at grid point start + w, wrapped (`offset` is a multiple of n that
@@ -335,10 +335,10 @@ fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], ou
         *column = next;
         next = if next + 1 == n { 0 } else { next + 1 };
     }
-    // Window rows 0..HALO (above the tile), then the tile's STRIDE rows (in `rows`), then
-    // HALO rows below it, in `scratch` again once the rows above were folded in.
+    // Window rows 0..HALO (above the tile), then the tile's STRIDE rows (split into the
+    // fields of `out`), then HALO rows below it, in `scratch` again once the rows above were
+    // folded in.
     let mut scratch = [[[0.0f32; LANES]; STRIDE]; HALO];
-    let mut rows = [[[0.0f32; LANES]; STRIDE]; STRIDE];
     let mut line = [[[0.0f32; LANES]; INTERLEAVE]; WINDOW];
     // The z pass's causal state: y[r − 1] of the row before.
     let mut state = [[0.0f32; LANES]; STRIDE];
@@ -360,22 +360,24 @@ fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], ou
         }
         for k in 0..count {
             let r = w + k;
-            let row: &mut [Texel; STRIDE] = if r < HALO {
-                &mut scratch[r]
-            } else if r < HALO + STRIDE {
-                &mut rows[r - HALO]
-            } else {
-                &mut scratch[r - HALO - STRIDE]
-            };
             // The x pass's result (its anticausal half kept the tile's STRIDE texels, at
             // window samples HALO..), then the z pass, causal: y[r] = x[r] + z·y[r − 1].
             // (Each texel computed in a register and stored twice: stored lane by lane and
             // read back whole, it stalled the store buffer.)
-            for ((v, s), x) in row.iter_mut().zip(state.iter_mut()).zip(&line[HALO..]) {
-                let x = &x[k];
-                let y: Texel = std::array::from_fn(|l| x[l] + POLE * s[l]);
-                *v = y;
-                *s = y;
+            let x = line[HALO..].iter().map(|x| &x[k]);
+            if (HALO..HALO + STRIDE).contains(&r) {
+                for (column, (s, x)) in state.iter_mut().zip(x).enumerate() {
+                    let y: Texel = std::array::from_fn(|l| x[l] + POLE * s[l]);
+                    *s = y;
+                    store(out, (r - HALO) * STRIDE + column, &y);
+                }
+            } else {
+                let row = &mut scratch[if r < HALO { r } else { r - HALO - STRIDE }];
+                for ((v, s), x) in row.iter_mut().zip(state.iter_mut()).zip(x) {
+                    let y: Texel = std::array::from_fn(|l| x[l] + POLE * s[l]);
+                    *v = y;
+                    *s = y;
+                }
             }
         }
         w += count;
@@ -383,31 +385,44 @@ fn compute_tile(source: &Source, n: usize, tile: usize, [tx, tz]: [usize; 2], ou
     // Anticausal with the gain, from the last row of the window up to the tile:
     // c[r] = G·y[r] + z·c[r + 1].
     let mut below = [[0.0f32; LANES]; STRIDE];
-    for row in scratch.iter_mut().rev() {
-        for (v, b) in row.iter_mut().zip(below.iter_mut()) {
+    for row in scratch.iter().rev() {
+        for (v, b) in row.iter().zip(below.iter_mut()) {
             *b = std::array::from_fn(|l| GAIN * v[l] + POLE * b[l]);
         }
     }
-    let (displacement, rest) = out.split_at_mut(HEIGHT);
-    let (height, slope) = rest.split_at_mut(TEXELS);
-    let rows = rows
-        .iter()
-        .zip(displacement.chunks_exact_mut(2 * STRIDE))
-        .zip(height.chunks_exact_mut(STRIDE))
-        .zip(slope.chunks_exact_mut(2 * STRIDE));
-    for (((row, displacement), height), slope) in rows.rev() {
-        let fields = displacement
-            .chunks_exact_mut(2)
-            .zip(height.iter_mut())
-            .zip(slope.chunks_exact_mut(2));
-        for ((v, b), ((d, h), s)) in row.iter().zip(below.iter_mut()).zip(fields) {
+    for row in (0..STRIDE).rev() {
+        for (column, b) in below.iter_mut().enumerate() {
+            let at = row * STRIDE + column;
+            let v = load(out, at);
             let c: Texel = std::array::from_fn(|l| GAIN * v[l] + POLE * b[l]);
             *b = c;
-            d.copy_from_slice(&c[..2]);
-            *h = c[2];
-            s.copy_from_slice(&c[3..5]);
+            store(out, at, &c);
         }
     }
+}
+
+/// Writes the five used lanes of texel `v` into point `at` of the fields of `out`.
+#[inline(always)]
+fn store(out: &mut TileData, at: usize, v: &Texel) {
+    out[2 * at..2 * at + 2].copy_from_slice(&v[..2]);
+    out[HEIGHT + at] = v[2];
+    out[SLOPE + 2 * at..SLOPE + 2 * at + 2].copy_from_slice(&v[3..5]);
+}
+
+/// The texel of point `at` of the fields of `out` ([`store`]'s inverse: the three unused
+/// lanes are zero, as the filter keeps them).
+#[inline(always)]
+fn load(out: &TileData, at: usize) -> Texel {
+    [
+        out[2 * at],
+        out[2 * at + 1],
+        out[HEIGHT + at],
+        out[SLOPE + 2 * at],
+        out[SLOPE + 2 * at + 1],
+        0.0,
+        0.0,
+        0.0,
+    ]
 }
 
 /// The x pass of R window rows starting at (unwrapped) grid row `first`: a causal pass from
