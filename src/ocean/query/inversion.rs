@@ -316,11 +316,7 @@ pub(super) const GROUP: usize = 8;
 /// iterations in step and each iteration's cascades visited point after point (the same
 /// operations for each point as [`locate`]'s, so the same bits).
 #[inline(always)]
-pub(super) fn locate_group<F: Fields>(
-    fields: &F,
-    points: &[[f64; 2]],
-    searches: &mut [Search; GROUP],
-) {
+fn locate_group<F: Fields>(fields: &F, points: &[[f64; 2]], searches: &mut [Search; GROUP]) {
     let frame = fields.frame();
     let count = points.len();
     for (search, &[x, z]) in searches.iter_mut().zip(points) {
@@ -383,4 +379,20 @@ pub(super) fn height_at<F: Fields>(fields: &F, x: f64, z: f64) -> f32 {
     let [x0, z0] = locate(fields, x, z).0.undisplaced;
     let cascades = 0..fields.frame().grids.len();
     evaluate::<F, false, false, true, false>(fields, x0, z0, cascades).height
+}
+
+/// [`locate_group`] of `points` (at most [`GROUP`]), then the height (and with `SLOPE` the
+/// slope) of every cascade at each point found: what the grouped `heights_at` and
+/// `surfaces_at` need.
+#[inline(always)]
+pub(super) fn located_group<F: Fields, const SLOPE: bool>(
+    fields: &F,
+    points: &[[f64; 2]],
+) -> ([Search; GROUP], [Summed; GROUP]) {
+    let mut searches = [Search::new(0.0, 0.0); GROUP];
+    locate_group(fields, points, &mut searches);
+    let at = |p: usize| searches[p].best.undisplaced;
+    let cascades = 0..fields.frame().grids.len();
+    let sums = evaluate_group::<F, false, SLOPE>(fields, at, points.len(), cascades);
+    (searches, sums)
 }

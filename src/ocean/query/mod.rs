@@ -14,8 +14,7 @@ use super::OceanState;
 use crate::error::{self, Error};
 use crate::simd::Kernel;
 use inversion::{
-    evaluate_group, height_at, locate, locate_group, sample, surface_at, surface_sample, Search,
-    GROUP,
+    evaluate_group, height_at, locate, located_group, sample, surface_at, surface_sample, GROUP,
 };
 
 /// The surface at one undisplaced world point, summed over the cascades.
@@ -218,7 +217,7 @@ pub(crate) trait PointQuery<F: Fields>: Sync {
     fn at(&self, fields: &F, x: f64, z: f64) -> Self::Output;
 
     /// [`PointQuery::at`] of each of `points` (at most [`GROUP`]) into `out`, with the same
-    /// bits; the queries that read the spline interleave the points (see [`locate_group`]).
+    /// bits; the queries that read the spline interleave the points (see [`located_group`]).
     #[inline(always)]
     fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [Self::Output]) {
         for (value, &[x, z]) in out.iter_mut().zip(points) {
@@ -275,11 +274,7 @@ impl<F: Fields> PointQuery<F> for SurfaceAt {
 
     #[inline(always)]
     fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
-        let mut searches = [Search::new(0.0, 0.0); GROUP];
-        locate_group(fields, points, &mut searches);
-        let at = |p: usize| searches[p].best.undisplaced;
-        let cascades = 0..fields.frame().grids.len();
-        let sums = evaluate_group::<F, false, true>(fields, at, points.len(), cascades);
+        let (searches, sums) = located_group::<F, true>(fields, points);
         for ((value, sum), search) in out.iter_mut().zip(&sums).zip(&searches) {
             let [x0, z0] = search.best.undisplaced;
             *value = surface_sample(search.displacement, *sum, fields.foam_at(x0, z0));
@@ -296,11 +291,7 @@ impl<F: Fields> PointQuery<F> for HeightAt {
 
     #[inline(always)]
     fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [f32]) {
-        let mut searches = [Search::new(0.0, 0.0); GROUP];
-        locate_group(fields, points, &mut searches);
-        let at = |p: usize| searches[p].best.undisplaced;
-        let cascades = 0..fields.frame().grids.len();
-        let sums = evaluate_group::<F, false, false>(fields, at, points.len(), cascades);
+        let (_, sums) = located_group::<F, false>(fields, points);
         for (value, sum) in out.iter_mut().zip(&sums) {
             *value = sum.height;
         }
