@@ -48,9 +48,9 @@ type Texel = [f32; LANES];
 /// Coefficients in a tile: [`STRIDE`]² of each field.
 const TEXELS: usize = STRIDE * STRIDE;
 /// Where the height's coefficients start in [`TileData`] (after the displacement's pairs).
-const HEIGHT: usize = 2 * TEXELS;
+pub(crate) const HEIGHT: usize = 2 * TEXELS;
 /// Where the slope's pairs start in [`TileData`].
-const SLOPE: usize = 3 * TEXELS;
+pub(crate) const SLOPE: usize = 3 * TEXELS;
 
 /// The samples of one cascade the queries read: its height, displacement and slope buffers.
 #[derive(Clone, Copy)]
@@ -221,6 +221,51 @@ impl Tiles {
         let data =
             self.slots[tz * self.per_axis + tx].get([self.n, self.tile], [tx, tz], source, simd);
         (data, ix - tx * self.tile, iz - tz * self.tile)
+    }
+
+    /// [`Tiles::cell`] of eight cells (`ix`, `iz`) at once, one a lane: each cell's tile
+    /// (an index for [`Tiles::tile`]) and its first tap's index in the tile's fields
+    /// (`lz·STRIDE + lx`).
+    #[inline(always)]
+    pub(crate) fn cells_of(&self, ix: &[u32; 8], iz: &[u32; 8]) -> ([u32; 8], [u32; 8]) {
+        // A grid smaller than a tile is one tile (tile = N > every cell).
+        let shift = if self.tile == TILE {
+            TILE.trailing_zeros()
+        } else {
+            u32::BITS - 1
+        };
+        let (per_axis, tile) = (self.per_axis as u32, self.tile as u32);
+        let tx: [u32; 8] = std::array::from_fn(|l| ix[l] >> shift);
+        let tz: [u32; 8] = std::array::from_fn(|l| iz[l] >> shift);
+        let index = std::array::from_fn(|l| tz[l] * per_axis + tx[l]);
+        let offset = std::array::from_fn(|l| {
+            (iz[l] - tz[l] * tile) * STRIDE as u32 + (ix[l] - tx[l] * tile)
+        });
+        (index, offset)
+    }
+
+    /// Tile `index` (from [`Tiles::cells_of`]), computed from `source` at SIMD level `simd`
+    /// if no query did so yet.
+    #[inline(always)]
+    pub(crate) fn tile<'s>(
+        &self,
+        index: usize,
+        source: impl FnOnce() -> Source<'s>,
+        simd: Simd,
+    ) -> &TileData {
+        let slot = &self.slots[index];
+        match slot.ready.get() {
+            Some(data) => data,
+            None => self.compute(index, source(), simd),
+        }
+    }
+
+    /// [`Tiles::tile`] when the tile is not ready (once a step for each tile a query reads).
+    #[cold]
+    #[inline(never)]
+    fn compute(&self, index: usize, source: Source<'_>, simd: Simd) -> &TileData {
+        let at = [index % self.per_axis, index / self.per_axis];
+        self.slots[index].get([self.n, self.tile], at, || source, simd)
     }
 
     /// Marks the tile of cell (`ix`, `iz`) as wanted by the batch being prepared.
@@ -467,33 +512,87 @@ fn filter_x<const R: usize>(
     }
 }
 
+/// What the spline weights are computed on: an `f32`, or eight of them in lanes (one
+/// point each, [`Lanes`]); the same operations in the same order either way, so each lane
+/// holds the bits of the scalar formula.
+pub(crate) trait Real:
+    Copy
+    + From<f32>
+    + std::ops::Add<Output = Self>
+    + std::ops::Sub<Output = Self>
+    + std::ops::Mul<Output = Self>
+{
+}
+
+impl Real for f32 {}
+
+/// Eight `f32`, one a lane, with elementwise arithmetic (written as loops over arrays, which
+/// the compiler turns into vector instructions at each SIMD level).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Lanes(pub(crate) [f32; 8]);
+
+impl From<f32> for Lanes {
+    #[inline(always)]
+    fn from(value: f32) -> Lanes {
+        Lanes([value; 8])
+    }
+}
+
+impl std::ops::Add for Lanes {
+    type Output = Lanes;
+    #[inline(always)]
+    fn add(self, other: Lanes) -> Lanes {
+        Lanes(std::array::from_fn(|l| self.0[l] + other.0[l]))
+    }
+}
+
+impl std::ops::Sub for Lanes {
+    type Output = Lanes;
+    #[inline(always)]
+    fn sub(self, other: Lanes) -> Lanes {
+        Lanes(std::array::from_fn(|l| self.0[l] - other.0[l]))
+    }
+}
+
+impl std::ops::Mul for Lanes {
+    type Output = Lanes;
+    #[inline(always)]
+    fn mul(self, other: Lanes) -> Lanes {
+        Lanes(std::array::from_fn(|l| self.0[l] * other.0[l]))
+    }
+}
+
+impl Real for Lanes {}
+
 /// Cubic B-spline weights of the taps at offsets −1, 0, 1, 2 from the cell's node, for the
 /// fraction `t` ∈ [0, 1] of the way to the next node. They sum to 1; at t = 0 they are
 /// (1, 4, 1, 0)/6.
 #[inline(always)]
-fn weights(t: f32) -> [f32; 4] {
+pub(crate) fn weights<T: Real>(t: T) -> [T; 4] {
     // × 1/6 rather than ÷ 6: a division costs ten multiplications' time.
-    const SIXTH: f32 = 1.0 / 6.0;
-    let s = 1.0 - t;
+    let sixth = T::from(1.0 / 6.0);
+    let [one, three, four, six] = [1.0, 3.0, 4.0, 6.0].map(T::from);
+    let s = one - t;
     let t2 = t * t;
     let t3 = t2 * t;
     [
-        s * s * s * SIXTH,
-        (4.0 - 6.0 * t2 + 3.0 * t3) * SIXTH,
-        (1.0 + 3.0 * (t + t2 - t3)) * SIXTH,
-        t3 * SIXTH,
+        s * s * s * sixth,
+        (four - six * t2 + three * t3) * sixth,
+        (one + three * (t + t2 - t3)) * sixth,
+        t3 * sixth,
     ]
 }
 
 /// The derivatives of [`weights`] with respect to `t` (per cell; they sum to 0).
 #[inline(always)]
-fn weight_slopes(t: f32) -> [f32; 4] {
-    let s = 1.0 - t;
+pub(crate) fn weight_slopes<T: Real>(t: T) -> [T; 4] {
+    let [half, one, one_and_half, two] = [0.5, 1.0, 1.5, 2.0].map(T::from);
+    let s = one - t;
     [
-        -0.5 * s * s,
-        t * (1.5 * t - 2.0),
-        0.5 + t * (1.0 - 1.5 * t),
-        0.5 * t * t,
+        T::from(-0.5) * s * s,
+        t * (one_and_half * t - two),
+        half + t * (one - one_and_half * t),
+        half * t * t,
     ]
 }
 

@@ -190,7 +190,7 @@ pub(super) fn sample<F: Fields>(
 
 /// Smallest determinant of I + ∇D for which a Newton step is taken; below it (a surface that
 /// folds, or nearly) the step is the fixed point's, p − x₀ − D(x₀).
-const MIN_DETERMINANT: f64 = 0.05;
+pub(super) const MIN_DETERMINANT: f64 = 0.05;
 
 /// One point's search for the undisplaced point whose water lands on it, by Newton's
 /// method on x₀ + D(x₀) = p from x₀ = p (see [`OceanState::locate`](crate::OceanState::locate)): the iterate to

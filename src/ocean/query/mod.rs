@@ -8,6 +8,7 @@ use std::ops::Bound::{Excluded, Included};
 use rayon::prelude::*;
 
 mod inversion;
+mod lanes;
 
 use super::frame::{Fields, Grid, Live, Surface};
 use super::OceanState;
@@ -224,6 +225,21 @@ pub(crate) trait PointQuery<F: Fields>: Sync {
             *value = self.at(fields, x, z);
         }
     }
+
+    /// [`PointQuery::at`] of each of `points` into `out`, with the same bits: by groups
+    /// unless the query has a faster way (the spline's lanes, see [`lanes`]).
+    #[inline(always)]
+    fn batch(&self, fields: &F, points: &[[f64; 2]], out: &mut [Self::Output]) {
+        for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
+            self.group(fields, points, out);
+        }
+    }
+}
+
+/// Whether cascades `range` all have spline tiles, so that a batch over them runs in lanes.
+#[inline(always)]
+fn in_lanes<F: Fields>(fields: &F, range: std::ops::Range<usize>) -> bool {
+    fields.frame().grids[range].iter().all(|grid| grid.tiles.is_some())
 }
 
 /// [`sample`] over a range of cascades.
@@ -255,6 +271,30 @@ impl<F: Fields> PointQuery<F> for Sample {
             *value = surface_sample(sum.displacement, *sum, foam);
         }
     }
+
+    #[inline(always)]
+    fn batch(&self, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
+        if !in_lanes(fields, self.0.clone()) {
+            for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
+                self.group(fields, points, out);
+            }
+            return;
+        }
+        for (out, points) in out.chunks_mut(lanes::LANES).zip(points.chunks(lanes::LANES)) {
+            let at = std::array::from_fn(|k| {
+                std::array::from_fn(|l| points.get(l).unwrap_or(&points[0])[k])
+            });
+            let sums = lanes::evaluate::<F, true, false, true, true>(fields, &at, self.0.clone());
+            for (l, (value, &[x, z])) in out.iter_mut().zip(points).enumerate() {
+                let foam = if self.0.contains(&0) {
+                    fields.foam_at(x, z)
+                } else {
+                    0.0
+                };
+                *value = sums.surface(l, foam);
+            }
+        }
+    }
 }
 
 impl<F: Fields> PointQuery<F> for Locate {
@@ -262,6 +302,24 @@ impl<F: Fields> PointQuery<F> for Locate {
     #[inline(always)]
     fn at(&self, fields: &F, x: f64, z: f64) -> Location {
         locate(fields, x, z).0
+    }
+
+    #[inline(always)]
+    fn batch(&self, fields: &F, points: &[[f64; 2]], out: &mut [Location]) {
+        if !in_lanes(fields, 0..fields.frame().grids.len()) {
+            for (value, &[x, z]) in out.iter_mut().zip(points) {
+                *value = self.at(fields, x, z);
+            }
+            return;
+        }
+        let mut found = [lanes::Found::default(); lanes::BLOCK];
+        for (points, out) in points.chunks(lanes::BLOCK).zip(out.chunks_mut(lanes::BLOCK)) {
+            let found = &mut found[..points.len()];
+            lanes::locate(fields, points, found);
+            for (value, found) in out.iter_mut().zip(&*found) {
+                *value = found.location;
+            }
+        }
     }
 }
 
@@ -280,6 +338,32 @@ impl<F: Fields> PointQuery<F> for SurfaceAt {
             *value = surface_sample(search.displacement, *sum, fields.foam_at(x0, z0));
         }
     }
+
+    #[inline(always)]
+    fn batch(&self, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
+        let cascades = 0..fields.frame().grids.len();
+        if !in_lanes(fields, cascades.clone()) {
+            for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
+                self.group(fields, points, out);
+            }
+            return;
+        }
+        let mut found = [lanes::Found::default(); lanes::BLOCK];
+        for (points, out) in points.chunks(lanes::BLOCK).zip(out.chunks_mut(lanes::BLOCK)) {
+            let found = &mut found[..points.len()];
+            lanes::locate(fields, points, found);
+            for (found, out) in found.chunks(lanes::LANES).zip(out.chunks_mut(lanes::LANES)) {
+                let at = lanes::points_of(found);
+                let sums = lanes::evaluate::<F, false, false, true, true>(fields, &at, cascades.clone());
+                for (l, (value, found)) in out.iter_mut().zip(found).enumerate() {
+                    let [x0, z0] = found.location.undisplaced;
+                    let mut surface = sums.surface(l, fields.foam_at(x0, z0));
+                    surface.displacement = found.displacement;
+                    *value = surface;
+                }
+            }
+        }
+    }
 }
 
 impl<F: Fields> PointQuery<F> for HeightAt {
@@ -294,6 +378,27 @@ impl<F: Fields> PointQuery<F> for HeightAt {
         let (_, sums) = located_group::<F, false>(fields, points);
         for (value, sum) in out.iter_mut().zip(&sums) {
             *value = sum.height;
+        }
+    }
+
+    #[inline(always)]
+    fn batch(&self, fields: &F, points: &[[f64; 2]], out: &mut [f32]) {
+        let cascades = 0..fields.frame().grids.len();
+        if !in_lanes(fields, cascades.clone()) {
+            for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
+                self.group(fields, points, out);
+            }
+            return;
+        }
+        let mut found = [lanes::Found::default(); lanes::BLOCK];
+        for (points, out) in points.chunks(lanes::BLOCK).zip(out.chunks_mut(lanes::BLOCK)) {
+            let found = &mut found[..points.len()];
+            lanes::locate(fields, points, found);
+            for (found, out) in found.chunks(lanes::LANES).zip(out.chunks_mut(lanes::LANES)) {
+                let at = lanes::points_of(found);
+                let sums = lanes::evaluate::<F, false, false, true, false>(fields, &at, cascades.clone());
+                out.copy_from_slice(&sums.height[..out.len()]);
+            }
         }
     }
 }
@@ -337,10 +442,7 @@ impl<F: Fields, Q: PointQuery<F>> Kernel for Batch<'_, F, Q::Output, Q> {
 
     #[inline(always)]
     fn run(self) {
-        let groups = self.out.chunks_mut(GROUP).zip(self.points.chunks(GROUP));
-        for (out, points) in groups {
-            self.query.group(self.fields, points, out);
-        }
+        self.query.batch(self.fields, self.points, self.out);
     }
 }
 

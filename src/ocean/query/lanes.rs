@@ -1,0 +1,580 @@
+//! Batch queries on the spline eight points at a time, one point a lane: the cells, the
+//! weights, the sums over the taps and the Newton updates of eight points are each one
+//! vector operation (written as loops over `[_; 8]`, which the compiler turns into vector
+//! instructions at each SIMD level), and only the tile lookup is done point by point.
+//!
+//! Every lane runs the scalar code's operations in the scalar code's order
+//! ([`super::inversion`]: the same wrap and cell, the same weight formulas, each tap's
+//! products summed over the rows and the taps added (0 + 2) + (1 + 3), the same Newton
+//! step), so each point's result has the bits of its single query. A lane whose search ends
+//! takes the block's next point, so that a group does not wait for its slowest point.
+
+use super::super::frame::Fields;
+use super::super::spline::{self, Lanes, TileData, STRIDE};
+use super::inversion::MIN_DETERMINANT;
+use crate::simd::Simd;
+use super::{normal_from_slope, wrap, Location, Period, SurfaceSample};
+
+/// Points a vector holds.
+pub(super) const LANES: usize = 8;
+/// Points located before their fields are read: enough for the lanes to stay busy while the
+/// last searches end, and small enough for the stack.
+pub(super) const BLOCK: usize = 64;
+
+type F32s = [f32; LANES];
+type F64s = [f64; LANES];
+
+/// `f(l)` for each lane `l`.
+#[inline(always)]
+fn each<T>(f: impl FnMut(usize) -> T) -> [T; LANES] {
+    std::array::from_fn(f)
+}
+
+/// The cell and the fraction across it of eight coordinates along one axis of a periodic
+/// grid: [`super::cell_on`]'s wrap and split, lane by lane.
+#[inline(always)]
+fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
+    let Period {
+        length,
+        inverse,
+        cells,
+        n,
+    } = *period;
+    let periods: F64s = each(|l| (v[l] * inverse).floor());
+    let mut wrapped: F64s = each(|l| {
+        let r = v[l] - periods[l] * length;
+        let (low, high) = (r + length, r - length);
+        if r < 0.0 {
+            low
+        } else if r >= length {
+            high
+        } else {
+            r
+        }
+    });
+    // Far from the origin `wrap` takes another path; rare, so lane by lane.
+    const FAR: f64 = (1u64 << 29) as f64;
+    if periods.iter().any(|p| p.abs() >= FAR) {
+        for l in 0..LANES {
+            if periods[l].abs() >= FAR {
+                wrapped[l] = wrap(v[l], length, inverse);
+            }
+        }
+    }
+    let g: F64s = each(|l| wrapped[l] * cells);
+    let floor: F64s = each(|l| g[l].floor());
+    let fraction: F32s = each(|l| (g[l] - floor[l]) as f32);
+    // 0 ≤ g ≤ n < 2³¹: through i32, which converts eight at a time.
+    let n = n as u32;
+    let cell = each(|l| {
+        let cell = floor[l] as i32 as u32;
+        if cell >= n {
+            cell - n
+        } else {
+            cell
+        }
+    });
+    (cell, fraction)
+}
+
+/// Eight rows of eight floats, one a lane, turned into eight vectors of eight lanes (pure
+/// data movement: with AVX2 the usual unpack, shuffle and 128-bit permute network).
+#[inline(always)]
+fn transpose8(simd: Simd, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
+    match simd {
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2(v3) => transpose8_v3(v3, rows),
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx512(v4) => transpose8_v3(*v4, rows),
+        Simd::Baseline => std::array::from_fn(|j| each(|l| rows[l][j])),
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn transpose8_v3(v3: pulp::x86::V3, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
+    use std::arch::x86_64::__m256;
+    let avx = v3.avx;
+    let r: [__m256; 8] = [
+        pulp::cast(*rows[0]),
+        pulp::cast(*rows[1]),
+        pulp::cast(*rows[2]),
+        pulp::cast(*rows[3]),
+        pulp::cast(*rows[4]),
+        pulp::cast(*rows[5]),
+        pulp::cast(*rows[6]),
+        pulp::cast(*rows[7]),
+    ];
+    let t = [
+        avx._mm256_unpacklo_ps(r[0], r[1]),
+        avx._mm256_unpackhi_ps(r[0], r[1]),
+        avx._mm256_unpacklo_ps(r[2], r[3]),
+        avx._mm256_unpackhi_ps(r[2], r[3]),
+        avx._mm256_unpacklo_ps(r[4], r[5]),
+        avx._mm256_unpackhi_ps(r[4], r[5]),
+        avx._mm256_unpacklo_ps(r[6], r[7]),
+        avx._mm256_unpackhi_ps(r[6], r[7]),
+    ];
+    let s = [
+        avx._mm256_shuffle_ps::<0x44>(t[0], t[2]),
+        avx._mm256_shuffle_ps::<0xEE>(t[0], t[2]),
+        avx._mm256_shuffle_ps::<0x44>(t[1], t[3]),
+        avx._mm256_shuffle_ps::<0xEE>(t[1], t[3]),
+        avx._mm256_shuffle_ps::<0x44>(t[4], t[6]),
+        avx._mm256_shuffle_ps::<0xEE>(t[4], t[6]),
+        avx._mm256_shuffle_ps::<0x44>(t[5], t[7]),
+        avx._mm256_shuffle_ps::<0xEE>(t[5], t[7]),
+    ];
+    [
+        pulp::cast(avx._mm256_permute2f128_ps::<0x20>(s[0], s[4])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x20>(s[1], s[5])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x20>(s[2], s[6])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x20>(s[3], s[7])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[0], s[4])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[1], s[5])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[2], s[6])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[3], s[7])),
+    ]
+}
+
+/// Eight rows of four floats, one a lane, turned into four vectors of eight lanes.
+#[inline(always)]
+fn transpose4(simd: Simd, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
+    match simd {
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2(v3) => transpose4_v3(v3, rows),
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx512(v4) => transpose4_v3(*v4, rows),
+        Simd::Baseline => std::array::from_fn(|j| each(|l| rows[l][j])),
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn transpose4_v3(v3: pulp::x86::V3, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
+    use std::arch::x86_64::{__m128, __m256};
+    let avx = v3.avx;
+    // Lane l in the low half, lane l + 4 in the high half.
+    let half: [__m128; LANES] = [
+        pulp::cast(*rows[0]),
+        pulp::cast(*rows[1]),
+        pulp::cast(*rows[2]),
+        pulp::cast(*rows[3]),
+        pulp::cast(*rows[4]),
+        pulp::cast(*rows[5]),
+        pulp::cast(*rows[6]),
+        pulp::cast(*rows[7]),
+    ];
+    let m: [__m256; 4] = [
+        avx._mm256_set_m128(half[4], half[0]),
+        avx._mm256_set_m128(half[5], half[1]),
+        avx._mm256_set_m128(half[6], half[2]),
+        avx._mm256_set_m128(half[7], half[3]),
+    ];
+    let t = [
+        avx._mm256_unpacklo_ps(m[0], m[1]),
+        avx._mm256_unpackhi_ps(m[0], m[1]),
+        avx._mm256_unpacklo_ps(m[2], m[3]),
+        avx._mm256_unpackhi_ps(m[2], m[3]),
+    ];
+    [
+        pulp::cast(avx._mm256_shuffle_ps::<0x44>(t[0], t[2])),
+        pulp::cast(avx._mm256_shuffle_ps::<0xEE>(t[0], t[2])),
+        pulp::cast(avx._mm256_shuffle_ps::<0x44>(t[1], t[3])),
+        pulp::cast(avx._mm256_shuffle_ps::<0xEE>(t[1], t[3])),
+    ]
+}
+
+/// What a block's lanes sum over the cascades at their points (zero where not asked).
+#[derive(Clone, Copy, Default)]
+pub(super) struct SummedLanes {
+    /// `[D_x, D_z]` in metres.
+    pub(super) displacement: [F32s; 2],
+    /// `[∂D_x/∂x, ∂D_x/∂z, ∂D_z/∂x, ∂D_z/∂z]`.
+    jacobian: [F32s; 4],
+    /// η in metres.
+    pub(super) height: F32s,
+    /// `[∂y/∂x, ∂y/∂z]`.
+    pub(super) slope: [F32s; 2],
+}
+
+/// Σ w_x w_z c of eight lanes' pairs (taps of two components, interleaved) over their 4×4
+/// taps (the field of pairs starting at `field` in each tile), and with `GRADIENT` the sums with the weights' derivatives along x and z: the
+/// operations of [`spline::displacement`] lane by lane.
+#[inline(always)]
+fn pairs<const GRADIENT: bool>(
+    simd: Simd,
+    tiles: &[&TileData; LANES],
+    field: usize,
+    at: &[usize; LANES],
+    [wx, wz, dx, dz]: &[[Lanes; 4]; 4],
+) -> [[F32s; 2]; 3] {
+    // Every row's taps first (kept in memory: the sums below would not fit the registers
+    // together with them), then each tap's sums over the rows.
+    let windows: [&[f32; PAIR_WINDOW]; LANES] = each(|l| {
+        let start = field + 2 * at[l];
+        tiles[l][start..start + PAIR_WINDOW]
+            .try_into()
+            .expect("a cell's taps lie in its tile")
+    });
+    let taps = [
+        transpose8(simd, pair_row(&windows, 0)),
+        transpose8(simd, pair_row(&windows, 1)),
+        transpose8(simd, pair_row(&windows, 2)),
+        transpose8(simd, pair_row(&windows, 3)),
+    ];
+    let zero = [0.0f32; LANES];
+    let weights = [wx, wz, dx, dz];
+    let mut out = [[zero; 2]; 3];
+    for k in 0..2 {
+        // (tap 0 + tap 2) + (tap 1 + tap 3), as the scalar code adds them.
+        let a = tap::<GRADIENT>(&taps, k, weights);
+        let b = tap::<GRADIENT>(&taps, 4 + k, weights);
+        let c = tap::<GRADIENT>(&taps, 2 + k, weights);
+        let d = tap::<GRADIENT>(&taps, 6 + k, weights);
+        for s in 0..(if GRADIENT { 3 } else { 1 }) {
+            out[s][k] = each(|l| (a[s][l] + b[s][l]) + (c[s][l] + d[s][l]));
+        }
+    }
+    out
+}
+
+/// Floats from a cell's first pair to its last (four rows of four pairs, `STRIDE` pairs
+/// apart).
+const PAIR_WINDOW: usize = 2 * (3 * STRIDE + 4);
+
+/// Row `r` of four pairs of each lane's window.
+#[inline(always)]
+fn pair_row<'a>(windows: &[&'a [f32; PAIR_WINDOW]; LANES], r: usize) -> [&'a [f32; 8]; LANES] {
+    let start = 2 * r * STRIDE;
+    each(|l| windows[l][start..start + 8].try_into().expect("four pairs"))
+}
+
+/// Component j % 2 of pair j / 2 of [`pairs`]' taps: Σ_r w_z (w_x c), and with `GRADIENT`
+/// Σ_r w_z (d_x c) and Σ_r d_z (w_x c).
+#[inline(always)]
+fn tap<const GRADIENT: bool>(
+    taps: &[[F32s; 8]; 4],
+    j: usize,
+    [wx, wz, dx, dz]: [&[Lanes; 4]; 4],
+) -> [F32s; 3] {
+    let t = j / 2;
+    let zero = [0.0f32; LANES];
+    let (mut sum, mut sum_x, mut sum_z) = (zero, zero, zero);
+    for r in 0..4 {
+        let c = &taps[r][j];
+        let line = each(|l| wx[t].0[l] * c[l]);
+        sum = each(|l| sum[l] + wz[r].0[l] * line[l]);
+        if GRADIENT {
+            let line_x = each(|l| dx[t].0[l] * c[l]);
+            sum_x = each(|l| sum_x[l] + wz[r].0[l] * line_x[l]);
+            sum_z = each(|l| sum_z[l] + dz[r].0[l] * line[l]);
+        }
+    }
+    [sum, sum_x, sum_z]
+}
+
+/// Σ w_x w_z c of eight lanes' heights: [`spline::height`] lane by lane.
+#[inline(always)]
+fn heights(
+    simd: Simd,
+    tiles: &[&TileData; LANES],
+    at: &[usize; LANES],
+    [wx, wz]: [&[Lanes; 4]; 2],
+) -> F32s {
+    let mut sum = [[0.0f32; LANES]; 4];
+    for r in 0..4 {
+        let taps = transpose4(
+            simd,
+            each(|l| {
+                let start = spline::HEIGHT + at[l] + r * STRIDE;
+                tiles[l][start..start + 4].try_into().expect("four taps")
+            }),
+        );
+        for (t, taps) in taps.iter().enumerate() {
+            let line = each(|l| wx[t].0[l] * taps[l]);
+            sum[t] = each(|l| sum[t][l] + wz[r].0[l] * line[l]);
+        }
+    }
+    each(|l| (sum[0][l] + sum[2][l]) + (sum[1][l] + sum[3][l]))
+}
+
+/// The fields of cascades `range` at the undisplaced world points `[x, z]` of eight lanes,
+/// summed in order as [`super::inversion`]'s `evaluate` sums them: the displacement with
+/// `DISPLACEMENT`, its Jacobian with `JACOBIAN`, the height with `HEIGHT`, the slope with
+/// `SLOPE`. Every cascade in `range` must have spline tiles.
+#[inline(always)]
+pub(super) fn evaluate<
+    F: Fields,
+    const DISPLACEMENT: bool,
+    const JACOBIAN: bool,
+    const HEIGHT: bool,
+    const SLOPE: bool,
+>(
+    fields: &F,
+    [x, z]: &[F64s; 2],
+    range: std::ops::Range<usize>,
+) -> SummedLanes {
+    let frame = fields.frame();
+    let mut total = SummedLanes::default();
+    for c in range {
+        let grid = &frame.grids[c];
+        let Some(tiles) = &grid.tiles else {
+            unreachable!("lanes are used only when every cascade has spline tiles")
+        };
+        let (ix, fx) = cells(x, &grid.period);
+        let (iz, fz) = cells(z, &grid.period);
+        let (index, offset) = tiles.cells_of(&ix, &iz);
+        let at: [usize; LANES] = each(|l| offset[l] as usize);
+        let first = tiles.tile(index[0] as usize, || fields.source(c), frame.simd);
+        let mut found: [&TileData; LANES] = [first; LANES];
+        for l in 1..LANES {
+            found[l] = tiles.tile(index[l] as usize, || fields.source(c), frame.simd);
+        }
+        let (fx, fz) = (Lanes(fx), Lanes(fz));
+        let zero = [Lanes::from(0.0); 4];
+        let (dx, dz) = if JACOBIAN {
+            (spline::weight_slopes(fx), spline::weight_slopes(fz))
+        } else {
+            (zero, zero)
+        };
+        let weights = [spline::weights(fx), spline::weights(fz), dx, dz];
+        if DISPLACEMENT || JACOBIAN {
+            let [value, gx, gz] = pairs::<JACOBIAN>(frame.simd, &found, 0, &at, &weights);
+            for k in 0..2 {
+                total.displacement[k] = each(|l| total.displacement[k][l] + value[k][l]);
+            }
+            if JACOBIAN {
+                let per_metre = grid.per_metre;
+                let g = [gx[0], gz[0], gx[1], gz[1]];
+                for (sum, g) in total.jacobian.iter_mut().zip(&g) {
+                    *sum = each(|l| sum[l] + g[l] * per_metre);
+                }
+            }
+        }
+        if HEIGHT {
+            let height = heights(frame.simd, &found, &at, [&weights[0], &weights[1]]);
+            total.height = each(|l| total.height[l] + height[l]);
+        }
+        if SLOPE {
+            let [slope, _, _] = pairs::<false>(frame.simd, &found, spline::SLOPE, &at, &weights);
+            for k in 0..2 {
+                total.slope[k] = each(|l| total.slope[k][l] + slope[k][l]);
+            }
+        }
+    }
+    total
+}
+
+/// The Newton searches of up to [`LANES`] points, one a lane (see [`super::inversion`]'s
+/// `Search`, whose update each lane runs).
+struct Searches {
+    /// The point each lane searches for (an index into the block), or `None`.
+    point: [Option<usize>; LANES],
+    /// Evaluations each lane's search has made.
+    iteration: [usize; LANES],
+    target: [F64s; 2],
+    /// The iterate to evaluate next.
+    next: [F64s; 2],
+    base: [F64s; 2],
+    step: [F64s; 2],
+    fraction: F64s,
+    best: [F64s; 2],
+    miss: F32s,
+    iterations: [usize; LANES],
+    converged: [bool; LANES],
+    displacement: [F32s; 2],
+}
+
+/// Where the water at a point comes from, and the summed displacement there.
+#[derive(Clone, Copy)]
+pub(super) struct Found {
+    pub(super) location: Location,
+    pub(super) displacement: [f32; 2],
+}
+
+impl Default for Found {
+    fn default() -> Found {
+        Found {
+            location: Location {
+                undisplaced: [0.0; 2],
+                miss: f32::INFINITY,
+                iterations: 0,
+                converged: false,
+            },
+            displacement: [0.0; 2],
+        }
+    }
+}
+
+impl Searches {
+    /// Starts lane `l` on point `index` at world (x, z).
+    #[inline(always)]
+    fn start(&mut self, l: usize, index: usize, [x, z]: [f64; 2]) {
+        self.point[l] = Some(index);
+        self.iteration[l] = 0;
+        for (k, v) in [x, z].into_iter().enumerate() {
+            self.target[k][l] = v;
+            self.next[k][l] = v;
+            self.base[k][l] = v;
+            self.step[k][l] = 0.0;
+            self.best[k][l] = v;
+            self.displacement[k][l] = 0.0;
+        }
+        self.fraction[l] = 1.0;
+        self.miss[l] = f32::INFINITY;
+        self.iterations[l] = 0;
+        self.converged[l] = false;
+    }
+
+    /// Takes the summed displacement `d` and Jacobian `j` at each lane's iterate, and sets
+    /// the iterate after it; returns which lanes' searches ended.
+    #[inline(always)]
+    fn update(&mut self, d: &[F32s; 2], j: &[F32s; 4], tolerance: f32, max: usize) -> [bool; LANES] {
+        let mut residual = [[0.0f64; LANES]; 2];
+        for k in 0..2 {
+            residual[k] = each(|l| self.target[k][l] - (self.next[k][l] + f64::from(d[k][l])));
+        }
+        let miss: F32s = each(|l| {
+            let [rx, rz] = [residual[0][l], residual[1][l]];
+            (rx * rx + rz * rz).sqrt() as f32
+        });
+        // Newton: (I + ∇D) δ = residual, or the fixed point's step where the surface folds.
+        let a: F64s = each(|l| 1.0 + f64::from(j[0][l]));
+        let b: F64s = each(|l| f64::from(j[1][l]));
+        let c: F64s = each(|l| f64::from(j[2][l]));
+        let dd: F64s = each(|l| 1.0 + f64::from(j[3][l]));
+        let determinant: F64s = each(|l| a[l] * dd[l] - b[l] * c[l]);
+        let newton: [bool; LANES] = each(|l| determinant[l] > MIN_DETERMINANT);
+        let step: [F64s; 2] = [
+            each(|l| {
+                let s = (dd[l] * residual[0][l] - b[l] * residual[1][l]) / determinant[l];
+                if newton[l] { s } else { residual[0][l] }
+            }),
+            each(|l| {
+                let s = (a[l] * residual[1][l] - c[l] * residual[0][l]) / determinant[l];
+                if newton[l] { s } else { residual[1][l] }
+            }),
+        ];
+        let better: [bool; LANES] = each(|l| miss[l] < self.miss[l]);
+        let converged: [bool; LANES] = each(|l| miss[l] < tolerance);
+        for k in 0..2 {
+            self.best[k] = each(|l| if better[l] { self.next[k][l] } else { self.best[k][l] });
+            self.displacement[k] =
+                each(|l| if better[l] { d[k][l] } else { self.displacement[k][l] });
+            self.step[k] = each(|l| if better[l] { step[k][l] } else { self.step[k][l] });
+            self.base[k] = each(|l| if better[l] { self.next[k][l] } else { self.base[k][l] });
+        }
+        self.fraction = each(|l| if better[l] { 1.0 } else { self.fraction[l] * 0.5 });
+        for k in 0..2 {
+            self.next[k] = each(|l| self.base[k][l] + self.fraction[l] * self.step[k][l]);
+        }
+        let mut ended = [false; LANES];
+        for l in 0..LANES {
+            if better[l] {
+                self.miss[l] = miss[l];
+                self.iterations[l] = self.iteration[l];
+                self.converged[l] = converged[l];
+            }
+            ended[l] = self.point[l].is_some()
+                && ((better[l] && converged[l]) || self.iteration[l] == max);
+            self.iteration[l] += 1;
+        }
+        ended
+    }
+
+    /// What lane `l`'s search found.
+    #[inline(always)]
+    fn found(&self, l: usize) -> Found {
+        Found {
+            location: Location {
+                undisplaced: [self.best[0][l], self.best[1][l]],
+                miss: self.miss[l],
+                iterations: self.iterations[l],
+                converged: self.converged[l],
+            },
+            displacement: [self.displacement[0][l], self.displacement[1][l]],
+        }
+    }
+}
+
+/// Locates each of `points` (at most [`BLOCK`]) into `out`: Newton's method on
+/// x₀ + D(x₀) = p from x₀ = p, eight searches at a time, each lane taking the next point
+/// when its search ends; each point's [`Found`] has the bits of its single query.
+#[inline(always)]
+pub(super) fn locate<F: Fields>(fields: &F, points: &[[f64; 2]], out: &mut [Found]) {
+    let frame = fields.frame();
+    let query = &frame.query;
+    let cascades = 0..frame.grids.len();
+    let mut searches = Searches {
+        point: [None; LANES],
+        iteration: [0; LANES],
+        target: [[0.0; LANES]; 2],
+        next: [[0.0; LANES]; 2],
+        base: [[0.0; LANES]; 2],
+        step: [[0.0; LANES]; 2],
+        fraction: [1.0; LANES],
+        best: [[0.0; LANES]; 2],
+        miss: [f32::INFINITY; LANES],
+        iterations: [0; LANES],
+        converged: [false; LANES],
+        displacement: [[0.0; LANES]; 2],
+    };
+    let mut waiting = points.iter().enumerate();
+    loop {
+        for l in 0..LANES {
+            if searches.point[l].is_none() {
+                if let Some((index, &point)) = waiting.next() {
+                    searches.start(l, index, point);
+                }
+            }
+        }
+        // An idle lane evaluates a busy lane's iterate (any point the tiles cover would do).
+        let Some(busy) = searches.point.iter().position(Option::is_some) else {
+            break;
+        };
+        for l in 0..LANES {
+            if searches.point[l].is_none() {
+                for k in 0..2 {
+                    searches.next[k][l] = searches.next[k][busy];
+                }
+            }
+        }
+        let summed = evaluate::<F, true, true, false, false>(fields, &searches.next, cascades.clone());
+        let ended = searches.update(
+            &summed.displacement,
+            &summed.jacobian,
+            query.tolerance,
+            query.max_iterations,
+        );
+        for l in 0..LANES {
+            if ended[l] {
+                if let Some(index) = searches.point[l].take() {
+                    out[index] = searches.found(l);
+                }
+            }
+        }
+    }
+}
+
+/// The undisplaced points `[x, z]` of `found` (at most [`LANES`]) in lanes, the missing
+/// lanes padded with the first point.
+#[inline(always)]
+pub(super) fn points_of(found: &[Found]) -> [F64s; 2] {
+    std::array::from_fn(|k| each(|l| found.get(l).unwrap_or(&found[0]).location.undisplaced[k]))
+}
+
+impl SummedLanes {
+    /// The [`SurfaceSample`] of lane `l`, with foam `foam`.
+    #[inline(always)]
+    pub(super) fn surface(&self, l: usize, foam: f32) -> SurfaceSample {
+        let slope = [self.slope[0][l], self.slope[1][l]];
+        SurfaceSample {
+            height: self.height[l],
+            displacement: [self.displacement[0][l], self.displacement[1][l]],
+            slope,
+            normal: normal_from_slope(glam::Vec2::from_array(slope)).to_array(),
+            foam,
+        }
+    }
+}
