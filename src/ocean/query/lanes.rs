@@ -12,14 +12,10 @@
 use super::super::frame::Fields;
 use super::super::spline::{self, Lanes, TileData, STRIDE};
 use super::inversion::MIN_DETERMINANT;
-use crate::simd::Simd;
 use super::{normal_from_slope, wrap, Location, Period, SurfaceSample};
 
 /// Points a vector holds.
 pub(super) const LANES: usize = 8;
-/// Points located before their fields are read: enough for the lanes to stay busy while the
-/// last searches end, and small enough for the stack.
-pub(super) const BLOCK: usize = 64;
 
 type F32s = [f32; LANES];
 type F64s = [f64; LANES];
@@ -77,16 +73,45 @@ fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
     (cell, fraction)
 }
 
-/// Eight rows of eight floats, one a lane, turned into eight vectors of eight lanes (pure
-/// data movement: with AVX2 the usual unpack, shuffle and 128-bit permute network).
-#[inline(always)]
-fn transpose8(simd: Simd, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
-    match simd {
-        #[cfg(target_arch = "x86_64")]
-        Simd::Avx2(v3) => transpose8_v3(v3, rows),
-        #[cfg(target_arch = "x86_64")]
-        Simd::Avx512(v4) => transpose8_v3(*v4, rows),
-        Simd::Baseline => std::array::from_fn(|j| each(|l| rows[l][j])),
+/// How a batch's lanes turn rows of taps into vectors: pure data movement, so every
+/// implementation gives the same bits. Chosen once for a whole batch (see [`run`]), so that
+/// the lanes' code is compiled once for each SIMD level rather than branching on it at
+/// every tap.
+pub(crate) trait Shuffle: Copy {
+    /// Eight rows of eight floats, one a lane, as eight vectors of eight lanes.
+    fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8];
+    /// Eight rows of four floats, one a lane, as four vectors of eight lanes.
+    fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4];
+}
+
+/// [`Shuffle`] written as plain array code (the baseline level).
+#[derive(Clone, Copy)]
+pub(crate) struct Plain;
+
+impl Shuffle for Plain {
+    #[inline(always)]
+    fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
+        std::array::from_fn(|j| each(|l| rows[l][j]))
+    }
+
+    #[inline(always)]
+    fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
+        std::array::from_fn(|j| each(|l| rows[l][j]))
+    }
+}
+
+/// [`Shuffle`] with AVX2's unpack, shuffle and 128-bit permute network (also used on
+/// AVX-512 machines: the lanes are eight `f32` wide).
+#[cfg(target_arch = "x86_64")]
+impl Shuffle for pulp::x86::V3 {
+    #[inline(always)]
+    fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
+        transpose8_v3(self, rows)
+    }
+
+    #[inline(always)]
+    fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
+        transpose4_v3(self, rows)
     }
 }
 
@@ -135,18 +160,6 @@ fn transpose8_v3(v3: pulp::x86::V3, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
         pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[2], s[6])),
         pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[3], s[7])),
     ]
-}
-
-/// Eight rows of four floats, one a lane, turned into four vectors of eight lanes.
-#[inline(always)]
-fn transpose4(simd: Simd, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
-    match simd {
-        #[cfg(target_arch = "x86_64")]
-        Simd::Avx2(v3) => transpose4_v3(v3, rows),
-        #[cfg(target_arch = "x86_64")]
-        Simd::Avx512(v4) => transpose4_v3(*v4, rows),
-        Simd::Baseline => std::array::from_fn(|j| each(|l| rows[l][j])),
-    }
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -202,8 +215,8 @@ pub(super) struct SummedLanes {
 /// taps (the field of pairs starting at `field` in each tile), and with `GRADIENT` the sums with the weights' derivatives along x and z: the
 /// operations of [`spline::displacement`] lane by lane.
 #[inline(always)]
-fn pairs<const GRADIENT: bool>(
-    simd: Simd,
+fn pairs<S: Shuffle, const GRADIENT: bool>(
+    shuffle: S,
     tiles: &[&TileData; LANES],
     field: usize,
     at: &[usize; LANES],
@@ -218,10 +231,10 @@ fn pairs<const GRADIENT: bool>(
             .expect("a cell's taps lie in its tile")
     });
     let taps = [
-        transpose8(simd, pair_row(&windows, 0)),
-        transpose8(simd, pair_row(&windows, 1)),
-        transpose8(simd, pair_row(&windows, 2)),
-        transpose8(simd, pair_row(&windows, 3)),
+        shuffle.transpose8(pair_row(&windows, 0)),
+        shuffle.transpose8(pair_row(&windows, 1)),
+        shuffle.transpose8(pair_row(&windows, 2)),
+        shuffle.transpose8(pair_row(&windows, 3)),
     ];
     let zero = [0.0f32; LANES];
     let weights = [wx, wz, dx, dz];
@@ -276,21 +289,18 @@ fn tap<const GRADIENT: bool>(
 
 /// Σ w_x w_z c of eight lanes' heights: [`spline::height`] lane by lane.
 #[inline(always)]
-fn heights(
-    simd: Simd,
+fn heights<S: Shuffle>(
+    shuffle: S,
     tiles: &[&TileData; LANES],
     at: &[usize; LANES],
     [wx, wz]: [&[Lanes; 4]; 2],
 ) -> F32s {
     let mut sum = [[0.0f32; LANES]; 4];
     for r in 0..4 {
-        let taps = transpose4(
-            simd,
-            each(|l| {
-                let start = spline::HEIGHT + at[l] + r * STRIDE;
-                tiles[l][start..start + 4].try_into().expect("four taps")
-            }),
-        );
+        let taps = shuffle.transpose4(each(|l| {
+            let start = spline::HEIGHT + at[l] + r * STRIDE;
+            tiles[l][start..start + 4].try_into().expect("four taps")
+        }));
         for (t, taps) in taps.iter().enumerate() {
             let line = each(|l| wx[t].0[l] * taps[l]);
             sum[t] = each(|l| sum[t][l] + wz[r].0[l] * line[l]);
@@ -305,12 +315,14 @@ fn heights(
 /// `SLOPE`. Every cascade in `range` must have spline tiles.
 #[inline(always)]
 pub(super) fn evaluate<
+    S: Shuffle,
     F: Fields,
     const DISPLACEMENT: bool,
     const JACOBIAN: bool,
     const HEIGHT: bool,
     const SLOPE: bool,
 >(
+    shuffle: S,
     fields: &F,
     [x, z]: &[F64s; 2],
     range: std::ops::Range<usize>,
@@ -340,7 +352,7 @@ pub(super) fn evaluate<
         };
         let weights = [spline::weights(fx), spline::weights(fz), dx, dz];
         if DISPLACEMENT || JACOBIAN {
-            let [value, gx, gz] = pairs::<JACOBIAN>(frame.simd, &found, 0, &at, &weights);
+            let [value, gx, gz] = pairs::<S, JACOBIAN>(shuffle, &found, 0, &at, &weights);
             for k in 0..2 {
                 total.displacement[k] = each(|l| total.displacement[k][l] + value[k][l]);
             }
@@ -353,11 +365,11 @@ pub(super) fn evaluate<
             }
         }
         if HEIGHT {
-            let height = heights(frame.simd, &found, &at, [&weights[0], &weights[1]]);
+            let height = heights(shuffle, &found, &at, [&weights[0], &weights[1]]);
             total.height = each(|l| total.height[l] + height[l]);
         }
         if SLOPE {
-            let [slope, _, _] = pairs::<false>(frame.simd, &found, spline::SLOPE, &at, &weights);
+            let [slope, _, _] = pairs::<S, false>(shuffle, &found, spline::SLOPE, &at, &weights);
             for k in 0..2 {
                 total.slope[k] = each(|l| total.slope[k][l] + slope[k][l]);
             }
@@ -367,9 +379,9 @@ pub(super) fn evaluate<
 }
 
 /// The Newton searches of up to [`LANES`] points, one a lane (see [`super::inversion`]'s
-/// `Search`, whose update each lane runs).
+/// `Search`, whose update each lane runs), and the fields at each one's best iterate.
 struct Searches {
-    /// The point each lane searches for (an index into the block), or `None`.
+    /// The point each lane searches for (an index into the batch), or `None`.
     point: [Option<usize>; LANES],
     /// Evaluations each lane's search has made.
     iteration: [usize; LANES],
@@ -383,31 +395,92 @@ struct Searches {
     miss: F32s,
     iterations: [usize; LANES],
     converged: [bool; LANES],
+    /// The summed displacement at the best iterate.
     displacement: [F32s; 2],
 }
 
-/// Where the water at a point comes from, and the summed displacement there.
+/// What a search found: where the water at a point comes from, and the summed fields there
+/// (the height and slope once read).
 #[derive(Clone, Copy)]
 pub(super) struct Found {
     pub(super) location: Location,
     pub(super) displacement: [f32; 2],
+    pub(super) height: f32,
+    pub(super) slope: [f32; 2],
 }
 
-impl Default for Found {
-    fn default() -> Found {
-        Found {
-            location: Location {
-                undisplaced: [0.0; 2],
-                miss: f32::INFINITY,
-                iterations: 0,
-                converged: false,
-            },
-            displacement: [0.0; 2],
-        }
+impl Found {
+    const EMPTY: Found = Found {
+        location: Location {
+            undisplaced: [0.0; 2],
+            miss: f32::INFINITY,
+            iterations: 0,
+            converged: false,
+        },
+        displacement: [0.0; 2],
+        height: 0.0,
+        slope: [0.0; 2],
+    };
+}
+
+/// A batch's result for one point, from what its search found.
+pub(super) trait FromFound: Sized {
+    fn from_found<F: Fields>(found: Found, fields: &F) -> Self;
+}
+
+impl FromFound for f32 {
+    #[inline(always)]
+    fn from_found<F: Fields>(found: Found, _: &F) -> f32 {
+        found.height
+    }
+}
+
+impl FromFound for Location {
+    #[inline(always)]
+    fn from_found<F: Fields>(found: Found, _: &F) -> Location {
+        found.location
+    }
+}
+
+impl FromFound for SurfaceSample {
+    #[inline(always)]
+    fn from_found<F: Fields>(found: Found, fields: &F) -> SurfaceSample {
+        let [x0, z0] = found.location.undisplaced;
+        surface(found.height, found.displacement, found.slope, fields.foam_at(x0, z0))
+    }
+}
+
+/// The [`SurfaceSample`] of summed fields and foam `foam` (as the single queries build it).
+#[inline(always)]
+fn surface(height: f32, displacement: [f32; 2], slope: [f32; 2], foam: f32) -> SurfaceSample {
+    SurfaceSample {
+        height,
+        displacement,
+        slope,
+        normal: normal_from_slope(glam::Vec2::from_array(slope)).to_array(),
+        foam,
     }
 }
 
 impl Searches {
+    fn new() -> Searches {
+        let zero = [[0.0; LANES]; 2];
+        Searches {
+            point: [None; LANES],
+            iteration: [0; LANES],
+            target: zero,
+            next: zero,
+            base: zero,
+            step: zero,
+            fraction: [1.0; LANES],
+            best: zero,
+            miss: [f32::INFINITY; LANES],
+            iterations: [0; LANES],
+            converged: [false; LANES],
+            displacement: [[0.0; LANES]; 2],
+        }
+    }
+
     /// Starts lane `l` on point `index` at world (x, z).
     #[inline(always)]
     fn start(&mut self, l: usize, index: usize, [x, z]: [f64; 2]) {
@@ -419,7 +492,6 @@ impl Searches {
             self.base[k][l] = v;
             self.step[k][l] = 0.0;
             self.best[k][l] = v;
-            self.displacement[k][l] = 0.0;
         }
         self.fraction[l] = 1.0;
         self.miss[l] = f32::INFINITY;
@@ -427,14 +499,16 @@ impl Searches {
         self.converged[l] = false;
     }
 
-    /// Takes the summed displacement `d` and Jacobian `j` at each lane's iterate, and sets
-    /// the iterate after it; returns which lanes' searches ended.
+    /// Takes the sums at each lane's iterate, and sets the iterate after it; returns which
+    /// lanes' searches ended.
     #[inline(always)]
-    fn update(&mut self, d: &[F32s; 2], j: &[F32s; 4], tolerance: f32, max: usize) -> [bool; LANES] {
+    fn update(&mut self, summed: &SummedLanes, tolerance: f32, max: usize) -> [bool; LANES] {
+        let (d, j) = (&summed.displacement, &summed.jacobian);
         let mut residual = [[0.0f64; LANES]; 2];
         for k in 0..2 {
             residual[k] = each(|l| self.target[k][l] - (self.next[k][l] + f64::from(d[k][l])));
         }
+        // A correctly rounded square root, as the single query's.
         let miss: F32s = each(|l| {
             let [rx, rz] = [residual[0][l], residual[1][l]];
             (rx * rx + rz * rz).sqrt() as f32
@@ -449,11 +523,19 @@ impl Searches {
         let step: [F64s; 2] = [
             each(|l| {
                 let s = (dd[l] * residual[0][l] - b[l] * residual[1][l]) / determinant[l];
-                if newton[l] { s } else { residual[0][l] }
+                if newton[l] {
+                    s
+                } else {
+                    residual[0][l]
+                }
             }),
             each(|l| {
                 let s = (a[l] * residual[1][l] - c[l] * residual[0][l]) / determinant[l];
-                if newton[l] { s } else { residual[1][l] }
+                if newton[l] {
+                    s
+                } else {
+                    residual[1][l]
+                }
             }),
         ];
         let better: [bool; LANES] = each(|l| miss[l] < self.miss[l]);
@@ -465,6 +547,7 @@ impl Searches {
             self.step[k] = each(|l| if better[l] { step[k][l] } else { self.step[k][l] });
             self.base[k] = each(|l| if better[l] { self.next[k][l] } else { self.base[k][l] });
         }
+        self.miss = each(|l| if better[l] { miss[l] } else { self.miss[l] });
         self.fraction = each(|l| if better[l] { 1.0 } else { self.fraction[l] * 0.5 });
         for k in 0..2 {
             self.next[k] = each(|l| self.base[k][l] + self.fraction[l] * self.step[k][l]);
@@ -472,7 +555,6 @@ impl Searches {
         let mut ended = [false; LANES];
         for l in 0..LANES {
             if better[l] {
-                self.miss[l] = miss[l];
                 self.iterations[l] = self.iteration[l];
                 self.converged[l] = converged[l];
             }
@@ -494,33 +576,38 @@ impl Searches {
                 converged: self.converged[l],
             },
             displacement: [self.displacement[0][l], self.displacement[1][l]],
+            height: 0.0,
+            slope: [0.0; 2],
         }
     }
 }
 
-/// Locates each of `points` (at most [`BLOCK`]) into `out`: Newton's method on
+/// Each of `points` located and its result written into `out`: Newton's method on
 /// x₀ + D(x₀) = p from x₀ = p, eight searches at a time, each lane taking the next point
-/// when its search ends; each point's [`Found`] has the bits of its single query.
+/// when its search ends; then, eight found points at a time, the height (with `HEIGHT`)
+/// and slope (with `SLOPE`) there. Each result has the bits of its single query.
 #[inline(always)]
-pub(super) fn locate<F: Fields>(fields: &F, points: &[[f64; 2]], out: &mut [Found]) {
+pub(super) fn locate<
+    S: Shuffle,
+    F: Fields,
+    T: FromFound,
+    const HEIGHT: bool,
+    const SLOPE: bool,
+>(
+    shuffle: S,
+    fields: &F,
+    points: &[[f64; 2]],
+    out: &mut [T],
+) {
     let frame = fields.frame();
     let query = &frame.query;
     let cascades = 0..frame.grids.len();
-    let mut searches = Searches {
-        point: [None; LANES],
-        iteration: [0; LANES],
-        target: [[0.0; LANES]; 2],
-        next: [[0.0; LANES]; 2],
-        base: [[0.0; LANES]; 2],
-        step: [[0.0; LANES]; 2],
-        fraction: [1.0; LANES],
-        best: [[0.0; LANES]; 2],
-        miss: [f32::INFINITY; LANES],
-        iterations: [0; LANES],
-        converged: [false; LANES],
-        displacement: [[0.0; LANES]; 2],
-    };
+    let mut searches = Searches::new();
     let mut waiting = points.iter().enumerate();
+    // Points found and not yet written, with their indices.
+    let mut found = [Found::EMPTY; LANES];
+    let mut found_at = [0usize; LANES];
+    let mut count = 0;
     loop {
         for l in 0..LANES {
             if searches.point[l].is_none() {
@@ -540,41 +627,85 @@ pub(super) fn locate<F: Fields>(fields: &F, points: &[[f64; 2]], out: &mut [Foun
                 }
             }
         }
-        let summed = evaluate::<F, true, true, false, false>(fields, &searches.next, cascades.clone());
-        let ended = searches.update(
-            &summed.displacement,
-            &summed.jacobian,
-            query.tolerance,
-            query.max_iterations,
+        let summed = evaluate::<S, F, true, true, false, false>(
+            shuffle,
+            fields,
+            &searches.next,
+            cascades.clone(),
         );
+        let ended = searches.update(&summed, query.tolerance, query.max_iterations);
         for l in 0..LANES {
             if ended[l] {
                 if let Some(index) = searches.point[l].take() {
-                    out[index] = searches.found(l);
+                    if count == LANES {
+                        finish::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut found, &found_at, out);
+                        count = 0;
+                    }
+                    found[count] = searches.found(l);
+                    found_at[count] = index;
+                    count += 1;
                 }
             }
         }
     }
+    finish::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut found[..count], &found_at[..count], out);
 }
 
-/// The undisplaced points `[x, z]` of `found` (at most [`LANES`]) in lanes, the missing
-/// lanes padded with the first point.
+/// Reads the height (with `HEIGHT`) and slope (with `SLOPE`) at the points `found` (at most
+/// [`LANES`]), and writes each result to `out[found_at[i]]`.
 #[inline(always)]
-pub(super) fn points_of(found: &[Found]) -> [F64s; 2] {
-    std::array::from_fn(|k| each(|l| found.get(l).unwrap_or(&found[0]).location.undisplaced[k]))
+fn finish<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
+    shuffle: S,
+    fields: &F,
+    found: &mut [Found],
+    found_at: &[usize],
+    out: &mut [T],
+) {
+    if found.is_empty() {
+        return;
+    }
+    if HEIGHT || SLOPE {
+        let at = [
+            each(|l| found.get(l).unwrap_or(&found[0]).location.undisplaced[0]),
+            each(|l| found.get(l).unwrap_or(&found[0]).location.undisplaced[1]),
+        ];
+        let cascades = 0..fields.frame().grids.len();
+        let sums = evaluate::<S, F, false, false, HEIGHT, SLOPE>(shuffle, fields, &at, cascades);
+        for (l, found) in found.iter_mut().enumerate() {
+            found.height = sums.height[l];
+            found.slope = [sums.slope[0][l], sums.slope[1][l]];
+        }
+    }
+    for (found, &index) in found.iter().zip(found_at) {
+        out[index] = T::from_found(*found, fields);
+    }
 }
 
-impl SummedLanes {
-    /// The [`SurfaceSample`] of lane `l`, with foam `foam`.
-    #[inline(always)]
-    pub(super) fn surface(&self, l: usize, foam: f32) -> SurfaceSample {
-        let slope = [self.slope[0][l], self.slope[1][l]];
-        SurfaceSample {
-            height: self.height[l],
-            displacement: [self.displacement[0][l], self.displacement[1][l]],
-            slope,
-            normal: normal_from_slope(glam::Vec2::from_array(slope)).to_array(),
-            foam,
+/// The surface at each of `points` (undisplaced), summed over cascades `range` (the foam
+/// only if cascade 0 is among them), eight points at a time.
+#[inline(always)]
+pub(super) fn sample<S: Shuffle, F: Fields>(
+    shuffle: S,
+    fields: &F,
+    points: &[[f64; 2]],
+    range: std::ops::Range<usize>,
+    out: &mut [SurfaceSample],
+) {
+    for (out, points) in out.chunks_mut(LANES).zip(points.chunks(LANES)) {
+        let at = [
+            each(|l| points.get(l).unwrap_or(&points[0])[0]),
+            each(|l| points.get(l).unwrap_or(&points[0])[1]),
+        ];
+        let sums = evaluate::<S, F, true, false, true, true>(shuffle, fields, &at, range.clone());
+        for (l, (value, &[x, z])) in out.iter_mut().zip(points).enumerate() {
+            let foam = if range.contains(&0) {
+                fields.foam_at(x, z)
+            } else {
+                0.0
+            };
+            let displacement = [sums.displacement[0][l], sums.displacement[1][l]];
+            let slope = [sums.slope[0][l], sums.slope[1][l]];
+            *value = surface(sums.height[l], displacement, slope, foam);
         }
     }
 }

@@ -8,12 +8,13 @@ use std::ops::Bound::{Excluded, Included};
 use rayon::prelude::*;
 
 mod inversion;
-mod lanes;
+pub(crate) mod lanes;
 
 use super::frame::{Fields, Grid, Live, Surface};
 use super::OceanState;
 use crate::error::{self, Error};
-use crate::simd::Kernel;
+use crate::simd::{Kernel, Simd};
+use lanes::Shuffle;
 use inversion::{
     evaluate_group, height_at, locate, located_group, sample, surface_at, surface_sample, GROUP,
 };
@@ -227,9 +228,11 @@ pub(crate) trait PointQuery<F: Fields>: Sync {
     }
 
     /// [`PointQuery::at`] of each of `points` into `out`, with the same bits: by groups
-    /// unless the query has a faster way (the spline's lanes, see [`lanes`]).
+    /// unless the query has a faster way (the spline's lanes, see [`lanes`], with
+    /// `shuffle`).
     #[inline(always)]
-    fn batch(&self, fields: &F, points: &[[f64; 2]], out: &mut [Self::Output]) {
+    fn batch<S: Shuffle>(&self, shuffle: S, fields: &F, points: &[[f64; 2]], out: &mut [Self::Output]) {
+        let _ = shuffle;
         for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
             self.group(fields, points, out);
         }
@@ -273,25 +276,12 @@ impl<F: Fields> PointQuery<F> for Sample {
     }
 
     #[inline(always)]
-    fn batch(&self, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
-        if !in_lanes(fields, self.0.clone()) {
+    fn batch<S: Shuffle>(&self, shuffle: S, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
+        if in_lanes(fields, self.0.clone()) {
+            lanes::sample(shuffle, fields, points, self.0.clone(), out);
+        } else {
             for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
                 self.group(fields, points, out);
-            }
-            return;
-        }
-        for (out, points) in out.chunks_mut(lanes::LANES).zip(points.chunks(lanes::LANES)) {
-            let at = std::array::from_fn(|k| {
-                std::array::from_fn(|l| points.get(l).unwrap_or(&points[0])[k])
-            });
-            let sums = lanes::evaluate::<F, true, false, true, true>(fields, &at, self.0.clone());
-            for (l, (value, &[x, z])) in out.iter_mut().zip(points).enumerate() {
-                let foam = if self.0.contains(&0) {
-                    fields.foam_at(x, z)
-                } else {
-                    0.0
-                };
-                *value = sums.surface(l, foam);
             }
         }
     }
@@ -305,19 +295,12 @@ impl<F: Fields> PointQuery<F> for Locate {
     }
 
     #[inline(always)]
-    fn batch(&self, fields: &F, points: &[[f64; 2]], out: &mut [Location]) {
-        if !in_lanes(fields, 0..fields.frame().grids.len()) {
+    fn batch<S: Shuffle>(&self, shuffle: S, fields: &F, points: &[[f64; 2]], out: &mut [Location]) {
+        if in_lanes(fields, 0..fields.frame().grids.len()) {
+            lanes::locate::<S, F, Location, false, false>(shuffle, fields, points, out);
+        } else {
             for (value, &[x, z]) in out.iter_mut().zip(points) {
                 *value = self.at(fields, x, z);
-            }
-            return;
-        }
-        let mut found = [lanes::Found::default(); lanes::BLOCK];
-        for (points, out) in points.chunks(lanes::BLOCK).zip(out.chunks_mut(lanes::BLOCK)) {
-            let found = &mut found[..points.len()];
-            lanes::locate(fields, points, found);
-            for (value, found) in out.iter_mut().zip(&*found) {
-                *value = found.location;
             }
         }
     }
@@ -340,27 +323,12 @@ impl<F: Fields> PointQuery<F> for SurfaceAt {
     }
 
     #[inline(always)]
-    fn batch(&self, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
-        let cascades = 0..fields.frame().grids.len();
-        if !in_lanes(fields, cascades.clone()) {
+    fn batch<S: Shuffle>(&self, shuffle: S, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
+        if in_lanes(fields, 0..fields.frame().grids.len()) {
+            lanes::locate::<S, F, SurfaceSample, true, true>(shuffle, fields, points, out);
+        } else {
             for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
                 self.group(fields, points, out);
-            }
-            return;
-        }
-        let mut found = [lanes::Found::default(); lanes::BLOCK];
-        for (points, out) in points.chunks(lanes::BLOCK).zip(out.chunks_mut(lanes::BLOCK)) {
-            let found = &mut found[..points.len()];
-            lanes::locate(fields, points, found);
-            for (found, out) in found.chunks(lanes::LANES).zip(out.chunks_mut(lanes::LANES)) {
-                let at = lanes::points_of(found);
-                let sums = lanes::evaluate::<F, false, false, true, true>(fields, &at, cascades.clone());
-                for (l, (value, found)) in out.iter_mut().zip(found).enumerate() {
-                    let [x0, z0] = found.location.undisplaced;
-                    let mut surface = sums.surface(l, fields.foam_at(x0, z0));
-                    surface.displacement = found.displacement;
-                    *value = surface;
-                }
             }
         }
     }
@@ -382,22 +350,12 @@ impl<F: Fields> PointQuery<F> for HeightAt {
     }
 
     #[inline(always)]
-    fn batch(&self, fields: &F, points: &[[f64; 2]], out: &mut [f32]) {
-        let cascades = 0..fields.frame().grids.len();
-        if !in_lanes(fields, cascades.clone()) {
+    fn batch<S: Shuffle>(&self, shuffle: S, fields: &F, points: &[[f64; 2]], out: &mut [f32]) {
+        if in_lanes(fields, 0..fields.frame().grids.len()) {
+            lanes::locate::<S, F, f32, true, false>(shuffle, fields, points, out);
+        } else {
             for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
                 self.group(fields, points, out);
-            }
-            return;
-        }
-        let mut found = [lanes::Found::default(); lanes::BLOCK];
-        for (points, out) in points.chunks(lanes::BLOCK).zip(out.chunks_mut(lanes::BLOCK)) {
-            let found = &mut found[..points.len()];
-            lanes::locate(fields, points, found);
-            for (found, out) in found.chunks(lanes::LANES).zip(out.chunks_mut(lanes::LANES)) {
-                let at = lanes::points_of(found);
-                let sums = lanes::evaluate::<F, false, false, true, false>(fields, &at, cascades.clone());
-                out.copy_from_slice(&sums.height[..out.len()]);
             }
         }
     }
@@ -429,20 +387,41 @@ impl<F: Fields, Q: PointQuery<F>> Kernel for One<'_, F, Q> {
     }
 }
 
-/// A batch's query of each point into `out`, as a [`Kernel`].
-struct Batch<'a, F, T, Q> {
+/// A batch's query of each point into `out`, as a [`Kernel`] (its lanes transposed with
+/// `shuffle`).
+struct Batch<'a, F, T, Q, S> {
     fields: &'a F,
     points: &'a [[f64; 2]],
     out: &'a mut [T],
     query: &'a Q,
+    shuffle: S,
 }
 
-impl<F: Fields, Q: PointQuery<F>> Kernel for Batch<'_, F, Q::Output, Q> {
+impl<F: Fields, Q: PointQuery<F>, S: Shuffle> Kernel for Batch<'_, F, Q::Output, Q, S> {
     type Output = ();
 
     #[inline(always)]
     fn run(self) {
-        self.query.batch(self.fields, self.points, self.out);
+        self.query.batch(self.shuffle, self.fields, self.points, self.out);
+    }
+}
+
+/// [`Batch`] at SIMD level `simd`, with that level's [`Shuffle`] (AVX2's on AVX-512
+/// machines too: the lanes are eight `f32`).
+#[inline(always)]
+fn run_batch<F: Fields, Q: PointQuery<F>>(
+    simd: Simd,
+    fields: &F,
+    points: &[[f64; 2]],
+    out: &mut [Q::Output],
+    query: &Q,
+) {
+    match simd {
+        Simd::Baseline => Batch { fields, points, out, query, shuffle: lanes::Plain }.run(),
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2(v3) => simd.run_kernel(Batch { fields, points, out, query, shuffle: v3 }),
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx512(v4) => simd.run_kernel(Batch { fields, points, out, query, shuffle: *v4 }),
     }
 }
 
@@ -477,8 +456,10 @@ impl<F: Fields> Kernel for GridRow<'_, F> {
 /// boat's few hull points) run on the calling thread, where handing them to the pool would
 /// cost more than it saves.
 const PARALLEL_BATCH: usize = 64;
-/// Points one parallel task answers (a fixed split: the results do not depend on it anyway).
-const TASK_POINTS: usize = 32;
+/// Fewest and most points one parallel task answers: about eight tasks a thread between
+/// them, so that threads even out, while a task keeps its lanes full for long (the lanes
+/// idle as a task's last searches end). The results do not depend on the split.
+const TASK_POINTS: [usize; 2] = [32, 1024];
 
 /// `query` of every point into `out`, at the frame's SIMD level.
 pub(crate) fn for_each_point<F: Fields, Q: PointQuery<F>>(
@@ -490,19 +471,16 @@ pub(crate) fn for_each_point<F: Fields, Q: PointQuery<F>>(
     let simd = fields.frame().simd;
     let query = &query;
     let chunk = |out: &mut [Q::Output], points: &[[f64; 2]]| {
-        simd.run_kernel(Batch {
-            fields,
-            points,
-            out,
-            query,
-        })
+        run_batch(simd, fields, points, out, query)
     };
     if points.len() < PARALLEL_BATCH {
         chunk(out, points);
     } else {
         prepare_tiles(fields, points);
-        out.par_chunks_mut(TASK_POINTS)
-            .zip(points.par_chunks(TASK_POINTS))
+        let [fewest, most] = TASK_POINTS;
+        let task = (points.len() / (8 * rayon::current_num_threads())).clamp(fewest, most);
+        out.par_chunks_mut(task)
+            .zip(points.par_chunks(task))
             .for_each(|(out, points)| chunk(out, points));
     }
 }
