@@ -16,7 +16,7 @@
 //! tile is computed the same way from the same samples, so its bits do not depend on which
 //! query (or thread) computed it.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock, PoisonError};
 
 use rayon::prelude::*;
@@ -106,8 +106,10 @@ impl Slot {
         at: [usize; 2],
         source: impl FnOnce() -> Source<'s>,
         simd: Simd,
+        computed: &AtomicUsize,
     ) -> &TileData {
         self.ready.get_or_init(|| {
+            computed.fetch_add(1, Ordering::Relaxed);
             let spare = self
                 .spare
                 .lock()
@@ -139,6 +141,8 @@ pub(crate) struct Tiles {
     slots: Vec<Slot>,
     /// Tiles a batch is about to read (see [`Tiles::prepare`]).
     wanted: Vec<AtomicBool>,
+    /// Tiles computed since the last [`Tiles::reset`] (each counted by its initialiser).
+    computed: AtomicUsize,
 }
 
 impl Tiles {
@@ -169,6 +173,7 @@ impl Tiles {
             per_axis,
             slots,
             wanted,
+            computed: AtomicUsize::new(0),
         })
     }
 
@@ -192,6 +197,7 @@ impl Tiles {
                 *slot.spare.get_mut().unwrap_or_else(PoisonError::into_inner) = Some(data);
             }
         }
+        *self.computed.get_mut() = 0;
     }
 
     /// The tile (x, z) holding cell (`ix`, `iz`).
@@ -219,7 +225,7 @@ impl Tiles {
     ) -> (&TileData, usize, usize) {
         let [tx, tz] = self.tile_of(ix, iz);
         let data =
-            self.slots[tz * self.per_axis + tx].get([self.n, self.tile], [tx, tz], source, simd);
+            self.slots[tz * self.per_axis + tx].get([self.n, self.tile], [tx, tz], source, simd, &self.computed);
         (data, ix - tx * self.tile, iz - tz * self.tile)
     }
 
@@ -265,14 +271,19 @@ impl Tiles {
     #[inline(never)]
     fn compute(&self, index: usize, source: Source<'_>, simd: Simd) -> &TileData {
         let at = [index % self.per_axis, index / self.per_axis];
-        self.slots[index].get([self.n, self.tile], at, || source, simd)
+        self.slots[index].get([self.n, self.tile], at, || source, simd, &self.computed)
     }
 
-    /// Marks the tile of cell (`ix`, `iz`) as wanted by the batch being prepared.
+    /// Whether every tile is computed (a batch then has nothing to prepare).
     #[inline(always)]
-    pub(crate) fn want(&self, ix: usize, iz: usize) {
-        let [tx, tz] = self.tile_of(ix, iz);
-        self.wanted[tz * self.per_axis + tx].store(true, Ordering::Relaxed);
+    pub(crate) fn all_ready(&self) -> bool {
+        self.computed.load(Ordering::Relaxed) == self.slots.len()
+    }
+
+    /// Marks tile `index` (from [`Tiles::cells_of`]) as wanted by the batch being prepared.
+    #[inline(always)]
+    pub(crate) fn want_tile(&self, index: usize) {
+        self.wanted[index].store(true, Ordering::Relaxed);
     }
 
     /// Computes every wanted tile that is not computed yet, in parallel (each by the same
@@ -282,14 +293,14 @@ impl Tiles {
     /// computed by the query that reads it, to the same bits.)
     pub(crate) fn prepare(&self, source: Source<'_>, simd: Simd) {
         let grid = [self.n, self.tile];
-        let per_axis = self.per_axis;
+        let (per_axis, computed) = (self.per_axis, &self.computed);
         self.slots
             .par_iter()
             .zip(&self.wanted)
             .enumerate()
             .for_each(|(i, (slot, wanted))| {
                 if wanted.swap(false, Ordering::Relaxed) {
-                    slot.get(grid, [i % per_axis, i / per_axis], || source, simd);
+                    slot.get(grid, [i % per_axis, i / per_axis], || source, simd, computed);
                 }
             });
     }
@@ -312,6 +323,7 @@ impl Clone for Tiles {
             wanted: (0..self.wanted.len())
                 .map(|_| AtomicBool::new(false))
                 .collect(),
+            computed: AtomicUsize::new(0),
         }
     }
 }

@@ -60,10 +60,12 @@ fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
     let g: F64s = each(|l| wrapped[l] * cells);
     let floor: F64s = each(|l| g[l].floor());
     let fraction: F32s = each(|l| (g[l] - floor[l]) as f32);
-    // 0 ≤ g ≤ n < 2³¹: through i32, which converts eight at a time.
+    // 0 ≤ ⌊g⌋ ≤ n < 2³¹, a whole number: adding 1.5·2⁵² puts it in the low bits of the
+    // f64 exactly (a cheaper conversion than `as`, which must saturate).
+    const SHIFT: f64 = 6_755_399_441_055_744.0;
     let n = n as u32;
     let cell = each(|l| {
-        let cell = floor[l] as i32 as u32;
+        let cell = (floor[l] + SHIFT).to_bits() as u32;
         if cell >= n {
             cell - n
         } else {
@@ -196,6 +198,15 @@ fn transpose4_v3(v3: pulp::x86::V3, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
         pulp::cast(avx._mm256_shuffle_ps::<0x44>(t[1], t[3])),
         pulp::cast(avx._mm256_shuffle_ps::<0xEE>(t[1], t[3])),
     ]
+}
+
+/// The cells `[ix, iz]` of up to eight world points `[x, z]` on a periodic grid, one a
+/// lane (the missing lanes take the first point's).
+#[inline(always)]
+pub(super) fn cells_at(points: &[[f64; 2]], period: &Period) -> [[u32; LANES]; 2] {
+    let x = each(|l| points.get(l).unwrap_or(&points[0])[0]);
+    let z = each(|l| points.get(l).unwrap_or(&points[0])[1]);
+    [cells(&x, period).0, cells(&z, period).0]
 }
 
 /// What a block's lanes sum over the cascades at their points (zero where not asked).

@@ -11,6 +11,7 @@ mod inversion;
 pub(crate) mod lanes;
 
 use super::frame::{Fields, Grid, Live, Surface};
+use super::spline::Tiles;
 use super::OceanState;
 use crate::error::{self, Error};
 use crate::simd::{Kernel, Simd};
@@ -490,7 +491,10 @@ pub(crate) fn for_each_point<F: Fields, Q: PointQuery<F>>(
 /// query's Newton iterates move on to are computed when they are read, as always).
 fn prepare_tiles<F: Fields>(fields: &F, points: &[[f64; 2]]) {
     let frame = fields.frame();
-    if frame.grids.iter().all(|grid| grid.tiles.is_none()) {
+    // Nothing to do with bilinear queries, or once every tile is computed (a second batch
+    // on the same frame).
+    let ready = |grid: &Grid| grid.tiles.as_ref().is_none_or(Tiles::all_ready);
+    if frame.grids.iter().all(ready) {
         return;
     }
     // Marking costs a few ns a point and cascade: split like the queries, at the frame's
@@ -502,7 +506,7 @@ fn prepare_tiles<F: Fields>(fields: &F, points: &[[f64; 2]]) {
         })
     });
     for (c, grid) in frame.grids.iter().enumerate() {
-        if let Some(tiles) = &grid.tiles {
+        if let Some(tiles) = grid.tiles.as_ref().filter(|tiles| !tiles.all_ready()) {
             tiles.prepare(fields.source(c), frame.simd);
         }
     }
@@ -520,10 +524,14 @@ impl Kernel for Mark<'_> {
     #[inline(always)]
     fn run(self) {
         for grid in self.grids {
-            if let Some(tiles) = &grid.tiles {
-                for &[x, z] in self.points {
-                    let (ix, _, iz, _) = cell_in(grid, x, z);
-                    tiles.want(ix, iz);
+            if let Some(tiles) = grid.tiles.as_ref().filter(|tiles| !tiles.all_ready()) {
+                // Eight points at a time, as the lanes find their cells.
+                for points in self.points.chunks(lanes::LANES) {
+                    let [ix, iz] = lanes::cells_at(points, &grid.period);
+                    let (index, _) = tiles.cells_of(&ix, &iz);
+                    for &index in &index[..points.len()] {
+                        tiles.want_tile(index as usize);
+                    }
                 }
             }
         }
