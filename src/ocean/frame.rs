@@ -375,6 +375,8 @@ mod tests {
             size: 64,
             ..OceanConfig::default()
         };
+        // 300 points, then a few beyond 2²⁹ periods of every cascade, where the wrap takes
+        // its other path (in some lanes of a group only).
         let points: Vec<[f64; 2]> = (0..300)
             .map(|i| {
                 [
@@ -382,6 +384,7 @@ mod tests {
                     f64::from(i * i % 89) * 11.1 - 400.0,
                 ]
             })
+            .chain([[7.3e11, -2.1e12], [12.5, -9.9e14], [-5.0e17, 3.0e16]])
             .collect();
         let mut reference: Option<(Vec<u32>, Vec<SurfaceSample>)> = None;
         for level in Simd::available() {

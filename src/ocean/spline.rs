@@ -224,8 +224,13 @@ impl Tiles {
         simd: Simd,
     ) -> (&TileData, usize, usize) {
         let [tx, tz] = self.tile_of(ix, iz);
-        let data =
-            self.slots[tz * self.per_axis + tx].get([self.n, self.tile], [tx, tz], source, simd, &self.computed);
+        let data = self.slots[tz * self.per_axis + tx].get(
+            [self.n, self.tile],
+            [tx, tz],
+            source,
+            simd,
+            &self.computed,
+        );
         (data, ix - tx * self.tile, iz - tz * self.tile)
     }
 
@@ -300,7 +305,13 @@ impl Tiles {
             .enumerate()
             .for_each(|(i, (slot, wanted))| {
                 if wanted.swap(false, Ordering::Relaxed) {
-                    slot.get(grid, [i % per_axis, i / per_axis], || source, simd, computed);
+                    slot.get(
+                        grid,
+                        [i % per_axis, i / per_axis],
+                        || source,
+                        simd,
+                        computed,
+                    );
                 }
             });
     }

@@ -9,6 +9,10 @@
 //! step), so each point's result has the bits of its single query. A lane whose search ends
 //! takes the block's next point, so that a group does not wait for its slowest point.
 
+
+// Lanes are the same index into several arrays at once; an iterator over one of them hides
+// that.
+#![allow(clippy::needless_range_loop)]
 use super::super::frame::Fields;
 use super::super::spline::{self, Lanes, TileData, STRIDE};
 use super::inversion::MIN_DETERMINANT;
@@ -446,18 +450,16 @@ impl FromFound for f32 {
     }
 }
 
-impl FromFound for Location {
-    #[inline(always)]
-    fn from_found<F: Fields>(found: Found, _: &F) -> Location {
-        found.location
-    }
-}
-
 impl FromFound for SurfaceSample {
     #[inline(always)]
     fn from_found<F: Fields>(found: Found, fields: &F) -> SurfaceSample {
         let [x0, z0] = found.location.undisplaced;
-        surface(found.height, found.displacement, found.slope, fields.foam_at(x0, z0))
+        surface(
+            found.height,
+            found.displacement,
+            found.slope,
+            fields.foam_at(x0, z0),
+        )
     }
 }
 
@@ -552,14 +554,43 @@ impl Searches {
         let better: [bool; LANES] = each(|l| miss[l] < self.miss[l]);
         let converged: [bool; LANES] = each(|l| miss[l] < tolerance);
         for k in 0..2 {
-            self.best[k] = each(|l| if better[l] { self.next[k][l] } else { self.best[k][l] });
-            self.displacement[k] =
-                each(|l| if better[l] { d[k][l] } else { self.displacement[k][l] });
-            self.step[k] = each(|l| if better[l] { step[k][l] } else { self.step[k][l] });
-            self.base[k] = each(|l| if better[l] { self.next[k][l] } else { self.base[k][l] });
+            self.best[k] = each(|l| {
+                if better[l] {
+                    self.next[k][l]
+                } else {
+                    self.best[k][l]
+                }
+            });
+            self.displacement[k] = each(|l| {
+                if better[l] {
+                    d[k][l]
+                } else {
+                    self.displacement[k][l]
+                }
+            });
+            self.step[k] = each(|l| {
+                if better[l] {
+                    step[k][l]
+                } else {
+                    self.step[k][l]
+                }
+            });
+            self.base[k] = each(|l| {
+                if better[l] {
+                    self.next[k][l]
+                } else {
+                    self.base[k][l]
+                }
+            });
         }
         self.miss = each(|l| if better[l] { miss[l] } else { self.miss[l] });
-        self.fraction = each(|l| if better[l] { 1.0 } else { self.fraction[l] * 0.5 });
+        self.fraction = each(|l| {
+            if better[l] {
+                1.0
+            } else {
+                self.fraction[l] * 0.5
+            }
+        });
         for k in 0..2 {
             self.next[k] = each(|l| self.base[k][l] + self.fraction[l] * self.step[k][l]);
         }
@@ -598,13 +629,7 @@ impl Searches {
 /// when its search ends; then, eight found points at a time, the height (with `HEIGHT`)
 /// and slope (with `SLOPE`) there. Each result has the bits of its single query.
 #[inline(always)]
-pub(super) fn locate<
-    S: Shuffle,
-    F: Fields,
-    T: FromFound,
-    const HEIGHT: bool,
-    const SLOPE: bool,
->(
+pub(super) fn locate<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
     shuffle: S,
     fields: &F,
     points: &[[f64; 2]],
@@ -649,7 +674,9 @@ pub(super) fn locate<
             if ended[l] {
                 if let Some(index) = searches.point[l].take() {
                     if count == LANES {
-                        finish::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut found, &found_at, out);
+                        finish::<S, F, T, HEIGHT, SLOPE>(
+                            shuffle, fields, &mut found, &found_at, out,
+                        );
                         count = 0;
                     }
                     found[count] = searches.found(l);
@@ -659,7 +686,13 @@ pub(super) fn locate<
             }
         }
     }
-    finish::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut found[..count], &found_at[..count], out);
+    finish::<S, F, T, HEIGHT, SLOPE>(
+        shuffle,
+        fields,
+        &mut found[..count],
+        &found_at[..count],
+        out,
+    );
 }
 
 /// Reads the height (with `HEIGHT`) and slope (with `SLOPE`) at the points `found` (at most

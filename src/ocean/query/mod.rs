@@ -15,10 +15,10 @@ use super::spline::Tiles;
 use super::OceanState;
 use crate::error::{self, Error};
 use crate::simd::{Kernel, Simd};
-use lanes::Shuffle;
 use inversion::{
     evaluate_group, height_at, locate, located_group, sample, surface_at, surface_sample, GROUP,
 };
+use lanes::Shuffle;
 
 /// The surface at one undisplaced world point, summed over the cascades.
 ///
@@ -232,7 +232,13 @@ pub(crate) trait PointQuery<F: Fields>: Sync {
     /// unless the query has a faster way (the spline's lanes, see [`lanes`], with
     /// `shuffle`).
     #[inline(always)]
-    fn batch<S: Shuffle>(&self, shuffle: S, fields: &F, points: &[[f64; 2]], out: &mut [Self::Output]) {
+    fn batch<S: Shuffle>(
+        &self,
+        shuffle: S,
+        fields: &F,
+        points: &[[f64; 2]],
+        out: &mut [Self::Output],
+    ) {
         let _ = shuffle;
         for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
             self.group(fields, points, out);
@@ -243,7 +249,9 @@ pub(crate) trait PointQuery<F: Fields>: Sync {
 /// Whether cascades `range` all have spline tiles, so that a batch over them runs in lanes.
 #[inline(always)]
 fn in_lanes<F: Fields>(fields: &F, range: std::ops::Range<usize>) -> bool {
-    fields.frame().grids[range].iter().all(|grid| grid.tiles.is_some())
+    fields.frame().grids[range]
+        .iter()
+        .all(|grid| grid.tiles.is_some())
 }
 
 /// [`sample`] over a range of cascades.
@@ -277,7 +285,13 @@ impl<F: Fields> PointQuery<F> for Sample {
     }
 
     #[inline(always)]
-    fn batch<S: Shuffle>(&self, shuffle: S, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
+    fn batch<S: Shuffle>(
+        &self,
+        shuffle: S,
+        fields: &F,
+        points: &[[f64; 2]],
+        out: &mut [SurfaceSample],
+    ) {
         if in_lanes(fields, self.0.clone()) {
             lanes::sample(shuffle, fields, points, self.0.clone(), out);
         } else {
@@ -293,17 +307,6 @@ impl<F: Fields> PointQuery<F> for Locate {
     #[inline(always)]
     fn at(&self, fields: &F, x: f64, z: f64) -> Location {
         locate(fields, x, z).0
-    }
-
-    #[inline(always)]
-    fn batch<S: Shuffle>(&self, shuffle: S, fields: &F, points: &[[f64; 2]], out: &mut [Location]) {
-        if in_lanes(fields, 0..fields.frame().grids.len()) {
-            lanes::locate::<S, F, Location, false, false>(shuffle, fields, points, out);
-        } else {
-            for (value, &[x, z]) in out.iter_mut().zip(points) {
-                *value = self.at(fields, x, z);
-            }
-        }
     }
 }
 
@@ -324,7 +327,13 @@ impl<F: Fields> PointQuery<F> for SurfaceAt {
     }
 
     #[inline(always)]
-    fn batch<S: Shuffle>(&self, shuffle: S, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
+    fn batch<S: Shuffle>(
+        &self,
+        shuffle: S,
+        fields: &F,
+        points: &[[f64; 2]],
+        out: &mut [SurfaceSample],
+    ) {
         if in_lanes(fields, 0..fields.frame().grids.len()) {
             lanes::locate::<S, F, SurfaceSample, true, true>(shuffle, fields, points, out);
         } else {
@@ -403,7 +412,8 @@ impl<F: Fields, Q: PointQuery<F>, S: Shuffle> Kernel for Batch<'_, F, Q::Output,
 
     #[inline(always)]
     fn run(self) {
-        self.query.batch(self.shuffle, self.fields, self.points, self.out);
+        self.query
+            .batch(self.shuffle, self.fields, self.points, self.out);
     }
 }
 
@@ -418,11 +428,30 @@ fn run_batch<F: Fields, Q: PointQuery<F>>(
     query: &Q,
 ) {
     match simd {
-        Simd::Baseline => Batch { fields, points, out, query, shuffle: lanes::Plain }.run(),
+        Simd::Baseline => Batch {
+            fields,
+            points,
+            out,
+            query,
+            shuffle: lanes::Plain,
+        }
+        .run(),
         #[cfg(target_arch = "x86_64")]
-        Simd::Avx2(v3) => simd.run_kernel(Batch { fields, points, out, query, shuffle: v3 }),
+        Simd::Avx2(v3) => simd.run_kernel(Batch {
+            fields,
+            points,
+            out,
+            query,
+            shuffle: v3,
+        }),
         #[cfg(target_arch = "x86_64")]
-        Simd::Avx512(v4) => simd.run_kernel(Batch { fields, points, out, query, shuffle: *v4 }),
+        Simd::Avx512(v4) => simd.run_kernel(Batch {
+            fields,
+            points,
+            out,
+            query,
+            shuffle: *v4,
+        }),
     }
 }
 
@@ -471,9 +500,8 @@ pub(crate) fn for_each_point<F: Fields, Q: PointQuery<F>>(
 ) {
     let simd = fields.frame().simd;
     let query = &query;
-    let chunk = |out: &mut [Q::Output], points: &[[f64; 2]]| {
-        run_batch(simd, fields, points, out, query)
-    };
+    let chunk =
+        |out: &mut [Q::Output], points: &[[f64; 2]]| run_batch(simd, fields, points, out, query);
     if points.len() < PARALLEL_BATCH {
         chunk(out, points);
     } else {
