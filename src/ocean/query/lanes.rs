@@ -9,7 +9,6 @@
 //! step), so each point's result has the bits of its single query. A lane whose search ends
 //! takes the block's next point, so that a group does not wait for its slowest point.
 
-
 // Lanes are the same index into several arrays at once; an iterator over one of them hides
 // that.
 #![allow(clippy::needless_range_loop)]
