@@ -7,7 +7,7 @@
 //! ([`super::inversion`]: the same wrap and cell, the same weight formulas, each tap's
 //! products summed over the rows and the taps added (0 + 2) + (1 + 3), the same Newton
 //! step), so each point's result has the bits of its single query. A lane whose search ends
-//! takes the block's next point, so that a group does not wait for its slowest point.
+//! takes the batch's next point, so that a group does not wait for its slowest point.
 
 // Lanes are the same index into several arrays at once; an iterator over one of them hides
 // that.
@@ -79,7 +79,7 @@ fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
 }
 
 /// How a batch's lanes turn rows of taps into vectors: pure data movement, so every
-/// implementation gives the same bits. Chosen once for a whole batch (see [`run`]), so that
+/// implementation gives the same bits. Chosen once for a whole batch (see `run_batch`), so that
 /// the lanes' code is compiled once for each SIMD level rather than branching on it at
 /// every tap.
 pub(crate) trait Shuffle: Copy {
