@@ -301,6 +301,19 @@ fn tap<const GRADIENT: bool>(
     [sum, sum_x, sum_z]
 }
 
+/// Most cascades an ocean has.
+const MAX_CASCADES: usize = crate::OceanConfig::MAX_CASCADES;
+
+/// One cascade's part of an evaluation, before its taps are read: each lane's tile and first
+/// tap, the weights, and the cascade's cells per metre.
+#[derive(Clone, Copy)]
+struct Prepared<'a> {
+    found: [&'a TileData; LANES],
+    at: [usize; LANES],
+    weights: [[Lanes; 4]; 4],
+    per_metre: f32,
+}
+
 /// Σ w_x w_z c of eight lanes' heights: [`spline::height`] lane by lane.
 #[inline(always)]
 fn heights<S: Shuffle>(
@@ -343,7 +356,11 @@ pub(super) fn evaluate<
 ) -> SummedLanes {
     let frame = fields.frame();
     let mut total = SummedLanes::default();
-    for c in range {
+    // Every cascade's cells, tiles and weights first, then the taps: the tile lookups of all
+    // cascades are in flight together instead of each waiting for the previous cascade's
+    // arithmetic.
+    let mut prepared: [Option<Prepared<'_>>; MAX_CASCADES] = [None; MAX_CASCADES];
+    for c in range.clone() {
         let grid = &frame.grids[c];
         let Some(tiles) = &grid.tiles else {
             unreachable!("lanes are used only when every cascade has spline tiles")
@@ -365,13 +382,18 @@ pub(super) fn evaluate<
             (zero, zero)
         };
         let weights = [spline::weights(fx), spline::weights(fz), dx, dz];
+        prepared[c] = Some(Prepared { found, at, weights, per_metre: grid.per_metre });
+    }
+    for c in range {
+        let Some(Prepared { found, at, weights, per_metre }) = prepared[c] else {
+            unreachable!("prepared above")
+        };
         if DISPLACEMENT || JACOBIAN {
             let [value, gx, gz] = pairs::<S, JACOBIAN>(shuffle, &found, 0, &at, &weights);
             for k in 0..2 {
                 total.displacement[k] = each(|l| total.displacement[k][l] + value[k][l]);
             }
             if JACOBIAN {
-                let per_metre = grid.per_metre;
                 let g = [gx[0], gz[0], gx[1], gz[1]];
                 for (sum, g) in total.jacobian.iter_mut().zip(&g) {
                     *sum = each(|l| sum[l] + g[l] * per_metre);
