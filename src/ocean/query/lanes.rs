@@ -304,13 +304,14 @@ fn tap<const GRADIENT: bool>(
 /// Most cascades an ocean has.
 const MAX_CASCADES: usize = crate::OceanConfig::MAX_CASCADES;
 
-/// One cascade's part of an evaluation, before its taps are read: each lane's tile and first
-/// tap, the weights, and the cascade's cells per metre.
+/// One cascade's part of an evaluation, before its taps are read: each lane's tile, its
+/// first tap's index there and its fractions across the cell, and the cascade's cells per
+/// metre.
 #[derive(Clone, Copy)]
 struct Prepared<'a> {
     found: [&'a TileData; LANES],
-    at: [usize; LANES],
-    weights: [[Lanes; 4]; 4],
+    at: [u32; LANES],
+    fraction: [F32s; 2],
     per_metre: f32,
 }
 
@@ -356,7 +357,7 @@ pub(super) fn evaluate<
 ) -> SummedLanes {
     let frame = fields.frame();
     let mut total = SummedLanes::default();
-    // Every cascade's cells, tiles and weights first, then the taps: the tile lookups of all
+    // Every cascade's cells and tiles first, then the taps: the tile lookups of all
     // cascades are in flight together instead of each waiting for the previous cascade's
     // arithmetic.
     let mut prepared: [Option<Prepared<'_>>; MAX_CASCADES] = [None; MAX_CASCADES];
@@ -367,14 +368,31 @@ pub(super) fn evaluate<
         };
         let (ix, fx) = cells(x, &grid.period);
         let (iz, fz) = cells(z, &grid.period);
-        let (index, offset) = tiles.cells_of(&ix, &iz);
-        let at: [usize; LANES] = each(|l| offset[l] as usize);
+        let (index, at) = tiles.cells_of(&ix, &iz);
         let first = tiles.tile(index[0] as usize, || fields.source(c), frame.simd);
         let mut found: [&TileData; LANES] = [first; LANES];
         for l in 1..LANES {
             found[l] = tiles.tile(index[l] as usize, || fields.source(c), frame.simd);
         }
-        let (fx, fz) = (Lanes(fx), Lanes(fz));
+        prepared[c] = Some(Prepared {
+            found,
+            at,
+            fraction: [fx, fz],
+            per_metre: grid.per_metre,
+        });
+    }
+    for c in range {
+        let Some(Prepared {
+            found,
+            at,
+            fraction: [fx, fz],
+            per_metre,
+        }) = &prepared[c]
+        else {
+            unreachable!("prepared above")
+        };
+        let at: [usize; LANES] = each(|l| at[l] as usize);
+        let (fx, fz) = (Lanes(*fx), Lanes(*fz));
         let zero = [Lanes::from(0.0); 4];
         let (dx, dz) = if JACOBIAN {
             (spline::weight_slopes(fx), spline::weight_slopes(fz))
@@ -382,30 +400,24 @@ pub(super) fn evaluate<
             (zero, zero)
         };
         let weights = [spline::weights(fx), spline::weights(fz), dx, dz];
-        prepared[c] = Some(Prepared { found, at, weights, per_metre: grid.per_metre });
-    }
-    for c in range {
-        let Some(Prepared { found, at, weights, per_metre }) = prepared[c] else {
-            unreachable!("prepared above")
-        };
         if DISPLACEMENT || JACOBIAN {
-            let [value, gx, gz] = pairs::<S, JACOBIAN>(shuffle, &found, 0, &at, &weights);
+            let [value, gx, gz] = pairs::<S, JACOBIAN>(shuffle, found, 0, &at, &weights);
             for k in 0..2 {
                 total.displacement[k] = each(|l| total.displacement[k][l] + value[k][l]);
             }
             if JACOBIAN {
                 let g = [gx[0], gz[0], gx[1], gz[1]];
                 for (sum, g) in total.jacobian.iter_mut().zip(&g) {
-                    *sum = each(|l| sum[l] + g[l] * per_metre);
+                    *sum = each(|l| sum[l] + g[l] * *per_metre);
                 }
             }
         }
         if HEIGHT {
-            let height = heights(shuffle, &found, &at, [&weights[0], &weights[1]]);
+            let height = heights(shuffle, found, &at, [&weights[0], &weights[1]]);
             total.height = each(|l| total.height[l] + height[l]);
         }
         if SLOPE {
-            let [slope, _, _] = pairs::<S, false>(shuffle, &found, spline::SLOPE, &at, &weights);
+            let [slope, _, _] = pairs::<S, false>(shuffle, found, spline::SLOPE, &at, &weights);
             for k in 0..2 {
                 total.slope[k] = each(|l| total.slope[k][l] + slope[k][l]);
             }
