@@ -85,8 +85,6 @@ fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
 pub(crate) trait Shuffle: Copy {
     /// Eight rows of eight floats, one a lane, as eight vectors of eight lanes.
     fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8];
-    /// Eight rows of four floats, one a lane, as four vectors of eight lanes.
-    fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4];
 }
 
 /// [`Shuffle`] written as plain array code (the baseline level).
@@ -98,11 +96,6 @@ impl Shuffle for Plain {
     fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
         std::array::from_fn(|j| each(|l| rows[l][j]))
     }
-
-    #[inline(always)]
-    fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
-        std::array::from_fn(|j| each(|l| rows[l][j]))
-    }
 }
 
 /// [`Shuffle`] with AVX2's unpack, shuffle and 128-bit permute network (also used on
@@ -112,11 +105,6 @@ impl Shuffle for pulp::x86::V3 {
     #[inline(always)]
     fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
         transpose8_v3(self, rows)
-    }
-
-    #[inline(always)]
-    fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
-        transpose4_v3(self, rows)
     }
 }
 
@@ -164,42 +152,6 @@ fn transpose8_v3(v3: pulp::x86::V3, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
         pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[1], s[5])),
         pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[2], s[6])),
         pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[3], s[7])),
-    ]
-}
-
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn transpose4_v3(v3: pulp::x86::V3, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
-    use std::arch::x86_64::{__m128, __m256};
-    let avx = v3.avx;
-    // Lane l in the low half, lane l + 4 in the high half.
-    let half: [__m128; LANES] = [
-        pulp::cast(*rows[0]),
-        pulp::cast(*rows[1]),
-        pulp::cast(*rows[2]),
-        pulp::cast(*rows[3]),
-        pulp::cast(*rows[4]),
-        pulp::cast(*rows[5]),
-        pulp::cast(*rows[6]),
-        pulp::cast(*rows[7]),
-    ];
-    let m: [__m256; 4] = [
-        avx._mm256_set_m128(half[4], half[0]),
-        avx._mm256_set_m128(half[5], half[1]),
-        avx._mm256_set_m128(half[6], half[2]),
-        avx._mm256_set_m128(half[7], half[3]),
-    ];
-    let t = [
-        avx._mm256_unpacklo_ps(m[0], m[1]),
-        avx._mm256_unpackhi_ps(m[0], m[1]),
-        avx._mm256_unpacklo_ps(m[2], m[3]),
-        avx._mm256_unpackhi_ps(m[2], m[3]),
-    ];
-    [
-        pulp::cast(avx._mm256_shuffle_ps::<0x44>(t[0], t[2])),
-        pulp::cast(avx._mm256_shuffle_ps::<0xEE>(t[0], t[2])),
-        pulp::cast(avx._mm256_shuffle_ps::<0x44>(t[1], t[3])),
-        pulp::cast(avx._mm256_shuffle_ps::<0xEE>(t[1], t[3])),
     ]
 }
 
@@ -325,11 +277,13 @@ fn heights<S: Shuffle>(
 ) -> F32s {
     let mut sum = [[0.0f32; LANES]; 4];
     for r in 0..4 {
-        let taps = shuffle.transpose4(each(|l| {
+        // Eight floats a row, the first four the taps (a full transpose costs less than
+        // what the compiler makes of a half one).
+        let taps = shuffle.transpose8(each(|l| {
             let start = spline::HEIGHT + at[l] + r * STRIDE;
-            tiles[l][start..start + 4].try_into().expect("four taps")
+            tiles[l][start..start + 8].try_into().expect("the row lies in the tile")
         }));
-        for (t, taps) in taps.iter().enumerate() {
+        for (t, taps) in taps[..4].iter().enumerate() {
             let line = each(|l| wx[t].0[l] * taps[l]);
             sum[t] = each(|l| sum[t][l] + wz[r].0[l] * line[l]);
         }
@@ -391,7 +345,10 @@ pub(super) fn evaluate<
         else {
             unreachable!("prepared above")
         };
-        let at: [usize; LANES] = each(|l| at[l] as usize);
+        // A first tap lies in the tile's first TILE rows and columns: the bound lets the
+        // compiler drop the slices' checks.
+        const LAST: u32 = ((spline::TILE - 1) * (STRIDE + 1)) as u32;
+        let at: [usize; LANES] = each(|l| at[l].min(LAST) as usize);
         let (fx, fz) = (Lanes(*fx), Lanes(*fz));
         let zero = [Lanes::from(0.0); 4];
         let (dx, dz) = if JACOBIAN {
