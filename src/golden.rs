@@ -30,7 +30,9 @@
 //! each field's coefficients apart (displacement pairs, heights, slope pairs) and to add a
 //! row's four taps at the end rather than one by one, with the weights multiplied by 1/6
 //! rather than divided by 6 (0.3); the bilinear entry ("tma 48²") and every other entry stayed
-//! as they were.
+//! as they were. They were recomputed once more when a pair field's taps came to be summed
+//! columns first (Σ_r w_z c, then Σ_t w_x S_t, so that batches of eight points in lanes need
+//! fewer operations; 0.3); again only the cubic query entries changed.
 //!
 //! The hash is [`BitHash`] (FNV-1a over the little-endian bytes of each value's bit pattern),
 //! because std's `DefaultHasher` does not promise the same hashes across releases.
@@ -232,7 +234,7 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("jonswap 64²", "cascade 2 jacobian", 0x8bb2cb9ad96ffc51),
     ("jonswap 64²", "cascade 2 scalars", 0xc3a8cef85c200326),
     ("jonswap 64²", "foam", 0xd04a66da45251f7d),
-    ("jonswap 64²", "queries", 0x33e680c7c1cb79f2),
+    ("jonswap 64²", "queries", 0xc9c576450a073417),
     ("tma 48²", "cascade 0 h0", 0x15fd0b096725fe9a),
     ("tma 48²", "cascade 0 height", 0x2cf205b883b3496e),
     ("tma 48²", "cascade 0 displacement", 0x1cafb29a8c96925f),
@@ -261,7 +263,7 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("elfouhaily 34²", "cascade 0 jacobian", 0x11f4435a7448d439),
     ("elfouhaily 34²", "cascade 0 scalars", 0x66ac39c5a31a4153),
     ("elfouhaily 34²", "foam", 0xc2376bd0a8f5ac34),
-    ("elfouhaily 34²", "queries", 0x3a65e3331033a3fc),
+    ("elfouhaily 34²", "queries", 0x6ed2efcd6b5788cd),
     ("live 32²", "cascade 0 h0", 0x351f4d0e0d4dba0f),
     ("live 32²", "cascade 0 height", 0xc2a7bc4a9792a6d4),
     ("live 32²", "cascade 0 displacement", 0x1875b31d22c67c8f),
@@ -284,7 +286,7 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("live 32²", "cascade 2 jacobian", 0x8c597d4c3bc8ebf2),
     ("live 32²", "cascade 2 scalars", 0x6fc7dc5a9cda6310),
     ("live 32²", "foam", 0xbc28d13a7fb57809),
-    ("live 32²", "queries", 0xa59554932789ef15),
+    ("live 32²", "queries", 0x65a7514de7cb33d4),
     ("second order 48²", "cascade 0 h0", 0xfc12a5fce6cd8be1),
     ("second order 48²", "cascade 0 height", 0x98ef3de42c9d7471),
     (
@@ -308,7 +310,7 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("second order 48²", "cascade 1 jacobian", 0x71b099333d0a39cb),
     ("second order 48²", "cascade 1 scalars", 0x48ac7b89d920efd3),
     ("second order 48²", "foam", 0x0ab480ca50208877),
-    ("second order 48²", "queries", 0xce8fb5afa7477598),
+    ("second order 48²", "queries", 0xd7ee76104f519778),
 ];
 
 #[test]

@@ -673,11 +673,13 @@ fn pair_rows(tile: &TileData, start: usize, lx: usize, lz: usize) -> [[f32; 8]; 
 
 /// Σ w_x w_z c of a field of pairs starting at `start` in `tile`, over the 4×4 taps from
 /// (`lx`, `lz`), and with `GRADIENT` its derivatives along x and z per cell (zero without;
-/// the value's operations are the same either way, so its bits are too). A row of four
-/// taps is one 32-byte vector: per row, L = w_x ⊙ taps, then S += w_z·L, S_x += w_z·(d_x ⊙
-/// taps), S_z += d_z·L, and each sum's four taps are added at the end. With AVX2 the rows
-/// are written with pulp's 8-lane operations (the vectoriser, left to itself, paired the
-/// lanes badly); the same operations in the same order as the plain code, so the same bits.
+/// the value's operations are the same either way, so its bits are too). Columns first: a
+/// row of four taps is one 32-byte vector, S = Σ_r w_z,r · row_r (and with `GRADIENT`
+/// Z = Σ_r d_z,r · row_r), then the value is Σ_t w_x,t S_t, the x derivative Σ_t d_x,t S_t
+/// and the z derivative Σ_t w_x,t Z_t, each added (tap 0 + tap 2) + (tap 1 + tap 3). With
+/// AVX2 the rows are written with pulp's 8-lane operations (the vectoriser, left to itself,
+/// paired the lanes badly); the same operations in the same order as the plain code, so the
+/// same bits, and the batch queries' lanes (`query/lanes.rs`) run them too.
 #[inline(always)]
 fn pairs<const GRADIENT: bool>(
     simd: Simd,
@@ -688,65 +690,55 @@ fn pairs<const GRADIENT: bool>(
     w: &Weights,
 ) -> [[f32; 2]; 3] {
     let rows = pair_rows(tile, start, lx, lz);
-    let (wx, dx) = (paired(&w.x), paired(&w.dx));
-    let [sum, sum_x, sum_z] = match simd {
+    let [columns, columns_z] = match simd {
         #[cfg(target_arch = "x86_64")]
-        Simd::Avx2(v3) => pairs_v3::<GRADIENT>(v3, &rows, wx, dx, w),
+        Simd::Avx2(v3) => columns_v3::<GRADIENT>(v3, &rows, w),
         #[cfg(target_arch = "x86_64")]
-        Simd::Avx512(v4) => pairs_v3::<GRADIENT>(*v4, &rows, wx, dx, w),
+        Simd::Avx512(v4) => columns_v3::<GRADIENT>(*v4, &rows, w),
         Simd::Baseline => {
             let mut sum = [0.0f32; 8];
-            let mut sum_x = [0.0f32; 8];
             let mut sum_z = [0.0f32; 8];
             for (r, taps) in rows.iter().enumerate() {
-                let line: [f32; 8] = std::array::from_fn(|l| wx[l] * taps[l]);
                 for l in 0..8 {
-                    sum[l] += w.z[r] * line[l];
+                    sum[l] += w.z[r] * taps[l];
                 }
                 if GRADIENT {
-                    let line_x: [f32; 8] = std::array::from_fn(|l| dx[l] * taps[l]);
                     for l in 0..8 {
-                        sum_x[l] += w.z[r] * line_x[l];
-                        sum_z[l] += w.dz[r] * line[l];
+                        sum_z[l] += w.dz[r] * taps[l];
                     }
                 }
             }
-            [sum, sum_x, sum_z]
+            [sum, sum_z]
         }
     };
+    let (wx, dx) = (paired(&w.x), paired(&w.dx));
+    let weighted = |w: &[f32; 8], v: &[f32; 8]| reduce_pairs(&std::array::from_fn(|l| w[l] * v[l]));
     [
-        reduce_pairs(&sum),
-        reduce_pairs(&sum_x),
-        reduce_pairs(&sum_z),
+        weighted(&wx, &columns),
+        weighted(&dx, &columns),
+        weighted(&wx, &columns_z),
     ]
 }
 
-/// [`pairs`]' sums over the rows with AVX2's 8-lane multiply and add.
+/// [`pairs`]' column sums over the rows with AVX2's 8-lane multiply and add.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn pairs_v3<const GRADIENT: bool>(
+fn columns_v3<const GRADIENT: bool>(
     v3: pulp::x86::V3,
     rows: &[[f32; 8]; 4],
-    wx: [f32; 8],
-    dx: [f32; 8],
     w: &Weights,
-) -> [[f32; 8]; 3] {
+) -> [[f32; 8]; 2] {
     use pulp::{cast, Simd as _};
     let zero = v3.splat_f32s(0.0);
-    let (mut sum, mut sum_x, mut sum_z) = (zero, zero, zero);
-    let (wx, dx) = (cast::<_, pulp::f32x8>(wx), cast::<_, pulp::f32x8>(dx));
+    let (mut sum, mut sum_z) = (zero, zero);
     for (r, &taps) in rows.iter().enumerate() {
         let taps = cast::<_, pulp::f32x8>(taps);
-        let line = v3.mul_f32s(wx, taps);
-        let wz = v3.splat_f32s(w.z[r]);
-        sum = v3.add_f32s(sum, v3.mul_f32s(wz, line));
+        sum = v3.add_f32s(sum, v3.mul_f32s(v3.splat_f32s(w.z[r]), taps));
         if GRADIENT {
-            let line_x = v3.mul_f32s(dx, taps);
-            sum_x = v3.add_f32s(sum_x, v3.mul_f32s(wz, line_x));
-            sum_z = v3.add_f32s(sum_z, v3.mul_f32s(v3.splat_f32s(w.dz[r]), line));
+            sum_z = v3.add_f32s(sum_z, v3.mul_f32s(v3.splat_f32s(w.dz[r]), taps));
         }
     }
-    [cast(sum), cast(sum_x), cast(sum_z)]
+    [cast(sum), cast(sum_z)]
 }
 
 /// The displacement `[D_x, D_z]` at a point of the tile's cell (`lx`, `lz`) (its taps are

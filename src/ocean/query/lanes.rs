@@ -85,6 +85,8 @@ fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
 pub(crate) trait Shuffle: Copy {
     /// Eight rows of eight floats, one a lane, as eight vectors of eight lanes.
     fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8];
+    /// `sum + w·x` lane by lane (a product, then a sum: not fused).
+    fn add_product(self, sum: F32s, w: F32s, x: F32s) -> F32s;
 }
 
 /// [`Shuffle`] written as plain array code (the baseline level).
@@ -96,6 +98,11 @@ impl Shuffle for Plain {
     fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
         std::array::from_fn(|j| each(|l| rows[l][j]))
     }
+
+    #[inline(always)]
+    fn add_product(self, sum: F32s, w: F32s, x: F32s) -> F32s {
+        each(|l| sum[l] + w[l] * x[l])
+    }
 }
 
 /// [`Shuffle`] with AVX2's unpack, shuffle and 128-bit permute network (also used on
@@ -105,6 +112,13 @@ impl Shuffle for pulp::x86::V3 {
     #[inline(always)]
     fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
         transpose8_v3(self, rows)
+    }
+
+    #[inline(always)]
+    fn add_product(self, sum: F32s, w: F32s, x: F32s) -> F32s {
+        use pulp::{cast, f32x8, Simd as _};
+        let product = self.mul_f32s(cast::<_, f32x8>(w), cast::<_, f32x8>(x));
+        cast(self.add_f32s(cast::<_, f32x8>(sum), product))
     }
 }
 
@@ -178,8 +192,9 @@ pub(super) struct SummedLanes {
 }
 
 /// Σ w_x w_z c of eight lanes' pairs (taps of two components, interleaved) over their 4×4
-/// taps (the field of pairs starting at `field` in each tile), and with `GRADIENT` the sums with the weights' derivatives along x and z: the
-/// operations of [`spline::displacement`] lane by lane.
+/// taps (the field of pairs starting at `field` in each tile), and with `GRADIENT` its
+/// derivatives along x and z per cell: [`spline::displacement`]'s operations lane by lane
+/// (columns first: tap j's Σ_r w_z,r c_r,j, then Σ_t w_x,t S_t).
 #[inline(always)]
 fn pairs<S: Shuffle, const GRADIENT: bool>(
     shuffle: S,
@@ -188,34 +203,45 @@ fn pairs<S: Shuffle, const GRADIENT: bool>(
     at: &[usize; LANES],
     [wx, wz, dx, dz]: &[[Lanes; 4]; 4],
 ) -> [[F32s; 2]; 3] {
-    // Every row's taps first (kept in memory: the sums below would not fit the registers
-    // together with them), then each tap's sums over the rows.
     let windows: [&[f32; PAIR_WINDOW]; LANES] = each(|l| {
         let start = field + 2 * at[l];
         tiles[l][start..start + PAIR_WINDOW]
             .try_into()
             .expect("a cell's taps lie in its tile")
     });
-    let taps = [
-        shuffle.transpose8(pair_row(&windows, 0)),
-        shuffle.transpose8(pair_row(&windows, 1)),
-        shuffle.transpose8(pair_row(&windows, 2)),
-        shuffle.transpose8(pair_row(&windows, 3)),
-    ];
     let zero = [0.0f32; LANES];
-    let weights = [wx, wz, dx, dz];
+    let mut columns = [zero; 8];
+    let mut columns_z = [zero; 8];
+    for r in 0..4 {
+        let taps = shuffle.transpose8(pair_row(&windows, r));
+        let (w, d) = (wz[r].0, dz[r].0);
+        for ((column, column_z), &taps) in columns.iter_mut().zip(&mut columns_z).zip(&taps) {
+            *column = shuffle.add_product(*column, w, taps);
+            if GRADIENT {
+                *column_z = shuffle.add_product(*column_z, d, taps);
+            }
+        }
+    }
     let mut out = [[zero; 2]; 3];
     for k in 0..2 {
-        // (tap 0 + tap 2) + (tap 1 + tap 3), as the scalar code adds them.
-        let a = tap::<GRADIENT>(&taps, k, weights);
-        let b = tap::<GRADIENT>(&taps, 4 + k, weights);
-        let c = tap::<GRADIENT>(&taps, 2 + k, weights);
-        let d = tap::<GRADIENT>(&taps, 6 + k, weights);
-        for s in 0..(if GRADIENT { 3 } else { 1 }) {
-            out[s][k] = each(|l| (a[s][l] + b[s][l]) + (c[s][l] + d[s][l]));
+        out[0][k] = across(wx, &columns, k);
+        if GRADIENT {
+            out[1][k] = across(dx, &columns, k);
+            out[2][k] = across(wx, &columns_z, k);
         }
     }
     out
+}
+
+/// Σ_t w_t S_t over the four taps of component `k` of `columns` (pair t at 2t + k), added
+/// (tap 0 + tap 2) + (tap 1 + tap 3) as the scalar code adds them.
+#[inline(always)]
+fn across(w: &[Lanes; 4], columns: &[F32s; 8], k: usize) -> F32s {
+    let a: F32s = each(|l| w[0].0[l] * columns[k][l]);
+    let b: F32s = each(|l| w[2].0[l] * columns[4 + k][l]);
+    let c: F32s = each(|l| w[1].0[l] * columns[2 + k][l]);
+    let d: F32s = each(|l| w[3].0[l] * columns[6 + k][l]);
+    each(|l| (a[l] + b[l]) + (c[l] + d[l]))
 }
 
 /// Floats from a cell's first pair to its last (four rows of four pairs, `STRIDE` pairs
@@ -227,30 +253,6 @@ const PAIR_WINDOW: usize = 2 * (3 * STRIDE + 4);
 fn pair_row<'a>(windows: &[&'a [f32; PAIR_WINDOW]; LANES], r: usize) -> [&'a [f32; 8]; LANES] {
     let start = 2 * r * STRIDE;
     each(|l| windows[l][start..start + 8].try_into().expect("four pairs"))
-}
-
-/// Component j % 2 of pair j / 2 of [`pairs`]' taps: Σ_r w_z (w_x c), and with `GRADIENT`
-/// Σ_r w_z (d_x c) and Σ_r d_z (w_x c).
-#[inline(always)]
-fn tap<const GRADIENT: bool>(
-    taps: &[[F32s; 8]; 4],
-    j: usize,
-    [wx, wz, dx, dz]: [&[Lanes; 4]; 4],
-) -> [F32s; 3] {
-    let t = j / 2;
-    let zero = [0.0f32; LANES];
-    let (mut sum, mut sum_x, mut sum_z) = (zero, zero, zero);
-    for r in 0..4 {
-        let c = &taps[r][j];
-        let line = each(|l| wx[t].0[l] * c[l]);
-        sum = each(|l| sum[l] + wz[r].0[l] * line[l]);
-        if GRADIENT {
-            let line_x = each(|l| dx[t].0[l] * c[l]);
-            sum_x = each(|l| sum_x[l] + wz[r].0[l] * line_x[l]);
-            sum_z = each(|l| sum_z[l] + dz[r].0[l] * line[l]);
-        }
-    }
-    [sum, sum_x, sum_z]
 }
 
 /// Most cascades an ocean has.
@@ -281,11 +283,13 @@ fn heights<S: Shuffle>(
         // what the compiler makes of a half one).
         let taps = shuffle.transpose8(each(|l| {
             let start = spline::HEIGHT + at[l] + r * STRIDE;
-            tiles[l][start..start + 8].try_into().expect("the row lies in the tile")
+            tiles[l][start..start + 8]
+                .try_into()
+                .expect("the row lies in the tile")
         }));
         for (t, taps) in taps[..4].iter().enumerate() {
             let line = each(|l| wx[t].0[l] * taps[l]);
-            sum[t] = each(|l| sum[t][l] + wz[r].0[l] * line[l]);
+            sum[t] = shuffle.add_product(sum[t], wz[r].0, line);
         }
     }
     each(|l| (sum[0][l] + sum[2][l]) + (sum[1][l] + sum[3][l]))
@@ -364,8 +368,8 @@ pub(super) fn evaluate<
             }
             if JACOBIAN {
                 let g = [gx[0], gz[0], gx[1], gz[1]];
-                for (sum, g) in total.jacobian.iter_mut().zip(&g) {
-                    *sum = each(|l| sum[l] + g[l] * *per_metre);
+                for (sum, &g) in total.jacobian.iter_mut().zip(&g) {
+                    *sum = shuffle.add_product(*sum, [*per_metre; LANES], g);
                 }
             }
         }
