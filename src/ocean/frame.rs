@@ -125,6 +125,9 @@ pub(crate) trait Fields: Sync {
     fn source(&self, c: usize) -> Source<'_>;
     /// Foam coverage in [0, 1] at undisplaced world (x, z).
     fn foam_at(&self, x: f64, z: f64) -> f32;
+    /// The foam field [`Fields::foam_at`] interpolates: its values on an N×N grid, N, and
+    /// the grid's side in metres.
+    fn foam_grid(&self) -> (&[f32], usize, f64);
 }
 
 /// The queries of an [`OceanState`] between steps: its buffers and current frame.
@@ -149,6 +152,12 @@ impl Fields for Live<'_> {
     #[inline(always)]
     fn foam_at(&self, x: f64, z: f64) -> f32 {
         self.0.foam.foam_at(x, z)
+    }
+
+    #[inline(always)]
+    fn foam_grid(&self) -> (&[f32], usize, f64) {
+        let foam = &self.0.foam;
+        (&foam.total, foam.n, f64::from(foam.length))
     }
 }
 
@@ -176,6 +185,11 @@ impl Fields for Frame {
         super::query::periodic_bilinear(&self.foam, self.foam_n, length, x, z)
             .max(0.0)
             .min(1.0)
+    }
+
+    #[inline(always)]
+    fn foam_grid(&self) -> (&[f32], usize, f64) {
+        (&self.foam, self.foam_n, f64::from(self.foam_length))
     }
 }
 

@@ -387,6 +387,42 @@ pub(super) fn evaluate<
     total
 }
 
+/// The foam coverage at eight undisplaced world points: [`Fields::foam_at`] lane by lane
+/// (the same cell, the bilinear stencil's weights and sum, clamped to [0, 1]).
+#[inline(always)]
+// max then min, as `Fields::foam_at` clamps (`clamp` differs on NaN and −0).
+#[allow(clippy::manual_clamp)]
+fn foam<F: Fields>(fields: &F, [x, z]: &[F64s; 2]) -> F32s {
+    let (values, n, length) = fields.foam_grid();
+    let period = Period::new(length, n);
+    let (ix, fx) = cells(x, &period);
+    let (iz, fz) = cells(z, &period);
+    let n = n as u32;
+    let next = |i: u32| if i + 1 == n { 0 } else { i + 1 };
+    let (ix1, iz1): ([u32; LANES], [u32; LANES]) = (each(|l| next(ix[l])), each(|l| next(iz[l])));
+    let weight = [
+        each(|l| (1.0 - fx[l]) * (1.0 - fz[l])),
+        each(|l| fx[l] * (1.0 - fz[l])),
+        each(|l| (1.0 - fx[l]) * fz[l]),
+        each(|l| fx[l] * fz[l]),
+    ];
+    let value = |row: &[u32; LANES], column: &[u32; LANES]| -> F32s {
+        each(|l| values[row[l] as usize * n as usize + column[l] as usize])
+    };
+    let corner = [
+        value(&iz, &ix),
+        value(&iz, &ix1),
+        value(&iz1, &ix),
+        value(&iz1, &ix1),
+    ];
+    let p: [F32s; 4] = std::array::from_fn(|c| each(|l| corner[c][l] * weight[c][l]));
+    each(|l| {
+        (((p[0][l] + p[1][l]) + p[2][l]) + p[3][l])
+            .max(0.0)
+            .min(1.0)
+    })
+}
+
 /// The Newton searches of up to [`LANES`] points, one a lane (see [`super::inversion`]'s
 /// `Search`, whose update each lane runs), and the fields at each one's best iterate.
 struct Searches {
@@ -416,6 +452,8 @@ pub(super) struct Found {
     pub(super) displacement: [f32; 2],
     pub(super) height: f32,
     pub(super) slope: [f32; 2],
+    /// Foam coverage in [0, 1] (with the slope).
+    pub(super) foam: f32,
 }
 
 impl Found {
@@ -429,31 +467,26 @@ impl Found {
         displacement: [0.0; 2],
         height: 0.0,
         slope: [0.0; 2],
+        foam: 0.0,
     };
 }
 
 /// A batch's result for one point, from what its search found.
 pub(super) trait FromFound: Sized {
-    fn from_found<F: Fields>(found: Found, fields: &F) -> Self;
+    fn from_found(found: Found) -> Self;
 }
 
 impl FromFound for f32 {
     #[inline(always)]
-    fn from_found<F: Fields>(found: Found, _: &F) -> f32 {
+    fn from_found(found: Found) -> f32 {
         found.height
     }
 }
 
 impl FromFound for SurfaceSample {
     #[inline(always)]
-    fn from_found<F: Fields>(found: Found, fields: &F) -> SurfaceSample {
-        let [x0, z0] = found.location.undisplaced;
-        surface(
-            found.height,
-            found.displacement,
-            found.slope,
-            fields.foam_at(x0, z0),
-        )
+    fn from_found(found: Found) -> SurfaceSample {
+        surface(found.height, found.displacement, found.slope, found.foam)
     }
 }
 
@@ -614,6 +647,7 @@ impl Searches {
             displacement: [self.displacement[0][l], self.displacement[1][l]],
             height: 0.0,
             slope: [0.0; 2],
+            foam: 0.0,
         }
     }
 }
@@ -709,13 +743,20 @@ fn finish<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: 
         ];
         let cascades = 0..fields.frame().grids.len();
         let sums = evaluate::<S, F, false, false, HEIGHT, SLOPE>(shuffle, fields, &at, cascades);
+        // The foam comes with the slope (a surface sample).
+        let foam = if SLOPE {
+            foam(fields, &at)
+        } else {
+            [0.0; LANES]
+        };
         for (l, found) in found.iter_mut().enumerate() {
             found.height = sums.height[l];
             found.slope = [sums.slope[0][l], sums.slope[1][l]];
+            found.foam = foam[l];
         }
     }
     for (found, &index) in found.iter().zip(found_at) {
-        out[index] = T::from_found(*found, fields);
+        out[index] = T::from_found(*found);
     }
 }
 
@@ -735,12 +776,13 @@ pub(super) fn sample<S: Shuffle, F: Fields>(
             each(|l| points.get(l).unwrap_or(&points[0])[1]),
         ];
         let sums = evaluate::<S, F, true, false, true, true>(shuffle, fields, &at, range.clone());
-        for (l, (value, &[x, z])) in out.iter_mut().zip(points).enumerate() {
-            let foam = if range.contains(&0) {
-                fields.foam_at(x, z)
-            } else {
-                0.0
-            };
+        let foam = if range.contains(&0) {
+            foam(fields, &at)
+        } else {
+            [0.0; LANES]
+        };
+        for (l, value) in out.iter_mut().enumerate() {
+            let foam = foam[l];
             let displacement = [sums.displacement[0][l], sums.displacement[1][l]];
             let slope = [sums.slope[0][l], sums.slope[1][l]];
             *value = surface(sums.height[l], displacement, slope, foam);
