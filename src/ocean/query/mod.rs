@@ -230,6 +230,14 @@ pub(crate) trait PointQuery<F: Fields>: Sync {
         }
     }
 
+    /// [`PointQuery::group`] of each [`GROUP`] of `points` in turn, into `out`.
+    #[inline(always)]
+    fn groups(&self, fields: &F, points: &[[f64; 2]], out: &mut [Self::Output]) {
+        for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
+            self.group(fields, points, out);
+        }
+    }
+
     /// [`PointQuery::at`] of each of `points` into `out`, with the same bits: by groups
     /// unless the query has a faster way (the spline's lanes, see [`lanes`], with
     /// `shuffle`).
@@ -242,9 +250,7 @@ pub(crate) trait PointQuery<F: Fields>: Sync {
         out: &mut [Self::Output],
     ) {
         let _ = shuffle;
-        for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
-            self.group(fields, points, out);
-        }
+        self.groups(fields, points, out);
     }
 }
 
@@ -297,9 +303,7 @@ impl<F: Fields> PointQuery<F> for Sample {
         if in_lanes(fields, self.0.clone()) {
             lanes::sample(shuffle, fields, points, self.0.clone(), out);
         } else {
-            for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
-                self.group(fields, points, out);
-            }
+            self.groups(fields, points, out);
         }
     }
 }
@@ -339,9 +343,7 @@ impl<F: Fields> PointQuery<F> for SurfaceAt {
         if in_lanes(fields, 0..fields.frame().grids.len()) {
             lanes::locate::<S, F, SurfaceSample, true, true>(shuffle, fields, points, out);
         } else {
-            for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
-                self.group(fields, points, out);
-            }
+            self.groups(fields, points, out);
         }
     }
 }
@@ -366,9 +368,7 @@ impl<F: Fields> PointQuery<F> for HeightAt {
         if in_lanes(fields, 0..fields.frame().grids.len()) {
             lanes::locate::<S, F, f32, true, false>(shuffle, fields, points, out);
         } else {
-            for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
-                self.group(fields, points, out);
-            }
+            self.groups(fields, points, out);
         }
     }
 }
