@@ -4,9 +4,9 @@
 //! instructions at each SIMD level), and only the tile lookup is done point by point.
 //!
 //! Every lane runs the scalar code's operations in the scalar code's order
-//! ([`super::inversion`]: the same wrap and cell, the same weight formulas, each tap's
-//! products summed over the rows and the taps added (0 + 2) + (1 + 3), the same Newton
-//! step), so each point's result has the bits of its single query. A lane whose search ends
+//! ([`super::inversion`] and [`spline`]: the same wrap and cell, the same weight formulas,
+//! a pair field's taps summed columns first and the taps added (0 + 2) + (1 + 3), the same
+//! Newton step), so each point's result has the bits of its single query. A lane whose search ends
 //! takes the batch's next point, so that a group does not wait for its slowest point.
 
 // Lanes are the same index into several arrays at once; an iterator over one of them hides
@@ -15,7 +15,7 @@
 use super::super::frame::Fields;
 use super::super::spline::{self, Lanes, TileData, STRIDE};
 use super::inversion::MIN_DETERMINANT;
-use super::{normal_from_slope, wrap, Location, Period, SurfaceSample};
+use super::{normal_from_slope, wrap, Location, Period, SurfaceSample, FAR_PERIODS};
 
 /// Points a vector holds.
 pub(super) const LANES: usize = 8;
@@ -52,10 +52,9 @@ fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
         }
     });
     // Far from the origin `wrap` takes another path; rare, so lane by lane.
-    const FAR: f64 = (1u64 << 29) as f64;
-    if periods.iter().any(|p| p.abs() >= FAR) {
+    if periods.iter().any(|p| p.abs() >= FAR_PERIODS) {
         for l in 0..LANES {
-            if periods[l].abs() >= FAR {
+            if periods[l].abs() >= FAR_PERIODS {
                 wrapped[l] = wrap(v[l], length, inverse);
             }
         }
@@ -78,10 +77,10 @@ fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
     (cell, fraction)
 }
 
-/// How a batch's lanes turn rows of taps into vectors: pure data movement, so every
-/// implementation gives the same bits. Chosen once for a whole batch (see `run_batch`), so that
-/// the lanes' code is compiled once for each SIMD level rather than branching on it at
-/// every tap.
+/// How a batch's lanes turn rows of taps into vectors (pure data movement) and add
+/// products (a multiplication, then an addition: IEEE operations), so every implementation
+/// gives the same bits. Chosen once for a whole batch (see `run_batch`), so that the lanes'
+/// code is compiled once for each SIMD level rather than branching on it at every tap.
 pub(crate) trait Shuffle: Copy {
     /// Eight rows of eight floats, one a lane, as eight vectors of eight lanes.
     fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8];
@@ -178,7 +177,7 @@ pub(super) fn cells_at(points: &[[f64; 2]], period: &Period) -> [[u32; LANES]; 2
     [cells(&x, period).0, cells(&z, period).0]
 }
 
-/// What a block's lanes sum over the cascades at their points (zero where not asked).
+/// What eight lanes sum over the cascades at their points (zero where not asked).
 #[derive(Clone, Copy, Default)]
 pub(super) struct SummedLanes {
     /// `[D_x, D_z]` in metres.

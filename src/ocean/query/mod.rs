@@ -166,6 +166,9 @@ pub(crate) fn periodic_bilinear(values: &[f32], n: usize, length: f64, x: f64, z
     Stencil::new(cell(x, z, length, n), n).scalar(values)
 }
 
+/// Periods from the origin from which [`wrap`] falls back on `rem_euclid` (see there).
+const FAR_PERIODS: f64 = (1u64 << 29) as f64;
+
 /// `x` modulo `length` (> 0, `inverse` its reciprocal), in [0, `length`]:
 /// `x.rem_euclid(length)` without its software `fmod`, which costs more than a query's
 /// arithmetic. Below 2²⁹ periods q = ⌊x/L⌋ times an f32 length is exact in f64 and so is
@@ -174,7 +177,7 @@ pub(crate) fn periodic_bilinear(values: &[f32], n: usize, length: f64, x: f64, z
 #[inline(always)]
 fn wrap(x: f64, length: f64, inverse: f64) -> f64 {
     let periods = (x * inverse).floor();
-    if periods.abs() >= (1u64 << 29) as f64 {
+    if periods.abs() >= FAR_PERIODS {
         return x.rem_euclid(length);
     }
     let r = x - periods * length;
