@@ -23,10 +23,15 @@ pub(super) const LANES: usize = 8;
 type F32s = [f32; LANES];
 type F64s = [f64; LANES];
 
-/// `f(l)` for each lane `l`.
+/// `f(l)` for each lane `l` (a plain loop: `std::array::from_fn`'s adapter is sometimes
+/// left out of line, and a closure out of line runs without the batch's SIMD level).
 #[inline(always)]
-fn each<T>(f: impl FnMut(usize) -> T) -> [T; LANES] {
-    std::array::from_fn(f)
+fn each<T: Copy + Default>(mut f: impl FnMut(usize) -> T) -> [T; LANES] {
+    let mut out = [T::default(); LANES];
+    for (l, out) in out.iter_mut().enumerate() {
+        *out = f(l);
+    }
+    out
 }
 
 /// The cell and the fraction across it of eight coordinates along one axis of a periodic
@@ -82,10 +87,14 @@ fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
 /// gives the same bits. Chosen once for a whole batch (see `run_batch`), so that the lanes'
 /// code is compiled once for each SIMD level rather than branching on it at every tap.
 pub(crate) trait Shuffle: Copy {
-    /// Eight rows of eight floats, one a lane, as eight vectors of eight lanes.
-    fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8];
+    /// Eight rows of four floats, one a lane, as four vectors of eight lanes.
+    fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4];
     /// `sum + w·x` lane by lane (a product, then a sum: not fused).
     fn add_product(self, sum: F32s, w: F32s, x: F32s) -> F32s;
+    /// `w·x` lane by lane.
+    fn mul(self, w: F32s, x: F32s) -> F32s;
+    /// `a + b` lane by lane.
+    fn add(self, a: F32s, b: F32s) -> F32s;
 }
 
 /// [`Shuffle`] written as plain array code (the baseline level).
@@ -94,7 +103,7 @@ pub(crate) struct Plain;
 
 impl Shuffle for Plain {
     #[inline(always)]
-    fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
+    fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
         std::array::from_fn(|j| each(|l| rows[l][j]))
     }
 
@@ -102,15 +111,25 @@ impl Shuffle for Plain {
     fn add_product(self, sum: F32s, w: F32s, x: F32s) -> F32s {
         each(|l| sum[l] + w[l] * x[l])
     }
+
+    #[inline(always)]
+    fn mul(self, w: F32s, x: F32s) -> F32s {
+        each(|l| w[l] * x[l])
+    }
+
+    #[inline(always)]
+    fn add(self, a: F32s, b: F32s) -> F32s {
+        each(|l| a[l] + b[l])
+    }
 }
 
-/// [`Shuffle`] with AVX2's unpack, shuffle and 128-bit permute network (also used on
-/// AVX-512 machines: the lanes are eight `f32` wide).
+/// [`Shuffle`] with AVX2's unpack and shuffle network (also used on AVX-512 machines: the
+/// lanes are eight `f32` wide).
 #[cfg(target_arch = "x86_64")]
 impl Shuffle for pulp::x86::V3 {
     #[inline(always)]
-    fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
-        transpose8_v3(self, rows)
+    fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
+        transpose4_v3(self, rows)
     }
 
     #[inline(always)]
@@ -119,14 +138,28 @@ impl Shuffle for pulp::x86::V3 {
         let product = self.mul_f32s(cast::<_, f32x8>(w), cast::<_, f32x8>(x));
         cast(self.add_f32s(cast::<_, f32x8>(sum), product))
     }
+
+    #[inline(always)]
+    fn mul(self, w: F32s, x: F32s) -> F32s {
+        use pulp::{cast, f32x8, Simd as _};
+        cast(self.mul_f32s(cast::<_, f32x8>(w), cast::<_, f32x8>(x)))
+    }
+
+    #[inline(always)]
+    fn add(self, a: F32s, b: F32s) -> F32s {
+        use pulp::{cast, f32x8, Simd as _};
+        cast(self.add_f32s(cast::<_, f32x8>(a), cast::<_, f32x8>(b)))
+    }
 }
 
+/// Lanes l and l + 4 share a register (one a 128-bit half), so two 4 × 4 transposes run
+/// side by side within the halves and no instruction crosses them.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn transpose8_v3(v3: pulp::x86::V3, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
-    use std::arch::x86_64::__m256;
+fn transpose4_v3(v3: pulp::x86::V3, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
+    use std::arch::x86_64::{__m128, __m256};
     let avx = v3.avx;
-    let r: [__m256; 8] = [
+    let half: [__m128; LANES] = [
         pulp::cast(*rows[0]),
         pulp::cast(*rows[1]),
         pulp::cast(*rows[2]),
@@ -136,35 +169,23 @@ fn transpose8_v3(v3: pulp::x86::V3, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
         pulp::cast(*rows[6]),
         pulp::cast(*rows[7]),
     ];
+    let r: [__m256; 4] = [
+        avx._mm256_set_m128(half[4], half[0]),
+        avx._mm256_set_m128(half[5], half[1]),
+        avx._mm256_set_m128(half[6], half[2]),
+        avx._mm256_set_m128(half[7], half[3]),
+    ];
     let t = [
         avx._mm256_unpacklo_ps(r[0], r[1]),
         avx._mm256_unpackhi_ps(r[0], r[1]),
         avx._mm256_unpacklo_ps(r[2], r[3]),
         avx._mm256_unpackhi_ps(r[2], r[3]),
-        avx._mm256_unpacklo_ps(r[4], r[5]),
-        avx._mm256_unpackhi_ps(r[4], r[5]),
-        avx._mm256_unpacklo_ps(r[6], r[7]),
-        avx._mm256_unpackhi_ps(r[6], r[7]),
-    ];
-    let s = [
-        avx._mm256_shuffle_ps::<0x44>(t[0], t[2]),
-        avx._mm256_shuffle_ps::<0xEE>(t[0], t[2]),
-        avx._mm256_shuffle_ps::<0x44>(t[1], t[3]),
-        avx._mm256_shuffle_ps::<0xEE>(t[1], t[3]),
-        avx._mm256_shuffle_ps::<0x44>(t[4], t[6]),
-        avx._mm256_shuffle_ps::<0xEE>(t[4], t[6]),
-        avx._mm256_shuffle_ps::<0x44>(t[5], t[7]),
-        avx._mm256_shuffle_ps::<0xEE>(t[5], t[7]),
     ];
     [
-        pulp::cast(avx._mm256_permute2f128_ps::<0x20>(s[0], s[4])),
-        pulp::cast(avx._mm256_permute2f128_ps::<0x20>(s[1], s[5])),
-        pulp::cast(avx._mm256_permute2f128_ps::<0x20>(s[2], s[6])),
-        pulp::cast(avx._mm256_permute2f128_ps::<0x20>(s[3], s[7])),
-        pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[0], s[4])),
-        pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[1], s[5])),
-        pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[2], s[6])),
-        pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[3], s[7])),
+        pulp::cast(avx._mm256_shuffle_ps::<0x44>(t[0], t[2])),
+        pulp::cast(avx._mm256_shuffle_ps::<0xEE>(t[0], t[2])),
+        pulp::cast(avx._mm256_shuffle_ps::<0x44>(t[1], t[3])),
+        pulp::cast(avx._mm256_shuffle_ps::<0xEE>(t[1], t[3])),
     ]
 }
 
@@ -202,56 +223,72 @@ fn pairs<S: Shuffle, const GRADIENT: bool>(
     at: &[usize; LANES],
     [wx, wz, dx, dz]: &[[Lanes; 4]; 4],
 ) -> [[F32s; 2]; 3] {
-    let windows: [&[f32; PAIR_WINDOW]; LANES] = each(|l| {
+    let windows: [&[f32; PAIR_WINDOW]; LANES] = std::array::from_fn(|l| {
         let start = field + 2 * at[l];
         tiles[l][start..start + PAIR_WINDOW]
             .try_into()
             .expect("a cell's taps lie in its tile")
     });
     let zero = [0.0f32; LANES];
-    let mut columns = [zero; 8];
-    let mut columns_z = [zero; 8];
-    for r in 0..4 {
-        let taps = shuffle.transpose8(pair_row(&windows, r));
-        let (w, d) = (wz[r].0, dz[r].0);
-        for ((column, column_z), &taps) in columns.iter_mut().zip(&mut columns_z).zip(&taps) {
-            *column = shuffle.add_product(*column, w, taps);
-            if GRADIENT {
-                *column_z = shuffle.add_product(*column_z, d, taps);
+    // Two taps (four floats) of each row at a time, so that the column sums, the rows and
+    // the weights fit in the registers; products[t] holds tap t's terms of each output.
+    let mut products = [[[zero; 2]; 3]; 4];
+    for half in 0..2 {
+        let mut columns = [zero; 4];
+        let mut columns_z = [zero; 4];
+        for r in 0..4 {
+            let taps = shuffle.transpose4(pair_row(&windows, r, half));
+            let (w, d) = (wz[r].0, dz[r].0);
+            for ((column, column_z), &taps) in columns.iter_mut().zip(&mut columns_z).zip(&taps) {
+                *column = shuffle.add_product(*column, w, taps);
+                if GRADIENT {
+                    *column_z = shuffle.add_product(*column_z, d, taps);
+                }
+            }
+        }
+        for i in 0..2 {
+            let t = 2 * half + i;
+            for k in 0..2 {
+                let column = &columns[2 * i + k];
+                products[t][0][k] = shuffle.mul(wx[t].0, *column);
+                if GRADIENT {
+                    let column_z = &columns_z[2 * i + k];
+                    products[t][1][k] = shuffle.mul(dx[t].0, *column);
+                    products[t][2][k] = shuffle.mul(wx[t].0, *column_z);
+                }
             }
         }
     }
+    // Σ_t as the scalar code adds the taps: (0 + 2) + (1 + 3).
+    let outputs = if GRADIENT { 3 } else { 1 };
     let mut out = [[zero; 2]; 3];
-    for k in 0..2 {
-        out[0][k] = across(wx, &columns, k);
-        if GRADIENT {
-            out[1][k] = across(dx, &columns, k);
-            out[2][k] = across(wx, &columns_z, k);
+    for o in 0..outputs {
+        for k in 0..2 {
+            let p = [
+                products[0][o][k],
+                products[1][o][k],
+                products[2][o][k],
+                products[3][o][k],
+            ];
+            out[o][k] = shuffle.add(shuffle.add(p[0], p[2]), shuffle.add(p[1], p[3]));
         }
     }
     out
-}
-
-/// Σ_t w_t S_t over the four taps of component `k` of `columns` (pair t at 2t + k), added
-/// (tap 0 + tap 2) + (tap 1 + tap 3) as the scalar code adds them.
-#[inline(always)]
-fn across(w: &[Lanes; 4], columns: &[F32s; 8], k: usize) -> F32s {
-    let a: F32s = each(|l| w[0].0[l] * columns[k][l]);
-    let b: F32s = each(|l| w[2].0[l] * columns[4 + k][l]);
-    let c: F32s = each(|l| w[1].0[l] * columns[2 + k][l]);
-    let d: F32s = each(|l| w[3].0[l] * columns[6 + k][l]);
-    each(|l| (a[l] + b[l]) + (c[l] + d[l]))
 }
 
 /// Floats from a cell's first pair to its last (four rows of four pairs, `STRIDE` pairs
 /// apart).
 const PAIR_WINDOW: usize = 2 * (3 * STRIDE + 4);
 
-/// Row `r` of four pairs of each lane's window.
+/// Pairs 2·`half` and 2·`half` + 1 of row `r` of each lane's window.
 #[inline(always)]
-fn pair_row<'a>(windows: &[&'a [f32; PAIR_WINDOW]; LANES], r: usize) -> [&'a [f32; 8]; LANES] {
-    let start = 2 * r * STRIDE;
-    each(|l| windows[l][start..start + 8].try_into().expect("four pairs"))
+fn pair_row<'a>(
+    windows: &[&'a [f32; PAIR_WINDOW]; LANES],
+    r: usize,
+    half: usize,
+) -> [&'a [f32; 4]; LANES] {
+    let start = 2 * r * STRIDE + 4 * half;
+    std::array::from_fn(|l| windows[l][start..start + 4].try_into().expect("two pairs"))
 }
 
 /// Most cascades an ocean has.
@@ -278,20 +315,18 @@ fn heights<S: Shuffle>(
 ) -> F32s {
     let mut sum = [[0.0f32; LANES]; 4];
     for r in 0..4 {
-        // Eight floats a row, the first four the taps (a full transpose costs less than
-        // what the compiler makes of a half one).
-        let taps = shuffle.transpose8(each(|l| {
+        let taps = shuffle.transpose4(std::array::from_fn(|l| {
             let start = spline::HEIGHT + at[l] + r * STRIDE;
-            tiles[l][start..start + 8]
+            tiles[l][start..start + 4]
                 .try_into()
                 .expect("the row lies in the tile")
         }));
-        for (t, taps) in taps[..4].iter().enumerate() {
-            let line = each(|l| wx[t].0[l] * taps[l]);
+        for (t, taps) in taps.iter().enumerate() {
+            let line = shuffle.mul(wx[t].0, *taps);
             sum[t] = shuffle.add_product(sum[t], wz[r].0, line);
         }
     }
-    each(|l| (sum[0][l] + sum[2][l]) + (sum[1][l] + sum[3][l]))
+    shuffle.add(shuffle.add(sum[0], sum[2]), shuffle.add(sum[1], sum[3]))
 }
 
 /// The fields of cascades `range` at the undisplaced world points `[x, z]` of eight lanes,
@@ -363,7 +398,7 @@ pub(super) fn evaluate<
         if DISPLACEMENT || JACOBIAN {
             let [value, gx, gz] = pairs::<S, JACOBIAN>(shuffle, found, 0, &at, &weights);
             for k in 0..2 {
-                total.displacement[k] = each(|l| total.displacement[k][l] + value[k][l]);
+                total.displacement[k] = shuffle.add(total.displacement[k], value[k]);
             }
             if JACOBIAN {
                 let g = [gx[0], gz[0], gx[1], gz[1]];
@@ -374,12 +409,12 @@ pub(super) fn evaluate<
         }
         if HEIGHT {
             let height = heights(shuffle, found, &at, [&weights[0], &weights[1]]);
-            total.height = each(|l| total.height[l] + height[l]);
+            total.height = shuffle.add(total.height, height);
         }
         if SLOPE {
             let [slope, _, _] = pairs::<S, false>(shuffle, found, spline::SLOPE, &at, &weights);
             for k in 0..2 {
-                total.slope[k] = each(|l| total.slope[k][l] + slope[k][l]);
+                total.slope[k] = shuffle.add(total.slope[k], slope[k]);
             }
         }
     }
