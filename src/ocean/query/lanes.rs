@@ -87,6 +87,8 @@ fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
 /// gives the same bits. Chosen once for a whole batch (see `run_batch`), so that the lanes'
 /// code is compiled once for each SIMD level rather than branching on it at every tap.
 pub(crate) trait Shuffle: Copy {
+    /// Eight rows of eight floats, one a lane, as eight vectors of eight lanes.
+    fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8];
     /// Eight rows of four floats, one a lane, as four vectors of eight lanes.
     fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4];
     /// `sum + w·x` lane by lane (a product, then a sum: not fused).
@@ -102,6 +104,11 @@ pub(crate) trait Shuffle: Copy {
 pub(crate) struct Plain;
 
 impl Shuffle for Plain {
+    #[inline(always)]
+    fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
+        std::array::from_fn(|j| each(|l| rows[l][j]))
+    }
+
     #[inline(always)]
     fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
         std::array::from_fn(|j| each(|l| rows[l][j]))
@@ -128,6 +135,11 @@ impl Shuffle for Plain {
 #[cfg(target_arch = "x86_64")]
 impl Shuffle for pulp::x86::V3 {
     #[inline(always)]
+    fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
+        transpose8_v3(self, rows)
+    }
+
+    #[inline(always)]
     fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4] {
         transpose4_v3(self, rows)
     }
@@ -150,6 +162,55 @@ impl Shuffle for pulp::x86::V3 {
         use pulp::{cast, f32x8, Simd as _};
         cast(self.add_f32s(cast::<_, f32x8>(a), cast::<_, f32x8>(b)))
     }
+}
+
+/// The 8 × 8 transpose: unpack and shuffle within the 128-bit halves, then a permute
+/// across them.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn transpose8_v3(v3: pulp::x86::V3, rows: [&[f32; 8]; LANES]) -> [F32s; 8] {
+    use std::arch::x86_64::__m256;
+    let avx = v3.avx;
+    let r: [__m256; 8] = [
+        pulp::cast(*rows[0]),
+        pulp::cast(*rows[1]),
+        pulp::cast(*rows[2]),
+        pulp::cast(*rows[3]),
+        pulp::cast(*rows[4]),
+        pulp::cast(*rows[5]),
+        pulp::cast(*rows[6]),
+        pulp::cast(*rows[7]),
+    ];
+    let t = [
+        avx._mm256_unpacklo_ps(r[0], r[1]),
+        avx._mm256_unpackhi_ps(r[0], r[1]),
+        avx._mm256_unpacklo_ps(r[2], r[3]),
+        avx._mm256_unpackhi_ps(r[2], r[3]),
+        avx._mm256_unpacklo_ps(r[4], r[5]),
+        avx._mm256_unpackhi_ps(r[4], r[5]),
+        avx._mm256_unpacklo_ps(r[6], r[7]),
+        avx._mm256_unpackhi_ps(r[6], r[7]),
+    ];
+    let s = [
+        avx._mm256_shuffle_ps::<0x44>(t[0], t[2]),
+        avx._mm256_shuffle_ps::<0xEE>(t[0], t[2]),
+        avx._mm256_shuffle_ps::<0x44>(t[1], t[3]),
+        avx._mm256_shuffle_ps::<0xEE>(t[1], t[3]),
+        avx._mm256_shuffle_ps::<0x44>(t[4], t[6]),
+        avx._mm256_shuffle_ps::<0xEE>(t[4], t[6]),
+        avx._mm256_shuffle_ps::<0x44>(t[5], t[7]),
+        avx._mm256_shuffle_ps::<0xEE>(t[5], t[7]),
+    ];
+    [
+        pulp::cast(avx._mm256_permute2f128_ps::<0x20>(s[0], s[4])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x20>(s[1], s[5])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x20>(s[2], s[6])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x20>(s[3], s[7])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[0], s[4])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[1], s[5])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[2], s[6])),
+        pulp::cast(avx._mm256_permute2f128_ps::<0x31>(s[3], s[7])),
+    ]
 }
 
 /// Lanes l and l + 4 share a register (one a 128-bit half), so two 4 × 4 transposes run
@@ -230,6 +291,31 @@ fn pairs<S: Shuffle, const GRADIENT: bool>(
             .expect("a cell's taps lie in its tile")
     });
     let zero = [0.0f32; LANES];
+    if GRADIENT {
+        // Whole rows (timed faster here than two taps at a time, though more registers
+        // spill).
+        let mut columns = [zero; 8];
+        let mut columns_z = [zero; 8];
+        for r in 0..4 {
+            let rows = std::array::from_fn(|l| {
+                let start = 2 * r * STRIDE;
+                windows[l][start..start + 8].try_into().expect("four pairs")
+            });
+            let taps = shuffle.transpose8(rows);
+            let (w, d) = (wz[r].0, dz[r].0);
+            for ((column, column_z), &taps) in columns.iter_mut().zip(&mut columns_z).zip(&taps) {
+                *column = shuffle.add_product(*column, w, taps);
+                *column_z = shuffle.add_product(*column_z, d, taps);
+            }
+        }
+        let mut out = [[zero; 2]; 3];
+        for k in 0..2 {
+            out[0][k] = across(shuffle, wx, &columns, k);
+            out[1][k] = across(shuffle, dx, &columns, k);
+            out[2][k] = across(shuffle, wx, &columns_z, k);
+        }
+        return out;
+    }
     // Two taps (four floats) of each row at a time, so that the column sums, the rows and
     // the weights fit in the registers; products[t] holds tap t's terms of each output.
     let mut products = [[[zero; 2]; 3]; 4];
@@ -274,6 +360,17 @@ fn pairs<S: Shuffle, const GRADIENT: bool>(
         }
     }
     out
+}
+
+/// Σ_t w_t S_t over the four taps of component `k` of `columns` (pair t at 2t + k), added
+/// (tap 0 + tap 2) + (tap 1 + tap 3) as the scalar code adds them.
+#[inline(always)]
+fn across<S: Shuffle>(shuffle: S, w: &[Lanes; 4], columns: &[F32s; 8], k: usize) -> F32s {
+    let a = shuffle.mul(w[0].0, columns[k]);
+    let b = shuffle.mul(w[2].0, columns[4 + k]);
+    let c = shuffle.mul(w[1].0, columns[2 + k]);
+    let d = shuffle.mul(w[3].0, columns[6 + k]);
+    shuffle.add(shuffle.add(a, b), shuffle.add(c, d))
 }
 
 /// Floats from a cell's first pair to its last (four rows of four pairs, `STRIDE` pairs
