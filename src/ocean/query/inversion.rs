@@ -192,9 +192,49 @@ pub(super) fn sample<F: Fields>(
 /// folds, or nearly) the step is the fixed point's, p − x₀ − D(x₀).
 pub(super) const MIN_DETERMINANT: f64 = 0.05;
 
+/// The Newton step δ solving (I + ∇D) δ = `residual` for the Jacobian `jacobian` of D
+/// (`[∂D_x/∂x, ∂D_x/∂z, ∂D_z/∂x, ∂D_z/∂z]`), or the fixed point's step, `residual` itself,
+/// where the surface (nearly) folds.
+#[inline(always)]
+pub(super) fn newton_step(residual: [f64; 2], jacobian: [f32; 4]) -> [f64; 2] {
+    let [a, b, c, d] = jacobian.map(f64::from);
+    let (a, d) = (1.0 + a, 1.0 + d);
+    let determinant = a * d - b * c;
+    if determinant > MIN_DETERMINANT {
+        [
+            (d * residual[0] - b * residual[1]) / determinant,
+            (a * residual[1] - c * residual[0]) / determinant,
+        ]
+    } else {
+        residual
+    }
+}
+
+/// Cascades the first step of a search reads ([`first_guess`]): the larger half of an
+/// ocean's `count` (the small waves move the water least).
+#[inline(always)]
+pub(super) fn guessing(count: usize) -> std::ops::Range<usize> {
+    0..count.div_ceil(2)
+}
+
+/// Where a search for the water landing on world p = (x, z) starts: p plus one Newton step
+/// on the [`guessing`] cascades alone (their displacement D and its Jacobian at p, the step
+/// solving (I + ∇D) δ = −D). It lands within about a centimetre of the answer where p is
+/// metres from it, for the price of an evaluation of the larger cascades only: on the default
+/// sea a search then evaluates 9.5 cascades a point instead of 10.2.
+#[inline(always)]
+pub(super) fn first_guess<F: Fields>(fields: &F, x: f64, z: f64) -> [f64; 2] {
+    let cascades = guessing(fields.frame().grids.len());
+    let summed = evaluate::<F, true, true, false, false>(fields, x, z, cascades);
+    let [dx, dz] = summed.displacement.map(f64::from);
+    let step = newton_step([-dx, -dz], summed.jacobian);
+    [x + step[0], z + step[1]]
+}
+
 /// One point's search for the undisplaced point whose water lands on it, by Newton's
-/// method on x₀ + D(x₀) = p from x₀ = p (see [`OceanState::locate`](crate::OceanState::locate)): the iterate to
-/// evaluate next and what the evaluations so far found.
+/// method on x₀ + D(x₀) = p from [`first_guess`] (see
+/// [`OceanState::locate`](crate::OceanState::locate)): the iterate to evaluate next and what
+/// the evaluations so far found.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Search {
     /// The query point p.
@@ -215,21 +255,23 @@ pub(super) struct Search {
 }
 
 impl Search {
+    /// The search for the water landing on world (x, z), from the undisplaced point `start`
+    /// ([`first_guess`]).
     #[inline(always)]
-    pub(super) fn new(x: f64, z: f64) -> Search {
+    pub(super) fn new(x: f64, z: f64, start: [f64; 2]) -> Search {
         Search {
             target: [x, z],
             best: Location {
-                undisplaced: [x, z],
+                undisplaced: start,
                 miss: f32::INFINITY,
                 iterations: 0,
                 converged: false,
             },
             displacement: [0.0; 2],
-            base: [x, z],
+            base: start,
             step: [0.0; 2],
             fraction: 1.0,
-            next: [x, z],
+            next: start,
             done: false,
         }
     }
@@ -265,18 +307,7 @@ impl Search {
                 self.done = true;
                 return;
             }
-            // Newton: (I + ∇D) δ = residual.
-            let [a, b, c, d] = jacobian.map(f64::from);
-            let (a, d) = (1.0 + a, 1.0 + d);
-            let determinant = a * d - b * c;
-            self.step = if determinant > MIN_DETERMINANT {
-                [
-                    (d * residual[0] - b * residual[1]) / determinant,
-                    (a * residual[1] - c * residual[0]) / determinant,
-                ]
-            } else {
-                residual
-            };
+            self.step = newton_step(residual, jacobian);
             self.base = x0;
             self.fraction = 1.0;
         } else {
@@ -291,12 +322,12 @@ impl Search {
 }
 
 /// The undisplaced point whose water lands on world (x, z), by Newton's method on
-/// x₀ + D(x₀) = p from x₀ = p (see [`OceanState::locate`](crate::OceanState::locate)), and the summed displacement
-/// there.
+/// x₀ + D(x₀) = p from [`first_guess`] (see
+/// [`OceanState::locate`](crate::OceanState::locate)), and the summed displacement there.
 #[inline(always)]
 pub(super) fn locate<F: Fields>(fields: &F, x: f64, z: f64) -> (Location, [f32; 2]) {
     let frame = fields.frame();
-    let mut search = Search::new(x, z);
+    let mut search = Search::new(x, z, first_guess(fields, x, z));
     for iteration in 0..=frame.query.max_iterations {
         let [x0, z0] = search.next;
         let summed = evaluate::<F, true, true, false, false>(fields, x0, z0, 0..frame.grids.len());
@@ -320,7 +351,7 @@ fn locate_group<F: Fields>(fields: &F, points: &[[f64; 2]], searches: &mut [Sear
     let frame = fields.frame();
     let count = points.len();
     for (search, &[x, z]) in searches.iter_mut().zip(points) {
-        *search = Search::new(x, z);
+        *search = Search::new(x, z, first_guess(fields, x, z));
     }
     for iteration in 0..=frame.query.max_iterations {
         let mut sums = [Summed::default(); GROUP];
@@ -389,7 +420,7 @@ pub(super) fn located_group<F: Fields, const SLOPE: bool>(
     fields: &F,
     points: &[[f64; 2]],
 ) -> ([Search; GROUP], [Summed; GROUP]) {
-    let mut searches = [Search::new(0.0, 0.0); GROUP];
+    let mut searches = [Search::new(0.0, 0.0, [0.0; 2]); GROUP];
     locate_group(fields, points, &mut searches);
     let at = |p: usize| searches[p].best.undisplaced;
     let cascades = 0..fields.frame().grids.len();

@@ -14,7 +14,7 @@
 #![allow(clippy::needless_range_loop)]
 use super::super::frame::Fields;
 use super::super::spline::{self, Lanes, TileData, STRIDE};
-use super::inversion::MIN_DETERMINANT;
+use super::inversion::{guessing, MIN_DETERMINANT};
 use super::{normal_from_slope, wrap, Location, Period, SurfaceSample, FAR_PERIODS};
 
 /// Points a vector holds.
@@ -554,6 +554,86 @@ fn foam<F: Fields>(fields: &F, [x, z]: &[F64s; 2]) -> F32s {
     })
 }
 
+/// `newton_step` lane by lane: the Newton step δ solving (I + ∇D) δ = `residual` for the
+/// Jacobian `j`, or `residual` itself where the surface (nearly) folds.
+#[inline(always)]
+fn newton_steps(residual: &[F64s; 2], j: &[F32s; 4]) -> [F64s; 2] {
+    let a: F64s = each(|l| 1.0 + f64::from(j[0][l]));
+    let b: F64s = each(|l| f64::from(j[1][l]));
+    let c: F64s = each(|l| f64::from(j[2][l]));
+    let d: F64s = each(|l| 1.0 + f64::from(j[3][l]));
+    let determinant: F64s = each(|l| a[l] * d[l] - b[l] * c[l]);
+    let newton: [bool; LANES] = each(|l| determinant[l] > MIN_DETERMINANT);
+    [
+        each(|l| {
+            let s = (d[l] * residual[0][l] - b[l] * residual[1][l]) / determinant[l];
+            if newton[l] {
+                s
+            } else {
+                residual[0][l]
+            }
+        }),
+        each(|l| {
+            let s = (a[l] * residual[1][l] - c[l] * residual[0][l]) / determinant[l];
+            if newton[l] {
+                s
+            } else {
+                residual[1][l]
+            }
+        }),
+    ]
+}
+
+/// Up to eight points about to be searched for, with their first guesses.
+struct Guesses {
+    /// The batch index of the first, how many there are, and how many were taken.
+    first: usize,
+    count: usize,
+    taken: usize,
+    target: [[f64; 2]; LANES],
+    /// Each one's first guess `[x, z]` (`first_guess`, lane by lane).
+    start: [F64s; 2],
+}
+
+impl Guesses {
+    const EMPTY: Guesses = Guesses {
+        first: 0,
+        count: 0,
+        taken: 0,
+        target: [[0.0; 2]; LANES],
+        start: [[0.0; LANES]; 2],
+    };
+
+    /// The first guesses of `points` (at most [`LANES`], the first being the batch's point
+    /// `first`): one Newton step on the larger cascades, with the single query's operations.
+    #[inline(always)]
+    fn of<S: Shuffle, F: Fields>(
+        shuffle: S,
+        fields: &F,
+        points: &[[f64; 2]],
+        first: usize,
+    ) -> Guesses {
+        let target: [[f64; 2]; LANES] =
+            std::array::from_fn(|l| *points.get(l).unwrap_or(&points[0]));
+        let at = [each(|l| target[l][0]), each(|l| target[l][1])];
+        let cascades = guessing(fields.frame().grids.len());
+        let summed = evaluate::<S, F, true, true, false, false>(shuffle, fields, &at, cascades);
+        let d = &summed.displacement;
+        let residual = [each(|l| -f64::from(d[0][l])), each(|l| -f64::from(d[1][l]))];
+        let step = newton_steps(&residual, &summed.jacobian);
+        Guesses {
+            first,
+            count: points.len(),
+            taken: 0,
+            target,
+            start: [
+                each(|l| at[0][l] + step[0][l]),
+                each(|l| at[1][l] + step[1][l]),
+            ],
+        }
+    }
+}
+
 /// The Newton searches of up to [`LANES`] points, one a lane (see [`super::inversion`]'s
 /// `Search`, whose update each lane runs), and the fields at each one's best iterate.
 struct Searches {
@@ -652,17 +732,18 @@ impl Searches {
         }
     }
 
-    /// Starts lane `l` on point `index` at world (x, z).
+    /// Starts lane `l` on point `index`, the water landing on world `target`, from the
+    /// undisplaced point `start` (`Search::new`).
     #[inline(always)]
-    fn start(&mut self, l: usize, index: usize, [x, z]: [f64; 2]) {
+    fn start(&mut self, l: usize, index: usize, target: [f64; 2], start: [f64; 2]) {
         self.point[l] = Some(index);
         self.iteration[l] = 0;
-        for (k, v) in [x, z].into_iter().enumerate() {
-            self.target[k][l] = v;
-            self.next[k][l] = v;
-            self.base[k][l] = v;
+        for k in 0..2 {
+            self.target[k][l] = target[k];
+            self.next[k][l] = start[k];
+            self.base[k][l] = start[k];
             self.step[k][l] = 0.0;
-            self.best[k][l] = v;
+            self.best[k][l] = start[k];
         }
         self.fraction[l] = 1.0;
         self.miss[l] = f32::INFINITY;
@@ -684,31 +765,7 @@ impl Searches {
             let [rx, rz] = [residual[0][l], residual[1][l]];
             (rx * rx + rz * rz).sqrt() as f32
         });
-        // Newton: (I + ∇D) δ = residual, or the fixed point's step where the surface folds.
-        let a: F64s = each(|l| 1.0 + f64::from(j[0][l]));
-        let b: F64s = each(|l| f64::from(j[1][l]));
-        let c: F64s = each(|l| f64::from(j[2][l]));
-        let dd: F64s = each(|l| 1.0 + f64::from(j[3][l]));
-        let determinant: F64s = each(|l| a[l] * dd[l] - b[l] * c[l]);
-        let newton: [bool; LANES] = each(|l| determinant[l] > MIN_DETERMINANT);
-        let step: [F64s; 2] = [
-            each(|l| {
-                let s = (dd[l] * residual[0][l] - b[l] * residual[1][l]) / determinant[l];
-                if newton[l] {
-                    s
-                } else {
-                    residual[0][l]
-                }
-            }),
-            each(|l| {
-                let s = (a[l] * residual[1][l] - c[l] * residual[0][l]) / determinant[l];
-                if newton[l] {
-                    s
-                } else {
-                    residual[1][l]
-                }
-            }),
-        ];
+        let step = newton_steps(&residual, j);
         let better: [bool; LANES] = each(|l| miss[l] < self.miss[l]);
         let converged: [bool; LANES] = each(|l| miss[l] < tolerance);
         for k in 0..2 {
@@ -783,9 +840,9 @@ impl Searches {
     }
 }
 
-/// Each of `points` located and its result written into `out`: Newton's method on
-/// x₀ + D(x₀) = p from x₀ = p, eight searches at a time, each lane taking the next point
-/// when its search ends; then, eight found points at a time, the height (with `HEIGHT`)
+/// Each of `points` located and its result written into `out`: the first guesses of eight
+/// points at a time, then Newton's method on x₀ + D(x₀) = p from them, eight searches at a
+/// time, each lane taking the next point when its search ends; then, eight found points at a time, the height (with `HEIGHT`)
 /// and slope (with `SLOPE`) there. Each result has the bits of its single query.
 #[inline(always)]
 pub(super) fn locate<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
@@ -798,7 +855,9 @@ pub(super) fn locate<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, co
     let query = &frame.query;
     let cascades = 0..frame.grids.len();
     let mut searches = Searches::new();
-    let mut waiting = points.iter().enumerate();
+    // The points not yet started, eight at a time with their first guesses.
+    let mut chunks = points.chunks(LANES).enumerate();
+    let mut next = Guesses::EMPTY;
     // Points found and not yet written, with their indices.
     let mut found = [Found::EMPTY; LANES];
     let mut found_at = [0usize; LANES];
@@ -806,8 +865,16 @@ pub(super) fn locate<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, co
     loop {
         for l in 0..LANES {
             if searches.point[l].is_none() {
-                if let Some((index, &point)) = waiting.next() {
-                    searches.start(l, index, point);
+                if next.taken == next.count {
+                    if let Some((c, chunk)) = chunks.next() {
+                        next = Guesses::of(shuffle, fields, chunk, c * LANES);
+                    }
+                }
+                if next.taken < next.count {
+                    let p = next.taken;
+                    let start = [next.start[0][p], next.start[1][p]];
+                    searches.start(l, next.first + p, next.target[p], start);
+                    next.taken += 1;
                 }
             }
         }

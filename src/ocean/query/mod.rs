@@ -69,7 +69,9 @@ pub struct Location {
     /// Distance in metres between the query point and where the water at `undisplaced`
     /// actually lands (0 for an exact inversion).
     pub miss: f32,
-    /// Newton steps it took to reach `undisplaced` (0: the query point itself), at most
+    /// Newton steps it took to reach `undisplaced` from the search's first guess (0: the
+    /// first guess itself, one Newton step on the larger cascades from the query point), at
+    /// most
     /// [`QueryConfig::max_iterations`](crate::QueryConfig::max_iterations).
     pub iterations: usize,
     /// Whether `miss` is below [`QueryConfig::tolerance`](crate::QueryConfig::tolerance).
@@ -641,10 +643,12 @@ impl OceanState {
     }
 
     /// Finds the undisplaced point x₀ whose water lands on world point (`x`, `z`), i.e.
-    /// x₀ + D(x₀) = (x, z), by Newton's method from x₀ = (x, z) with the Jacobian of the
-    /// interpolated displacement (at most [`QueryConfig::max_iterations`] steps, stopping
-    /// once within [`QueryConfig::tolerance`]; two or three steps on the default sea), and
-    /// says how well it did. A step that does not bring the water closer is halved, and
+    /// x₀ + D(x₀) = (x, z), by Newton's method with the Jacobian of the interpolated
+    /// displacement, from a first guess one Newton step away from (x, z) on the larger half
+    /// of the cascades alone (whose waves move the water most), then with every cascade (at
+    /// most [`QueryConfig::max_iterations`] steps, stopping once within
+    /// [`QueryConfig::tolerance`]; one or two steps after the first guess on the default
+    /// sea), and says how well it did. A step that does not bring the water closer is halved, and
     /// where the surface (nearly) folds the step is the fixed point's x₀ ← p − D(x₀), so it
     /// converges wherever the surface does not fold (J > 0); where it folds (high
     /// choppiness, breaking crests) several points land on (x, z) or none does exactly, and
