@@ -653,6 +653,8 @@ struct Searches {
     converged: [bool; LANES],
     /// The summed displacement at the best iterate.
     displacement: [F32s; 2],
+    /// The summed height at the best iterate (when the search reads it).
+    height: F32s,
 }
 
 /// What a search found: where the water at a point comes from, and the summed fields there
@@ -729,6 +731,7 @@ impl Searches {
             iterations: [0; LANES],
             converged: [false; LANES],
             displacement: [[0.0; LANES]; 2],
+            height: [0.0; LANES],
         }
     }
 
@@ -798,6 +801,13 @@ impl Searches {
                 }
             });
         }
+        self.height = each(|l| {
+            if better[l] {
+                summed.height[l]
+            } else {
+                self.height[l]
+            }
+        });
         self.miss = each(|l| if better[l] { miss[l] } else { self.miss[l] });
         self.fraction = each(|l| {
             if better[l] {
@@ -833,7 +843,7 @@ impl Searches {
                 converged: self.converged[l],
             },
             displacement: [self.displacement[0][l], self.displacement[1][l]],
-            height: 0.0,
+            height: self.height[l],
             slope: [0.0; 2],
             foam: 0.0,
         }
@@ -889,12 +899,22 @@ pub(super) fn locate<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, co
                 }
             }
         }
-        let summed = evaluate::<S, F, true, true, false, false>(
-            shuffle,
-            fields,
-            &searches.next,
-            cascades.clone(),
-        );
+        // A query of heights alone reads them at every iterate, and so needs no final pass.
+        let summed = if HEIGHT && !SLOPE {
+            evaluate::<S, F, true, true, true, false>(
+                shuffle,
+                fields,
+                &searches.next,
+                cascades.clone(),
+            )
+        } else {
+            evaluate::<S, F, true, true, false, false>(
+                shuffle,
+                fields,
+                &searches.next,
+                cascades.clone(),
+            )
+        };
         let ended = searches.update(&summed, query.tolerance, query.max_iterations);
         for l in 0..LANES {
             if ended[l] {
@@ -934,7 +954,7 @@ fn finish<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: 
     if found.is_empty() {
         return;
     }
-    if HEIGHT || SLOPE {
+    if SLOPE {
         let at = [
             each(|l| found.get(l).unwrap_or(&found[0]).location.undisplaced[0]),
             each(|l| found.get(l).unwrap_or(&found[0]).location.undisplaced[1]),
@@ -948,7 +968,9 @@ fn finish<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: 
             [0.0; LANES]
         };
         for (l, found) in found.iter_mut().enumerate() {
-            found.height = sums.height[l];
+            if HEIGHT {
+                found.height = sums.height[l];
+            }
             found.slope = [sums.slope[0][l], sums.slope[1][l]];
             found.foam = foam[l];
         }
