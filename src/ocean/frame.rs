@@ -380,8 +380,8 @@ mod tests {
     use crate::simd::{test_pools, Simd};
     use crate::{OceanConfig, OceanState, Spectrum, SurfaceSample};
 
-    /// Batch and single queries, the ocean's and a handle's, give the same bits at every SIMD
-    /// level this CPU runs and at 1, 2 and 3 threads.
+    /// Batch, grid and single queries, the ocean's and a handle's, give the same bits at every
+    /// SIMD level this CPU runs and at 1, 2 and 3 threads.
     #[test]
     fn queries_give_the_same_bits_at_every_level_and_thread_count() {
         let spectrum = Spectrum::jonswap(14.0, 150_000.0).unwrap();
@@ -426,6 +426,20 @@ mod tests {
                     ocean.sample_many(&points, &mut samples).unwrap();
                     for (&[x, z], batch) in points.iter().zip(&samples) {
                         assert_eq!(ocean.sample(x, z).unwrap(), *batch);
+                    }
+                    // Grids in lanes too, rows ending in a partial group of eight, one far
+                    // out where the wrap takes its other path.
+                    for (origin, spacing) in [([-300.0, 50.0], 1.7), ([7.3e11, -2.1e12], 0.37)] {
+                        let [columns, rows] = [21, 4];
+                        let mut grid = vec![SurfaceSample::default(); columns * rows];
+                        ocean
+                            .sample_grid(origin, spacing, [columns, rows], &mut grid)
+                            .unwrap();
+                        for (i, sample) in grid.iter().enumerate() {
+                            let x = origin[0] + (i % columns) as f64 * spacing;
+                            let z = origin[1] + (i / columns) as f64 * spacing;
+                            assert_eq!(ocean.sample(x, z).unwrap(), *sample, "grid point {i}");
+                        }
                     }
                     (heights, surfaces, singles, handle)
                 });

@@ -404,28 +404,62 @@ impl<F: Fields, Q: PointQuery<F>> Kernel for One<'_, F, Q> {
     }
 }
 
-/// A batch's query of each point into `out`, as a [`Kernel`] (its lanes transposed with
-/// `shuffle`).
-struct Batch<'a, F, T, Q, S> {
-    fields: &'a F,
-    points: &'a [[f64; 2]],
-    out: &'a mut [T],
-    query: &'a Q,
+/// Work that runs with a SIMD level's [`Shuffle`] (see [`run_shuffled`]).
+trait ShuffledKernel {
+    fn run<S: Shuffle>(self, shuffle: S);
+}
+
+/// A [`ShuffledKernel`] with its level's [`Shuffle`], as a [`Kernel`] of that level.
+struct Shuffled<K, S> {
+    kernel: K,
     shuffle: S,
 }
 
-impl<F: Fields, Q: PointQuery<F>, S: Shuffle> Kernel for Batch<'_, F, Q::Output, Q, S> {
+impl<K: ShuffledKernel, S: Shuffle> Kernel for Shuffled<K, S> {
     type Output = ();
 
     #[inline(always)]
     fn run(self) {
-        self.query
-            .batch(self.shuffle, self.fields, self.points, self.out);
+        self.kernel.run(self.shuffle);
     }
 }
 
-/// [`Batch`] at SIMD level `simd`, with that level's [`Shuffle`] (AVX2's on AVX-512
+/// `kernel` at SIMD level `simd`, with that level's [`Shuffle`] (AVX2's on AVX-512
 /// machines too: the lanes are eight `f32`).
+#[inline(always)]
+fn run_shuffled<K: ShuffledKernel>(simd: Simd, kernel: K) {
+    match simd {
+        Simd::Baseline => kernel.run(lanes::Plain),
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2(v3) => simd.run_kernel(Shuffled {
+            kernel,
+            shuffle: v3,
+        }),
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx512(v4) => simd.run_kernel(Shuffled {
+            kernel,
+            shuffle: *v4,
+        }),
+    }
+}
+
+/// A batch's query of each point into `out`, as a [`ShuffledKernel`].
+struct Batch<'a, F, T, Q> {
+    fields: &'a F,
+    points: &'a [[f64; 2]],
+    out: &'a mut [T],
+    query: &'a Q,
+}
+
+impl<F: Fields, Q: PointQuery<F>> ShuffledKernel for Batch<'_, F, Q::Output, Q> {
+    #[inline(always)]
+    fn run<S: Shuffle>(self, shuffle: S) {
+        self.query
+            .batch(shuffle, self.fields, self.points, self.out);
+    }
+}
+
+/// [`Batch`] at SIMD level `simd`.
 #[inline(always)]
 fn run_batch<F: Fields, Q: PointQuery<F>>(
     simd: Simd,
@@ -434,35 +468,19 @@ fn run_batch<F: Fields, Q: PointQuery<F>>(
     out: &mut [Q::Output],
     query: &Q,
 ) {
-    match simd {
-        Simd::Baseline => Batch {
+    run_shuffled(
+        simd,
+        Batch {
             fields,
             points,
             out,
             query,
-            shuffle: lanes::Plain,
-        }
-        .run(),
-        #[cfg(target_arch = "x86_64")]
-        Simd::Avx2(v3) => simd.run_kernel(Batch {
-            fields,
-            points,
-            out,
-            query,
-            shuffle: v3,
-        }),
-        #[cfg(target_arch = "x86_64")]
-        Simd::Avx512(v4) => simd.run_kernel(Batch {
-            fields,
-            points,
-            out,
-            query,
-            shuffle: *v4,
-        }),
-    }
+        },
+    );
 }
 
-/// One row of [`OceanState::sample_grid`], as a [`Kernel`].
+/// One row of [`OceanState::sample_grid`], as a [`ShuffledKernel`]: its points eight at a
+/// time, as [`OceanState::sample_many`] samples them.
 struct GridRow<'a, F> {
     fields: &'a F,
     /// The row's first point `[x, z]`, in metres.
@@ -472,19 +490,16 @@ struct GridRow<'a, F> {
     cascades: &'a std::ops::Range<usize>,
 }
 
-impl<F: Fields> Kernel for GridRow<'_, F> {
-    type Output = ();
-
+impl<F: Fields> ShuffledKernel for GridRow<'_, F> {
     #[inline(always)]
-    fn run(self) {
+    fn run<S: Shuffle>(self, shuffle: S) {
         let [x, z] = self.start;
-        for (c, s) in self.row.iter_mut().enumerate() {
-            *s = sample(
-                self.fields,
-                x + c as f64 * self.spacing,
-                z,
-                self.cascades.clone(),
-            );
+        let query = Sample(self.cascades.clone());
+        for (chunk, out) in self.row.chunks_mut(lanes::LANES).enumerate() {
+            let first = chunk * lanes::LANES;
+            let points: [[f64; 2]; lanes::LANES] =
+                std::array::from_fn(|c| [x + (first + c) as f64 * self.spacing, z]);
+            query.batch(shuffle, self.fields, &points[..out.len()], out);
         }
     }
 }
@@ -819,13 +834,16 @@ impl OceanState {
         out.par_chunks_mut(columns)
             .enumerate()
             .for_each(|(r, row)| {
-                simd.run_kernel(GridRow {
-                    fields: &fields,
-                    start: [origin[0], origin[1] + r as f64 * spacing],
-                    spacing,
-                    row,
-                    cascades: &cascades,
-                })
+                run_shuffled(
+                    simd,
+                    GridRow {
+                        fields: &fields,
+                        start: [origin[0], origin[1] + r as f64 * spacing],
+                        spacing,
+                        row,
+                        cascades: &cascades,
+                    },
+                );
             });
         Ok(())
     }
