@@ -852,8 +852,10 @@ impl Searches {
 
 /// Each of `points` located and its result written into `out`: the first guesses of eight
 /// points at a time, then Newton's method on x₀ + D(x₀) = p from them, eight searches at a
-/// time, each lane taking the next point when its search ends; then, eight found points at a time, the height (with `HEIGHT`)
-/// and slope (with `SLOPE`) there. Each result has the bits of its single query.
+/// time, each lane taking the next point when its search ends. A query of heights alone
+/// (`HEIGHT` without `SLOPE`) reads them at every iterate and keeps the best one's; with
+/// `SLOPE`, eight found points at a time, the height (with `HEIGHT`), the slope and the foam
+/// are read there. Each result has the bits of its single query.
 #[inline(always)]
 pub(super) fn locate<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
     shuffle: S,
@@ -941,8 +943,9 @@ pub(super) fn locate<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, co
     );
 }
 
-/// Reads the height (with `HEIGHT`) and slope (with `SLOPE`) at the points `found` (at most
-/// [`LANES`]), and writes each result to `out[found_at[i]]`.
+/// Reads the height (with `HEIGHT`), slope and foam at the points `found` (at most
+/// [`LANES`]) when the query asks for the slope (`SLOPE`; a query of heights alone read them
+/// with its search), and writes each result to `out[found_at[i]]`.
 #[inline(always)]
 fn finish<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
     shuffle: S,
@@ -962,11 +965,7 @@ fn finish<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: 
         let cascades = 0..fields.frame().grids.len();
         let sums = evaluate::<S, F, false, false, HEIGHT, SLOPE>(shuffle, fields, &at, cascades);
         // The foam comes with the slope (a surface sample).
-        let foam = if SLOPE {
-            foam(fields, &at)
-        } else {
-            [0.0; LANES]
-        };
+        let foam = foam(fields, &at);
         for (l, found) in found.iter_mut().enumerate() {
             if HEIGHT {
                 found.height = sums.height[l];
