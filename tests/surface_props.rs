@@ -922,6 +922,12 @@ fn query(ocean: &OceanState, op: &OceanOp) -> Result<(), Error> {
             let result = ocean.sample_grid(origin, spacing, [columns, rows], &mut out);
             if result.is_ok() {
                 assert!(out.iter().all(finite_sample));
+                // A grid point is `sample` there (the first, a middle and the last).
+                for i in [0, out.len() / 2, out.len() - 1] {
+                    let x = origin[0] + (i % columns) as f64 * spacing;
+                    let z = origin[1] + (i / columns) as f64 * spacing;
+                    assert_eq!(ocean.sample(x, z), Ok(out[i]), "grid point {i}");
+                }
             } else {
                 assert!(
                     out.iter().all(|s| *s == SurfaceSample::default()),

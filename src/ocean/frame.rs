@@ -429,8 +429,13 @@ mod tests {
                     }
                     // Grids in lanes too, rows ending in a partial group of eight, one far
                     // out where the wrap takes its other path.
-                    for (origin, spacing) in [([-300.0, 50.0], 1.7), ([7.3e11, -2.1e12], 0.37)] {
-                        let [columns, rows] = [21, 4];
+                    let grids = [
+                        ([-300.0, 50.0], 1.7, [21, 4]),
+                        ([7.3e11, -2.1e12], 0.37, [21, 4]),
+                        // Rows of eleven: a last group of three, queried one point at a time.
+                        ([40.0, -75.0], 2.9, [11, 3]),
+                    ];
+                    for (origin, spacing, [columns, rows]) in grids {
                         let mut grid = vec![SurfaceSample::default(); columns * rows];
                         ocean
                             .sample_grid(origin, spacing, [columns, rows], &mut grid)
@@ -439,6 +444,23 @@ mod tests {
                             let x = origin[0] + (i % columns) as f64 * spacing;
                             let z = origin[1] + (i / columns) as f64 * spacing;
                             assert_eq!(ocean.sample(x, z).unwrap(), *sample, "grid point {i}");
+                        }
+                    }
+                    // Batches too small for lanes (queried one point at a time) and the
+                    // smallest in lanes.
+                    for n in 1..=4 {
+                        let points = &points[100..100 + n];
+                        let mut small = vec![0.0f32; n];
+                        let mut small_surfaces = vec![SurfaceSample::default(); n];
+                        let mut small_samples = vec![SurfaceSample::default(); n];
+                        ocean.heights_at(points, &mut small).unwrap();
+                        ocean.surfaces_at(points, &mut small_surfaces).unwrap();
+                        ocean.sample_many(points, &mut small_samples).unwrap();
+                        for (i, &[x, z]) in points.iter().enumerate() {
+                            let height = ocean.height_at(x, z).unwrap();
+                            assert_eq!(small[i].to_bits(), height.to_bits(), "{n} points");
+                            assert_eq!(small_surfaces[i], ocean.surface_at(x, z).unwrap());
+                            assert_eq!(small_samples[i], ocean.sample(x, z).unwrap());
                         }
                     }
                     (heights, surfaces, singles, handle)

@@ -14,11 +14,16 @@
 #![allow(clippy::needless_range_loop)]
 use super::super::frame::Fields;
 use super::super::spline::{self, Lanes, TileData, STRIDE};
-use super::inversion::{guessing, MIN_DETERMINANT};
+use super::inversion::{self, guessing, MIN_DETERMINANT};
 use super::{normal_from_slope, wrap, Location, Period, SurfaceSample, FAR_PERIODS};
 
 /// Points a vector holds.
 pub(super) const LANES: usize = 8;
+/// Fewest points a batch (or [`sample`]'s last group) puts in lanes: up to three points
+/// are queried one at a time, eight lanes' work costing more than their single queries (on
+/// one thread a batch of one point took 2.7×, of two 1.5× and of three 1.0–1.1× their
+/// single queries, of four 0.8×; see docs/performance.md).
+pub(super) const FEWEST: usize = 4;
 
 type F32s = [f32; LANES];
 type F64s = [f64; LANES];
@@ -990,6 +995,12 @@ pub(super) fn sample<S: Shuffle, F: Fields>(
     out: &mut [SurfaceSample],
 ) {
     for (out, points) in out.chunks_mut(LANES).zip(points.chunks(LANES)) {
+        if points.len() < FEWEST {
+            for (value, &[x, z]) in out.iter_mut().zip(points) {
+                *value = inversion::sample(fields, x, z, range.clone());
+            }
+            continue;
+        }
         let at = [
             each(|l| points.get(l).unwrap_or(&points[0])[0]),
             each(|l| points.get(l).unwrap_or(&points[0])[1]),

@@ -230,6 +230,12 @@ pub(crate) trait PointQuery<F: Fields>: Sync {
     /// bits; the queries that read the spline interleave the points (see [`located_group`]).
     #[inline(always)]
     fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [Self::Output]) {
+        self.singles(fields, points, out);
+    }
+
+    /// [`PointQuery::at`] of each of `points` into `out`, one point at a time.
+    #[inline(always)]
+    fn singles(&self, fields: &F, points: &[[f64; 2]], out: &mut [Self::Output]) {
         for (value, &[x, z]) in out.iter_mut().zip(points) {
             *value = self.at(fields, x, z);
         }
@@ -345,7 +351,9 @@ impl<F: Fields> PointQuery<F> for SurfaceAt {
         points: &[[f64; 2]],
         out: &mut [SurfaceSample],
     ) {
-        if in_lanes(fields, 0..fields.frame().grids.len()) {
+        if points.len() < lanes::FEWEST {
+            self.singles(fields, points, out);
+        } else if in_lanes(fields, 0..fields.frame().grids.len()) {
             lanes::locate::<S, F, SurfaceSample, true, true>(shuffle, fields, points, out);
         } else {
             self.groups(fields, points, out);
@@ -370,7 +378,9 @@ impl<F: Fields> PointQuery<F> for HeightAt {
 
     #[inline(always)]
     fn batch<S: Shuffle>(&self, shuffle: S, fields: &F, points: &[[f64; 2]], out: &mut [f32]) {
-        if in_lanes(fields, 0..fields.frame().grids.len()) {
+        if points.len() < lanes::FEWEST {
+            self.singles(fields, points, out);
+        } else if in_lanes(fields, 0..fields.frame().grids.len()) {
             lanes::locate::<S, F, f32, true, false>(shuffle, fields, points, out);
         } else {
             self.groups(fields, points, out);
