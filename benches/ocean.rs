@@ -27,6 +27,9 @@
 //!   `surfaces_at_2t` of 100, 1 000, 10 000 and 100 000 points scattered uniformly over a
 //!   2 km square, on the default ocean at 256² (throughput in points: criterion prints the
 //!   time a point), the tiles the points read computed before timing.
+//! - `ocean_small_batches`: `heights_at_n` and `height_at_singles_n` (the same n points one
+//!   `height_at` at a time) for batches of n = 1 … 4 scattered points on one thread: a batch
+//!   too small for the lanes must not cost more than its single queries.
 //! - `ocean_first_query`: `step_1t` and `step_and_height_at_1t` (the step and one
 //!   `height_at` after it, which computes the spline tiles it reads), and the same at 2
 //!   threads, on the default ocean at N = 128, 256 and 512: the cost a game loop that steps
@@ -387,6 +390,45 @@ fn query_batch(c: &mut Criterion) {
     group.finish();
 }
 
+fn small_batches(c: &mut Criterion) {
+    let mut group = c.benchmark_group("ocean_small_batches");
+    group
+        .sample_size(50)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(1));
+    let mut state = ocean_with(256, true, Interpolation::CubicBSpline);
+    state.step(3.0).expect("step");
+    let pool = common::pool(1);
+    // 64 batches of n points after one another, so that they read scattered tiles.
+    let points = scattered(256);
+    for n in 1..=4 {
+        let batches: Vec<&[[f64; 2]]> = points.chunks(n).take(64).collect();
+        let mut heights = vec![0.0f32; n];
+        group.throughput(Throughput::Elements((64 * n) as u64));
+        group.bench_function(BenchmarkId::new("heights_at", n), |b| {
+            pool.install(|| {
+                b.iter(|| {
+                    for batch in &batches {
+                        state.heights_at(batch, &mut heights).expect("heights_at");
+                    }
+                })
+            })
+        });
+        group.bench_function(BenchmarkId::new("height_at_singles", n), |b| {
+            pool.install(|| {
+                b.iter(|| {
+                    for batch in &batches {
+                        for (height, &[x, z]) in heights.iter_mut().zip(*batch) {
+                            *height = state.height_at(x, z).expect("height_at");
+                        }
+                    }
+                })
+            })
+        });
+    }
+    group.finish();
+}
+
 fn first_query(c: &mut Criterion) {
     let mut group = c.benchmark_group("ocean_first_query");
     group
@@ -620,6 +662,7 @@ fn main() {
     determinism(&mut criterion);
     queries(&mut criterion);
     query_batch(&mut criterion);
+    small_batches(&mut criterion);
     first_query(&mut criterion);
     full_coverage(&mut criterion);
     live(&mut criterion);
