@@ -655,10 +655,11 @@ fn paired(w: &[f32; 4]) -> [f32; 8] {
     [w[0], w[0], w[1], w[1], w[2], w[2], w[3], w[3]]
 }
 
-/// The sum of each pair's lane over the four taps of `v` (taps 0 + 2 and 1 + 3 first).
+/// Σ_t w_t v_t of each pair's component over the four pairs of `v` (pair t at 2t, 2t + 1):
+/// taps 0 + 2 and 1 + 3 first, tap 2's and 3's products fused into those sums.
 #[inline(always)]
-fn reduce_pairs(v: &[f32; 8]) -> [f32; 2] {
-    let half: [f32; 4] = std::array::from_fn(|l| v[l] + v[l + 4]);
+fn weighted_pairs(w: &[f32; 8], v: &[f32; 8]) -> [f32; 2] {
+    let half: [f32; 4] = std::array::from_fn(|l| w[l + 4].mul_add(v[l + 4], w[l] * v[l]));
     [half[0] + half[2], half[1] + half[3]]
 }
 
@@ -700,11 +701,11 @@ fn pairs<const GRADIENT: bool>(
             let mut sum_z = [0.0f32; 8];
             for (r, taps) in rows.iter().enumerate() {
                 for l in 0..8 {
-                    sum[l] += w.z[r] * taps[l];
+                    sum[l] = w.z[r].mul_add(taps[l], sum[l]);
                 }
                 if GRADIENT {
                     for l in 0..8 {
-                        sum_z[l] += w.dz[r] * taps[l];
+                        sum_z[l] = w.dz[r].mul_add(taps[l], sum_z[l]);
                     }
                 }
             }
@@ -712,11 +713,10 @@ fn pairs<const GRADIENT: bool>(
         }
     };
     let (wx, dx) = (paired(&w.x), paired(&w.dx));
-    let weighted = |w: &[f32; 8], v: &[f32; 8]| reduce_pairs(&std::array::from_fn(|l| w[l] * v[l]));
     [
-        weighted(&wx, &columns),
-        weighted(&dx, &columns),
-        weighted(&wx, &columns_z),
+        weighted_pairs(&wx, &columns),
+        weighted_pairs(&dx, &columns),
+        weighted_pairs(&wx, &columns_z),
     ]
 }
 
@@ -733,9 +733,9 @@ fn columns_v3<const GRADIENT: bool>(
     let (mut sum, mut sum_z) = (zero, zero);
     for (r, &taps) in rows.iter().enumerate() {
         let taps = cast::<_, pulp::f32x8>(taps);
-        sum = v3.add_f32s(sum, v3.mul_f32s(v3.splat_f32s(w.z[r]), taps));
+        sum = v3.mul_add_f32s(v3.splat_f32s(w.z[r]), taps, sum);
         if GRADIENT {
-            sum_z = v3.add_f32s(sum_z, v3.mul_f32s(v3.splat_f32s(w.dz[r]), taps));
+            sum_z = v3.mul_add_f32s(v3.splat_f32s(w.dz[r]), taps, sum_z);
         }
     }
     [cast(sum), cast(sum_z)]
@@ -770,7 +770,7 @@ pub(crate) fn height(tile: &TileData, lx: usize, lz: usize, w: &Weights) -> f32 
         let taps: &[f32; 4] = tile[at..at + 4].try_into().expect("four taps");
         let line: [f32; 4] = std::array::from_fn(|l| w.x[l] * taps[l]);
         for l in 0..4 {
-            sum[l] += w.z[r] * line[l];
+            sum[l] = w.z[r].mul_add(line[l], sum[l]);
         }
     }
     (sum[0] + sum[2]) + (sum[1] + sum[3])

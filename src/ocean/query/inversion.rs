@@ -121,10 +121,11 @@ fn accumulate<
         total.displacement[1] += displacement[1];
     }
     if JACOBIAN {
-        total.jacobian[0] += gx[0] * per_metre;
-        total.jacobian[1] += gz[0] * per_metre;
-        total.jacobian[2] += gx[1] * per_metre;
-        total.jacobian[3] += gz[1] * per_metre;
+        // Fused (one rounding), as the lanes add them.
+        total.jacobian[0] = gx[0].mul_add(per_metre, total.jacobian[0]);
+        total.jacobian[1] = gz[0].mul_add(per_metre, total.jacobian[1]);
+        total.jacobian[2] = gx[1].mul_add(per_metre, total.jacobian[2]);
+        total.jacobian[3] = gz[1].mul_add(per_metre, total.jacobian[3]);
     }
     if HEIGHT {
         total.height += height;

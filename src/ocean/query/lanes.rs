@@ -88,15 +88,15 @@ fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
 }
 
 /// How a batch's lanes turn rows of taps into vectors (pure data movement) and add
-/// products (a multiplication, then an addition: IEEE operations), so every implementation
-/// gives the same bits. Chosen once for a whole batch (see `run_batch`), so that the lanes'
+/// products (IEEE operations, each rounded once: a fused multiply-add is one operation), so
+/// every implementation gives the same bits. Chosen once for a whole batch (see `run_batch`), so that the lanes'
 /// code is compiled once for each SIMD level rather than branching on it at every tap.
 pub(crate) trait Shuffle: Copy {
     /// Eight rows of eight floats, one a lane, as eight vectors of eight lanes.
     fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8];
     /// Eight rows of four floats, one a lane, as four vectors of eight lanes.
     fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4];
-    /// `sum + w·x` lane by lane (a product, then a sum: not fused).
+    /// `sum + w·x` lane by lane, rounded once (a fused multiply-add, as `f32::mul_add`).
     fn add_product(self, sum: F32s, w: F32s, x: F32s) -> F32s;
     /// `w·x` lane by lane.
     fn mul(self, w: F32s, x: F32s) -> F32s;
@@ -121,7 +121,7 @@ impl Shuffle for Plain {
 
     #[inline(always)]
     fn add_product(self, sum: F32s, w: F32s, x: F32s) -> F32s {
-        each(|l| sum[l] + w[l] * x[l])
+        each(|l| w[l].mul_add(x[l], sum[l]))
     }
 
     #[inline(always)]
@@ -152,8 +152,11 @@ impl Shuffle for pulp::x86::V3 {
     #[inline(always)]
     fn add_product(self, sum: F32s, w: F32s, x: F32s) -> F32s {
         use pulp::{cast, f32x8, Simd as _};
-        let product = self.mul_f32s(cast::<_, f32x8>(w), cast::<_, f32x8>(x));
-        cast(self.add_f32s(cast::<_, f32x8>(sum), product))
+        cast(self.mul_add_f32s(
+            cast::<_, f32x8>(w),
+            cast::<_, f32x8>(x),
+            cast::<_, f32x8>(sum),
+        ))
     }
 
     #[inline(always)]
@@ -322,8 +325,10 @@ fn pairs<S: Shuffle, const GRADIENT: bool>(
         return out;
     }
     // Two taps (four floats) of each row at a time, so that the column sums, the rows and
-    // the weights fit in the registers; products[t] holds tap t's terms of each output.
-    let mut products = [[[zero; 2]; 3]; 4];
+    // the weights fit in the registers; terms[i] holds taps i's and i + 2's terms of each
+    // output (tap i's product, then tap i + 2's added to it in one rounding).
+    let mut terms = [[[zero; 2]; 3]; 2];
+    let outputs = if GRADIENT { 3 } else { 1 };
     for half in 0..2 {
         let mut columns = [zero; 4];
         let mut columns_z = [zero; 4];
@@ -340,42 +345,39 @@ fn pairs<S: Shuffle, const GRADIENT: bool>(
         for i in 0..2 {
             let t = 2 * half + i;
             for k in 0..2 {
-                let column = &columns[2 * i + k];
-                products[t][0][k] = shuffle.mul(wx[t].0, *column);
-                if GRADIENT {
-                    let column_z = &columns_z[2 * i + k];
-                    products[t][1][k] = shuffle.mul(dx[t].0, *column);
-                    products[t][2][k] = shuffle.mul(wx[t].0, *column_z);
+                let column = columns[2 * i + k];
+                let column_z = columns_z[2 * i + k];
+                let factors = [(wx[t].0, column), (dx[t].0, column), (wx[t].0, column_z)];
+                for (o, &(w, column)) in factors.iter().enumerate().take(outputs) {
+                    terms[i][o][k] = if half == 0 {
+                        shuffle.mul(w, column)
+                    } else {
+                        shuffle.add_product(terms[i][o][k], w, column)
+                    };
                 }
             }
         }
     }
     // Σ_t as the scalar code adds the taps: (0 + 2) + (1 + 3).
-    let outputs = if GRADIENT { 3 } else { 1 };
     let mut out = [[zero; 2]; 3];
     for o in 0..outputs {
         for k in 0..2 {
-            let p = [
-                products[0][o][k],
-                products[1][o][k],
-                products[2][o][k],
-                products[3][o][k],
-            ];
-            out[o][k] = shuffle.add(shuffle.add(p[0], p[2]), shuffle.add(p[1], p[3]));
+            out[o][k] = shuffle.add(terms[0][o][k], terms[1][o][k]);
         }
     }
     out
 }
 
 /// Σ_t w_t S_t over the four taps of component `k` of `columns` (pair t at 2t + k), added
-/// (tap 0 + tap 2) + (tap 1 + tap 3) as the scalar code adds them.
+/// (tap 0 + tap 2) + (tap 1 + tap 3) as the scalar code adds them (tap 2's and 3's
+/// products fused into the sums).
 #[inline(always)]
 fn across<S: Shuffle>(shuffle: S, w: &[Lanes; 4], columns: &[F32s; 8], k: usize) -> F32s {
     let a = shuffle.mul(w[0].0, columns[k]);
-    let b = shuffle.mul(w[2].0, columns[4 + k]);
     let c = shuffle.mul(w[1].0, columns[2 + k]);
-    let d = shuffle.mul(w[3].0, columns[6 + k]);
-    shuffle.add(shuffle.add(a, b), shuffle.add(c, d))
+    let ab = shuffle.add_product(a, w[2].0, columns[4 + k]);
+    let cd = shuffle.add_product(c, w[3].0, columns[6 + k]);
+    shuffle.add(ab, cd)
 }
 
 /// Floats from a cell's first pair to its last (four rows of four pairs, `STRIDE` pairs
