@@ -22,7 +22,7 @@ use std::sync::{Mutex, OnceLock, PoisonError};
 use rayon::prelude::*;
 
 use crate::error::{self, Error};
-use crate::simd::{Kernel, Simd};
+use crate::simd::{baseline_mul_add_lanes, Kernel, Simd};
 
 /// The pole √3 − 2 of the cubic B-spline's interpolation filter.
 const POLE: f32 = -0.267_949_2;
@@ -658,8 +658,8 @@ fn paired(w: &[f32; 4]) -> [f32; 8] {
 /// Σ_t w_t v_t of each pair's component over the four pairs of `v` (pair t at 2t, 2t + 1):
 /// taps 0 + 2 and 1 + 3 first, tap 2's and 3's products fused into those sums.
 #[inline(always)]
-fn weighted_pairs(w: &[f32; 8], v: &[f32; 8]) -> [f32; 2] {
-    let half: [f32; 4] = std::array::from_fn(|l| w[l + 4].mul_add(v[l + 4], w[l] * v[l]));
+fn weighted_pairs(simd: Simd, w: &[f32; 8], v: &[f32; 8]) -> [f32; 2] {
+    let half: [f32; 4] = std::array::from_fn(|l| simd.mul_add(w[l + 4], v[l + 4], w[l] * v[l]));
     [half[0] + half[2], half[1] + half[3]]
 }
 
@@ -700,13 +700,9 @@ fn pairs<const GRADIENT: bool>(
             let mut sum = [0.0f32; 8];
             let mut sum_z = [0.0f32; 8];
             for (r, taps) in rows.iter().enumerate() {
-                for l in 0..8 {
-                    sum[l] = w.z[r].mul_add(taps[l], sum[l]);
-                }
+                sum = baseline_mul_add_lanes([w.z[r]; 8], *taps, sum);
                 if GRADIENT {
-                    for l in 0..8 {
-                        sum_z[l] = w.dz[r].mul_add(taps[l], sum_z[l]);
-                    }
+                    sum_z = baseline_mul_add_lanes([w.dz[r]; 8], *taps, sum_z);
                 }
             }
             [sum, sum_z]
@@ -714,9 +710,9 @@ fn pairs<const GRADIENT: bool>(
     };
     let (wx, dx) = (paired(&w.x), paired(&w.dx));
     [
-        weighted_pairs(&wx, &columns),
-        weighted_pairs(&dx, &columns),
-        weighted_pairs(&wx, &columns_z),
+        weighted_pairs(simd, &wx, &columns),
+        weighted_pairs(simd, &dx, &columns),
+        weighted_pairs(simd, &wx, &columns_z),
     ]
 }
 
@@ -763,14 +759,14 @@ pub(crate) fn slope(simd: Simd, tile: &TileData, lx: usize, lz: usize, w: &Weigh
 
 /// The height η at a point of the tile's cell (`lx`, `lz`).
 #[inline(always)]
-pub(crate) fn height(tile: &TileData, lx: usize, lz: usize, w: &Weights) -> f32 {
+pub(crate) fn height(simd: Simd, tile: &TileData, lx: usize, lz: usize, w: &Weights) -> f32 {
     let mut sum = [0.0f32; 4];
     for r in 0..4 {
         let at = HEIGHT + (lz + r) * STRIDE + lx;
         let taps: &[f32; 4] = tile[at..at + 4].try_into().expect("four taps");
         let line: [f32; 4] = std::array::from_fn(|l| w.x[l] * taps[l]);
         for l in 0..4 {
-            sum[l] = w.z[r].mul_add(line[l], sum[l]);
+            sum[l] = simd.mul_add(w.z[r], line[l], sum[l]);
         }
     }
     (sum[0] + sum[2]) + (sum[1] + sum[3])

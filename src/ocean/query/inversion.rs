@@ -76,7 +76,7 @@ fn accumulate<
                 [[0.0; 2]; 3]
             };
             let height = if HEIGHT {
-                spline::height(tile, lx, lz, &w)
+                spline::height(simd, tile, lx, lz, &w)
             } else {
                 0.0
             };
@@ -122,10 +122,11 @@ fn accumulate<
     }
     if JACOBIAN {
         // Fused (one rounding), as the lanes add them.
-        total.jacobian[0] = gx[0].mul_add(per_metre, total.jacobian[0]);
-        total.jacobian[1] = gz[0].mul_add(per_metre, total.jacobian[1]);
-        total.jacobian[2] = gx[1].mul_add(per_metre, total.jacobian[2]);
-        total.jacobian[3] = gz[1].mul_add(per_metre, total.jacobian[3]);
+        let j = &mut total.jacobian;
+        j[0] = simd.mul_add(gx[0], per_metre, j[0]);
+        j[1] = simd.mul_add(gz[0], per_metre, j[1]);
+        j[2] = simd.mul_add(gx[1], per_metre, j[2]);
+        j[3] = simd.mul_add(gz[1], per_metre, j[3]);
     }
     if HEIGHT {
         total.height += height;

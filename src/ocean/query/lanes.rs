@@ -121,7 +121,7 @@ impl Shuffle for Plain {
 
     #[inline(always)]
     fn add_product(self, sum: F32s, w: F32s, x: F32s) -> F32s {
-        each(|l| w[l].mul_add(x[l], sum[l]))
+        crate::simd::baseline_mul_add_lanes(w, x, sum)
     }
 
     #[inline(always)]
