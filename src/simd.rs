@@ -224,6 +224,11 @@ mod tests {
         assert!(lanes.iter().all(|v| v.to_bits() == want.to_bits()));
     }
 
+    /// 2^k, exactly (−126 ≤ k ≤ 127).
+    fn two_to(k: i32) -> f32 {
+        f32::from_bits(((k + 127) as u32) << 23)
+    }
+
     #[test]
     fn the_baseline_fused_multiply_add_rounds_once() {
         let mut state = 0x9e37_79b9_7f4a_7c15u64;
@@ -237,14 +242,14 @@ mod tests {
         let mut hazards = 0;
         for i in 0..200_000 {
             // Products and addends of nearby and distant scales, with cancellation.
-            let scale = |k: i32| 2.0f32.powi(k);
+            let scale = two_to;
             let (a, b) = (unit() * scale(i % 40 - 20), unit() * scale(i % 7 - 3));
             let c = unit() * scale(i % 50 - 25);
             check(a, b, c);
             // c in [1, 2) and a product half c's last place (2⁻²⁴) times 1 − k²·2⁻³⁶
             // ((1 + k·2⁻¹⁸)(1 − k·2⁻¹⁸), k ≤ 8): off the halfway point between two f32 by
             // at most 2⁻⁵⁴, which the f64 sum rounds away, landing on it.
-            let m = (i % 8 + 1) as f32 * 2.0f32.powi(-18);
+            let m = (i % 8 + 1) as f32 * two_to(-18);
             let c = 1.0 + (i % 4096) as f32 * f32::EPSILON;
             let half_ulp = f32::EPSILON / 2.0;
             let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
@@ -253,7 +258,9 @@ mod tests {
                 hazards += 1;
             }
             check(a, b, c);
-            check(a * 2.0f32.powi(-130), b, c * 2.0f32.powi(-130));
+            // The same among the subnormals (2⁻¹³⁰ = 2⁻⁶⁵ · 2⁻⁶⁵).
+            let tiny = two_to(-65) * two_to(-65);
+            check(a * tiny, b, c * tiny);
         }
         // The constructed cases must reach the exact routine (and did agree above).
         assert!(hazards > 100_000, "{hazards} hazards");
