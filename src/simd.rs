@@ -18,6 +18,9 @@
 //! a multiply and an add into an FMA on its own (that needs an explicit `mul_add`), even
 //! where the FMA extension is enabled; square root and division are correctly rounded in
 //! every SSE/AVX form; and the loops hold no reduction whose order a vectoriser could change.
+//! Where the queries do fuse (their spline sums), they say so: [`Simd::mul_add`] in the
+//! single queries and the lanes' `add_product` in the batches give IEEE 754's fused result
+//! at every level ([`baseline_mul_add`] where the CPU has no FMA instruction).
 //! `tests` in src/cascade/mod.rs compare every output bit of every level the machine has.
 
 /// A SIMD level of the update's element loops, proven available on this CPU.
