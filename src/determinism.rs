@@ -32,7 +32,8 @@
 ///   (rustfft's `FftPlannerScalar`) whatever the CPU offers, every transcendental function
 ///   from the `libm` crate (pure Rust), no multiply and add fused by the compiler (the
 ///   queries' spline sums use explicit fused multiply-adds, which IEEE 754 rounds once on
-///   every CPU, in hardware or in software), and the crate's own Box–Muller transform for
+///   every CPU, in hardware or in software; in `SameMachine` mode a CPU without FMA adds
+///   them unfused, which is faster there), and the crate's own Box–Muller transform for
 ///   the Gaussian draws. Every output buffer, h0 and query
 ///   result is then bit-identical on every CPU and operating system with IEEE 754
 ///   arithmetic (x86-64, aarch64, wasm32, …; not x87-only 32-bit x86), for the same

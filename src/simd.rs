@@ -23,11 +23,17 @@
 //! at every level ([`baseline_mul_add`] where the CPU has no FMA instruction).
 //! `tests` in src/cascade/mod.rs compare every output bit of every level the machine has.
 
+use crate::determinism::Determinism;
+
 /// A SIMD level of the update's element loops, proven available on this CPU.
 #[derive(Clone, Copy)]
 pub(crate) enum Simd {
     /// The target's baseline (SSE2 on x86-64; whatever the target enables elsewhere).
-    Baseline,
+    /// `fused`: whether the queries' fused multiply-adds give IEEE 754's fused result
+    /// ([`baseline_mul_add`]) or, on a CPU without FMA in `Determinism::SameMachine` mode,
+    /// a product and a sum rounded apart (see [`Simd::for_queries`]). Only the queries read
+    /// it.
+    Baseline { fused: bool },
     /// AVX2, FMA, BMI1/2 (x86-64-v3).
     #[cfg(target_arch = "x86_64")]
     Avx2(pulp::x86::V3),
@@ -48,14 +54,28 @@ impl Simd {
                 return Simd::Avx2(v3);
             }
         }
-        Simd::Baseline
+        Simd::Baseline { fused: true }
+    }
+
+    /// This level for the queries of an ocean in `determinism` mode: the baseline of a CPU
+    /// without an FMA instruction adds the queries' products unfused in
+    /// `Determinism::SameMachine` mode (fused in software they took about 3× as long, and
+    /// the mode lets one machine's bits differ from another's), fused in `CrossPlatform`
+    /// mode (the same bits on every machine).
+    pub(crate) fn for_queries(self, determinism: Determinism) -> Simd {
+        match self {
+            Simd::Baseline { .. } => Simd::Baseline {
+                fused: baseline_fused(determinism, cpu_has_fma()),
+            },
+            other => other,
+        }
     }
 
     /// Every level this CPU runs, baseline first.
     #[cfg(test)]
     pub(crate) fn available() -> Vec<Self> {
         #[allow(unused_mut)]
-        let mut levels = vec![Simd::Baseline];
+        let mut levels = vec![Simd::Baseline { fused: true }];
         #[cfg(target_arch = "x86_64")]
         {
             levels.extend(pulp::x86::V3::try_new().map(Simd::Avx2));
@@ -69,7 +89,7 @@ impl Simd {
     #[inline(always)]
     pub(crate) fn run<R>(self, kernel: impl FnOnce() -> R) -> R {
         match self {
-            Simd::Baseline => kernel(),
+            Simd::Baseline { .. } => kernel(),
             #[cfg(target_arch = "x86_64")]
             Simd::Avx2(v3) => v3.vectorize(kernel),
             #[cfg(target_arch = "x86_64")]
@@ -104,7 +124,7 @@ impl Simd {
     #[inline(always)]
     pub(crate) fn run_kernel<K: Kernel>(self, kernel: K) -> K::Output {
         match self {
-            Simd::Baseline => kernel.run(),
+            Simd::Baseline { .. } => kernel.run(),
             #[cfg(target_arch = "x86_64")]
             Simd::Avx2(v3) => v3.vectorize(Pulp(kernel)),
             #[cfg(target_arch = "x86_64")]
@@ -119,7 +139,8 @@ impl Simd {
     #[inline(always)]
     pub(crate) fn mul_add(self, a: f32, b: f32, c: f32) -> f32 {
         match self {
-            Simd::Baseline => baseline_mul_add(a, b, c),
+            Simd::Baseline { fused: true } => baseline_mul_add(a, b, c),
+            Simd::Baseline { fused: false } => a * b + c,
             #[cfg(target_arch = "x86_64")]
             _ => a.mul_add(b, c),
         }
@@ -129,7 +150,8 @@ impl Simd {
 impl std::fmt::Debug for Simd {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {
-            Simd::Baseline => "Baseline",
+            Simd::Baseline { fused: true } => "Baseline",
+            Simd::Baseline { fused: false } => "Baseline (unfused)",
             #[cfg(target_arch = "x86_64")]
             Simd::Avx2(_) => "Avx2",
             #[cfg(target_arch = "x86_64")]
@@ -171,6 +193,39 @@ pub(crate) fn baseline_mul_add(a: f32, b: f32, c: f32) -> f32 {
         libm::fmaf(a, b, c)
     } else {
         sum as f32
+    }
+}
+
+/// Whether the queries at the baseline level fuse their multiply-adds: always in
+/// `CrossPlatform` mode, in `SameMachine` mode where the CPU has FMA (`has_fma`).
+fn baseline_fused(determinism: Determinism, has_fma: bool) -> bool {
+    determinism == Determinism::CrossPlatform || has_fma
+}
+
+/// Whether this CPU has a fused multiply-add instruction.
+fn cpu_has_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        cfg!(any(target_feature = "fma", target_arch = "aarch64"))
+    }
+}
+
+/// `a·b + c` of eight lanes at the baseline level: [`baseline_mul_add_lanes`] if `fused`,
+/// else a product and a sum (see [`Simd::Baseline`]).
+#[inline(always)]
+pub(crate) fn baseline_lanes(fused: bool, a: [f32; 8], b: [f32; 8], c: [f32; 8]) -> [f32; 8] {
+    if fused {
+        baseline_mul_add_lanes(a, b, c)
+    } else {
+        let mut out = [0.0f32; 8];
+        for l in 0..8 {
+            out[l] = a[l] * b[l] + c[l];
+        }
+        out
     }
 }
 
@@ -230,6 +285,20 @@ mod tests {
     /// 2^k, exactly (−126 ≤ k ≤ 127).
     fn two_to(k: i32) -> f32 {
         f32::from_bits(((k + 127) as u32) << 23)
+    }
+
+    #[test]
+    fn the_baseline_adds_unfused_only_on_a_cpu_without_fma_in_same_machine_mode() {
+        use Determinism::{CrossPlatform, SameMachine};
+        assert!(baseline_fused(CrossPlatform, false));
+        assert!(baseline_fused(CrossPlatform, true));
+        assert!(baseline_fused(SameMachine, true));
+        assert!(!baseline_fused(SameMachine, false));
+        // The wider levels are left as they are.
+        if let Some(level) = Simd::available().last() {
+            let queries = level.for_queries(SameMachine);
+            assert_eq!(format!("{queries:?}"), format!("{level:?}"));
+        }
     }
 
     #[test]

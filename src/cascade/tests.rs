@@ -107,7 +107,7 @@ fn every_simd_level_and_thread_count_gives_the_same_bits() {
     let times = [0.0, 7.25, 1000.5];
     for (spectrum, config) in configs() {
         let mut reference = Cascade::new(&spectrum, config).unwrap();
-        reference.set_simd(Simd::Baseline);
+        reference.set_simd(Simd::Baseline { fused: true });
         let expected = pools[0].1.install(|| fingerprint(&mut reference, &times));
         for &level in &levels {
             for (threads, pool) in &pools {

@@ -22,7 +22,7 @@ use std::sync::{Mutex, OnceLock, PoisonError};
 use rayon::prelude::*;
 
 use crate::error::{self, Error};
-use crate::simd::{baseline_mul_add_lanes, Kernel, Simd};
+use crate::simd::{baseline_lanes, Kernel, Simd};
 
 /// The pole √3 − 2 of the cubic B-spline's interpolation filter.
 const POLE: f32 = -0.267_949_2;
@@ -696,13 +696,13 @@ fn pairs<const GRADIENT: bool>(
         Simd::Avx2(v3) => columns_v3::<GRADIENT>(v3, &rows, w),
         #[cfg(target_arch = "x86_64")]
         Simd::Avx512(v4) => columns_v3::<GRADIENT>(*v4, &rows, w),
-        Simd::Baseline => {
+        Simd::Baseline { fused } => {
             let mut sum = [0.0f32; 8];
             let mut sum_z = [0.0f32; 8];
             for (r, taps) in rows.iter().enumerate() {
-                sum = baseline_mul_add_lanes([w.z[r]; 8], *taps, sum);
+                sum = baseline_lanes(fused, [w.z[r]; 8], *taps, sum);
                 if GRADIENT {
-                    sum_z = baseline_mul_add_lanes([w.dz[r]; 8], *taps, sum_z);
+                    sum_z = baseline_lanes(fused, [w.dz[r]; 8], *taps, sum_z);
                 }
             }
             [sum, sum_z]
@@ -841,7 +841,8 @@ mod tests {
             let mut worst = 0.0f64;
             for iz in 0..n {
                 for ix in 0..n {
-                    let (data, lx, lz) = tiles.cell(ix, iz, || source, Simd::Baseline);
+                    let (data, lx, lz) =
+                        tiles.cell(ix, iz, || source, Simd::Baseline { fused: true });
                     // The cell's 4×4 taps are grid points ix − 1 … ix + 2, iz − 1 … iz + 2.
                     for b in 0..4 {
                         for a in 0..4 {

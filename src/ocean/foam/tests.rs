@@ -175,7 +175,7 @@ fn every_simd_level_and_thread_count_gives_the_same_foam() {
             bits
         })
     };
-    let expected = run(Simd::Baseline, &pools[0].1);
+    let expected = run(Simd::Baseline { fused: true }, &pools[0].1);
     for &level in &levels {
         for (threads, pool) in &pools {
             assert!(
@@ -320,7 +320,7 @@ fn scaling_the_intensity_by_powers_of_two_keeps_its_bits() {
         (1.0, super::intensity::INV_SQRT_TAU)
     );
     let mut unscaled = vec![0.0f32; n * n];
-    Simd::Baseline.run(|| p.intensity_row(&foam.gradient, &mut unscaled));
+    Simd::Baseline { fused: true }.run(|| p.intensity_row(&foam.gradient, &mut unscaled));
     assert!(unscaled.iter().filter(|&&s| s > 0.1 * p.inv_active).count() > 20);
     for (c, d) in [(0, 3), (1, 0), (5, 2), (12, 7), (20, 9)] {
         let (c, d) = (0.5f32.powi(c), 0.5f32.powi(d));

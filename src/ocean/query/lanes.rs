@@ -89,14 +89,15 @@ fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
 
 /// How a batch's lanes turn rows of taps into vectors (pure data movement) and add
 /// products (IEEE operations, each rounded once: a fused multiply-add is one operation), so
-/// every implementation gives the same bits. Chosen once for a whole batch (see `run_batch`), so that the lanes'
+/// every implementation gives the same bits (the single queries' at the same level). Chosen once for a whole batch (see `run_batch`), so that the lanes'
 /// code is compiled once for each SIMD level rather than branching on it at every tap.
 pub(crate) trait Shuffle: Copy {
     /// Eight rows of eight floats, one a lane, as eight vectors of eight lanes.
     fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8];
     /// Eight rows of four floats, one a lane, as four vectors of eight lanes.
     fn transpose4(self, rows: [&[f32; 4]; LANES]) -> [F32s; 4];
-    /// `sum + w·x` lane by lane, rounded once (a fused multiply-add, as `f32::mul_add`).
+    /// `sum + w·x` lane by lane, rounded once (a fused multiply-add, as `f32::mul_add`),
+    /// except at a baseline level that adds unfused (see `Simd::Baseline`).
     fn add_product(self, sum: F32s, w: F32s, x: F32s) -> F32s;
     /// `w·x` lane by lane.
     fn mul(self, w: F32s, x: F32s) -> F32s;
@@ -104,9 +105,12 @@ pub(crate) trait Shuffle: Copy {
     fn add(self, a: F32s, b: F32s) -> F32s;
 }
 
-/// [`Shuffle`] written as plain array code (the baseline level).
+/// [`Shuffle`] written as plain array code (the baseline level), its products added fused
+/// or not as the level says (see `Simd::Baseline`).
 #[derive(Clone, Copy)]
-pub(crate) struct Plain;
+pub(crate) struct Plain {
+    pub(crate) fused: bool,
+}
 
 impl Shuffle for Plain {
     #[inline(always)]
@@ -121,7 +125,7 @@ impl Shuffle for Plain {
 
     #[inline(always)]
     fn add_product(self, sum: F32s, w: F32s, x: F32s) -> F32s {
-        crate::simd::baseline_mul_add_lanes(w, x, sum)
+        crate::simd::baseline_lanes(self.fused, w, x, sum)
     }
 
     #[inline(always)]

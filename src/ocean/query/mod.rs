@@ -439,7 +439,7 @@ impl<K: ShuffledKernel, S: Shuffle> Kernel for Shuffled<K, S> {
 #[inline(always)]
 fn run_shuffled<K: ShuffledKernel>(simd: Simd, kernel: K) {
     match simd {
-        Simd::Baseline => kernel.run(lanes::Plain),
+        Simd::Baseline { fused } => kernel.run(lanes::Plain { fused }),
         #[cfg(target_arch = "x86_64")]
         Simd::Avx2(v3) => simd.run_kernel(Shuffled {
             kernel,
