@@ -89,8 +89,9 @@ fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
 
 /// How a batch's lanes turn rows of taps into vectors (pure data movement) and add
 /// products (IEEE operations, each rounded once: a fused multiply-add is one operation), so
-/// every implementation gives the same bits (the single queries' at the same level). Chosen once for a whole batch (see `run_batch`), so that the lanes'
-/// code is compiled once for each SIMD level rather than branching on it at every tap.
+/// every implementation gives the same bits (the single queries' at the same level). Chosen
+/// once for a whole batch (see `run_batch`), so that the lanes' code is compiled once for
+/// each SIMD level rather than branching on it at every tap.
 pub(crate) trait Shuffle: Copy {
     /// Eight rows of eight floats, one a lane, as eight vectors of eight lanes.
     fn transpose8(self, rows: [&[f32; 8]; LANES]) -> [F32s; 8];
