@@ -59,9 +59,9 @@ impl Simd {
 
     /// This level for the queries of an ocean in `determinism` mode: the baseline of a CPU
     /// without an FMA instruction adds the queries' products unfused in
-    /// `Determinism::SameMachine` mode (fused in software they took about 3× as long, and
-    /// the mode lets one machine's bits differ from another's), fused in `CrossPlatform`
-    /// mode (the same bits on every machine).
+    /// `Determinism::SameMachine` mode (fused in software they cost several times as much,
+    /// and the mode lets one machine's bits differ from another's), fused in
+    /// `CrossPlatform` mode (the same bits on every machine).
     pub(crate) fn for_queries(self, determinism: Determinism) -> Simd {
         match self {
             Simd::Baseline { .. } => Simd::Baseline {
@@ -176,16 +176,20 @@ pub(crate) fn test_pools() -> Vec<(usize, rayon::ThreadPool)> {
         .collect()
 }
 
+/// Whether code compiled at the baseline level has an FMA instruction (aarch64 always has;
+/// an x86-64 build only with the feature enabled for the whole crate).
+const HARDWARE_FMA: bool = cfg!(any(target_feature = "fma", target_arch = "aarch64"));
+
 /// a·b + c rounded once (IEEE 754's fused multiply-add: `f32::mul_add`'s bits) for code
 /// compiled at the [`Simd::Baseline`] level, where x86-64 has no FMA instruction and
-/// `f32::mul_add` calls the C library's `fmaf`, which took about 14 ns a call here (queries
-/// 4.5× slower than at AVX2). The product of two f32 is exact in f64 (24 + 24 bits), so
+/// `f32::mul_add` calls the C library's `fmaf`, far slower (docs/performance.md, "Fused
+/// multiply-adds"). The product of two f32 is exact in f64 (24 + 24 bits), so
 /// the sum rounds once in f64 and once more to f32; the second rounding gives the fused
 /// result unless the first landed exactly halfway between two f32 (or among the f32
 /// subnormals, whose halfway points lie elsewhere), rare cases left to `libm::fmaf`.
 #[inline(always)]
 pub(crate) fn baseline_mul_add(a: f32, b: f32, c: f32) -> f32 {
-    if cfg!(any(target_feature = "fma", target_arch = "aarch64")) {
+    if HARDWARE_FMA {
         return a.mul_add(b, c);
     }
     let sum = f64::from(a) * f64::from(b) + f64::from(c);
@@ -210,7 +214,7 @@ fn cpu_has_fma() -> bool {
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
-        cfg!(any(target_feature = "fma", target_arch = "aarch64"))
+        HARDWARE_FMA
     }
 }
 
@@ -233,7 +237,7 @@ pub(crate) fn baseline_lanes(fused: bool, a: [f32; 8], b: [f32; 8], c: [f32; 8])
 /// lane).
 #[inline(always)]
 pub(crate) fn baseline_mul_add_lanes(a: [f32; 8], b: [f32; 8], c: [f32; 8]) -> [f32; 8] {
-    if cfg!(any(target_feature = "fma", target_arch = "aarch64")) {
+    if HARDWARE_FMA {
         return std::array::from_fn(|l| a[l].mul_add(b[l], c[l]));
     }
     let mut sum = [0.0f64; 8];
