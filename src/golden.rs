@@ -38,7 +38,10 @@
 //! tolerance; 0.3); every other entry stayed as it was. Every query entry was recomputed
 //! again when the queries came to add their products with fused multiply-adds (one rounding
 //! where there were two: the spline's tap sums and the Jacobian's sum over the cascades;
-//! 0.3); every other entry stayed as it was.
+//! 0.3); every other entry stayed as it was. The query entries of the oceans with more than
+//! one cascade were recomputed when a search's first guess came to subtract the smaller
+//! cascades' displacement where the first Newton step lands (another iterate within the
+//! tolerance; 0.3); every other entry stayed as it was.
 //!
 //! The hash is [`BitHash`] (FNV-1a over the little-endian bytes of each value's bit pattern),
 //! because std's `DefaultHasher` does not promise the same hashes across releases.
@@ -240,7 +243,7 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("jonswap 64²", "cascade 2 jacobian", 0x8bb2cb9ad96ffc51),
     ("jonswap 64²", "cascade 2 scalars", 0xc3a8cef85c200326),
     ("jonswap 64²", "foam", 0xd04a66da45251f7d),
-    ("jonswap 64²", "queries", 0xddb59998fb1deb4d),
+    ("jonswap 64²", "queries", 0xd163291f43f681a7),
     ("tma 48²", "cascade 0 h0", 0x15fd0b096725fe9a),
     ("tma 48²", "cascade 0 height", 0x2cf205b883b3496e),
     ("tma 48²", "cascade 0 displacement", 0x1cafb29a8c96925f),
@@ -256,7 +259,7 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("tma 48²", "cascade 1 jacobian", 0x24fd723c5149eb7e),
     ("tma 48²", "cascade 1 scalars", 0x2164c8706aa127d2),
     ("tma 48²", "foam", 0xf39ddae40eaa4d5f),
-    ("tma 48²", "queries", 0xc0e34edf97622c84),
+    ("tma 48²", "queries", 0x54c2a9447bbaf4b9),
     ("elfouhaily 34²", "cascade 0 h0", 0x0a3c2a1c37fab219),
     ("elfouhaily 34²", "cascade 0 height", 0xa8a1ec35133c7e0a),
     (
@@ -292,7 +295,7 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("live 32²", "cascade 2 jacobian", 0x8c597d4c3bc8ebf2),
     ("live 32²", "cascade 2 scalars", 0x6fc7dc5a9cda6310),
     ("live 32²", "foam", 0xbc28d13a7fb57809),
-    ("live 32²", "queries", 0x0bd005377cc5467b),
+    ("live 32²", "queries", 0xdd0db03f814d14ce),
     ("second order 48²", "cascade 0 h0", 0xfc12a5fce6cd8be1),
     ("second order 48²", "cascade 0 height", 0x98ef3de42c9d7471),
     (
@@ -316,7 +319,7 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("second order 48²", "cascade 1 jacobian", 0x71b099333d0a39cb),
     ("second order 48²", "cascade 1 scalars", 0x48ac7b89d920efd3),
     ("second order 48²", "foam", 0x0ab480ca50208877),
-    ("second order 48²", "queries", 0x06abcc225181df35),
+    ("second order 48²", "queries", 0xfd339bba7b41b10c),
 ];
 
 #[test]

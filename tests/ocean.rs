@@ -336,6 +336,33 @@ fn height_at_inverts_the_displacement_like_a_brute_force_search() {
 }
 
 #[test]
+fn searches_on_the_default_sea_mostly_end_after_one_newton_step() {
+    // The first guess (a Newton step on the long waves, less the short waves' displacement
+    // where it lands) starts within millimetres, so one Newton step on every cascade
+    // reaches the 0.1 mm tolerance for most points; from the long waves' step alone (2.5 cm
+    // away) about half the points needed a second. 2000 points make the share good to ±2 %.
+    let mut state = ocean(OceanConfig::default());
+    state.step(3.0).unwrap();
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2000.0 - 1000.0
+    };
+    let mut steps = [0usize; 4];
+    for _ in 0..2000 {
+        let found = state.locate(next(), next()).unwrap();
+        assert!(found.converged, "miss {} m", found.miss);
+        assert!(found.iterations <= 3, "{} steps", found.iterations);
+        steps[found.iterations] += 1;
+    }
+    let one = steps[0] + steps[1];
+    assert!(one >= 1700, "steps taken (0, 1, 2, 3): {steps:?}");
+    println!("steps taken (0, 1, 2, 3) by 2000 points: {steps:?}");
+}
+
+#[test]
 fn batch_queries_equal_single_queries() {
     let mut state = ocean(small_config());
     state.step(2.0).unwrap();

@@ -213,24 +213,32 @@ pub(super) fn newton_step(residual: [f64; 2], jacobian: [f32; 4]) -> [f64; 2] {
 }
 
 /// Cascades the first step of a search reads ([`first_guess`]): the larger half of an
-/// ocean's `count` (the small waves move the water least).
+/// ocean's `count` (the small waves move the water least). The rest correct the step
+/// without their Jacobian.
 #[inline(always)]
 pub(super) fn guessing(count: usize) -> std::ops::Range<usize> {
     0..count.div_ceil(2)
 }
 
 /// Where a search for the water landing on world p = (x, z) starts: p plus one Newton step
-/// on the [`guessing`] cascades alone (their displacement D and its Jacobian at p, the step
-/// solving (I + ∇D) δ = −D). It lands within about a centimetre of the answer where p is
-/// metres from it, for the price of an evaluation of the larger cascades only: on the default
-/// sea a search then evaluates 9.5 cascades a point instead of 10.2.
+/// on the [`guessing`] cascades alone (their displacement D_L and its Jacobian at p, the
+/// step solving (I + ∇D_L) δ = −D_L), less the displacement of the other cascades where that
+/// step lands (the short waves' Jacobian changes too fast to carry over from p, and their
+/// displacement is centimetres). On the default sea it lands 4.6 mm from the answer
+/// (median; 2.5 cm without the subtraction) where p is metres from it, and 92 % of searches
+/// then end after one Newton step (half without it): 9.2 cascades evaluated a point, one
+/// without the Jacobian, instead of 9.5 (10.2 from p).
 #[inline(always)]
 pub(super) fn first_guess<F: Fields>(fields: &F, x: f64, z: f64) -> [f64; 2] {
-    let cascades = guessing(fields.frame().grids.len());
+    let count = fields.frame().grids.len();
+    let cascades = guessing(count);
+    let rest = cascades.end..count;
     let summed = evaluate::<F, true, true, false, false>(fields, x, z, cascades);
     let [dx, dz] = summed.displacement.map(f64::from);
     let step = newton_step([-dx, -dz], summed.jacobian);
-    [x + step[0], z + step[1]]
+    let [x, z] = [x + step[0], z + step[1]];
+    let short = evaluate::<F, true, false, false, false>(fields, x, z, rest).displacement;
+    [x - f64::from(short[0]), z - f64::from(short[1])]
 }
 
 /// One point's search for the undisplaced point whose water lands on it, by Newton's

@@ -617,7 +617,8 @@ impl Guesses {
     };
 
     /// The first guesses of `points` (at most [`LANES`], the first being the batch's point
-    /// `first`): one Newton step on the larger cascades, with the single query's operations.
+    /// `first`): one Newton step on the larger cascades, less the smaller cascades'
+    /// displacement there, with the single query's operations.
     #[inline(always)]
     fn of<S: Shuffle, F: Fields>(
         shuffle: S,
@@ -628,19 +629,27 @@ impl Guesses {
         let target: [[f64; 2]; LANES] =
             std::array::from_fn(|l| *points.get(l).unwrap_or(&points[0]));
         let at = [each(|l| target[l][0]), each(|l| target[l][1])];
-        let cascades = guessing(fields.frame().grids.len());
+        let count = fields.frame().grids.len();
+        let cascades = guessing(count);
+        let rest = cascades.end..count;
         let summed = evaluate::<S, F, true, true, false, false>(shuffle, fields, &at, cascades);
         let d = &summed.displacement;
         let residual = [each(|l| -f64::from(d[0][l])), each(|l| -f64::from(d[1][l]))];
         let step = newton_steps(&residual, &summed.jacobian);
+        let stepped = [
+            each(|l| at[0][l] + step[0][l]),
+            each(|l| at[1][l] + step[1][l]),
+        ];
+        let short = evaluate::<S, F, true, false, false, false>(shuffle, fields, &stepped, rest);
+        let d = &short.displacement;
         Guesses {
             first,
             count: points.len(),
             taken: 0,
             target,
             start: [
-                each(|l| at[0][l] + step[0][l]),
-                each(|l| at[1][l] + step[1][l]),
+                each(|l| stepped[0][l] - f64::from(d[0][l])),
+                each(|l| stepped[1][l] - f64::from(d[1][l])),
             ],
         }
     }

@@ -70,8 +70,8 @@ pub struct Location {
     /// actually lands (0 for an exact inversion).
     pub miss: f32,
     /// Newton steps it took to reach `undisplaced` from the search's first guess (0: the
-    /// first guess itself, one Newton step on the larger cascades from the query point), at
-    /// most
+    /// first guess itself, one Newton step on the larger cascades from the query point less
+    /// the smaller cascades' displacement there), at most
     /// [`QueryConfig::max_iterations`](crate::QueryConfig::max_iterations).
     pub iterations: usize,
     /// Whether `miss` is below [`QueryConfig::tolerance`](crate::QueryConfig::tolerance).
@@ -670,14 +670,15 @@ impl OceanState {
     /// Finds the undisplaced point x₀ whose water lands on world point (`x`, `z`), i.e.
     /// x₀ + D(x₀) = (x, z), by Newton's method with the Jacobian of the interpolated
     /// displacement, from a first guess one Newton step away from (x, z) on the larger half
-    /// of the cascades alone (whose waves move the water most), then with every cascade (at
-    /// most [`QueryConfig::max_iterations`] steps, stopping once within
-    /// [`QueryConfig::tolerance`]; one or two steps after the first guess on the default
-    /// sea), and says how well it did. A step that does not bring the water closer is halved, and
-    /// where the surface (nearly) folds the step is the fixed point's x₀ ← p − D(x₀), so it
-    /// converges wherever the surface does not fold (J > 0); where it folds (high
-    /// choppiness, breaking crests) several points land on (x, z) or none does exactly, and
-    /// the best iterate found is returned with `converged: false`.
+    /// of the cascades alone (whose waves move the water most), less the smaller cascades'
+    /// displacement where that step lands, then with every cascade (at most
+    /// [`QueryConfig::max_iterations`] steps, stopping once within
+    /// [`QueryConfig::tolerance`]; on the default sea one step after the first guess, two
+    /// for about 8 % of points), and says how well it did. A step that does not bring the
+    /// water closer is halved, and where the surface (nearly) folds the step is the fixed
+    /// point's x₀ ← p − D(x₀), so it converges wherever the surface does not fold (J > 0);
+    /// where it folds (high choppiness, breaking crests) several points land on (x, z) or
+    /// none does exactly, and the best iterate found is returned with `converged: false`.
     ///
     /// [`QueryConfig::max_iterations`]: crate::QueryConfig::max_iterations
     /// [`QueryConfig::tolerance`]: crate::QueryConfig::tolerance
