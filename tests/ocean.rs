@@ -364,8 +364,6 @@ fn searches_on_the_default_sea_mostly_end_after_one_newton_step() {
 
 #[test]
 fn batch_queries_equal_single_queries() {
-    let mut state = ocean(small_config());
-    state.step(2.0).unwrap();
     let points: Vec<[f64; 2]> = (0..500)
         .map(|i| {
             [
@@ -374,6 +372,47 @@ fn batch_queries_equal_single_queries() {
             ]
         })
         .collect();
+    // A tolerance of 10 m ends every search at its first guess and one iteration ends most
+    // after their first step: `heights_at` does not read the heights at a search's first
+    // evaluation, so those heights come from its last pass instead.
+    let configs = [
+        (small_config(), None),
+        (
+            OceanConfig {
+                query: QueryConfig {
+                    tolerance: 10.0,
+                    ..QueryConfig::default()
+                },
+                ..small_config()
+            },
+            Some(0),
+        ),
+        (
+            OceanConfig {
+                query: QueryConfig {
+                    tolerance: 1e-9,
+                    max_iterations: 1,
+                    ..QueryConfig::default()
+                },
+                ..small_config()
+            },
+            Some(1),
+        ),
+    ];
+    for (config, iterations) in configs {
+        let mut state = ocean(config);
+        state.step(2.0).unwrap();
+        if let Some(iterations) = iterations {
+            for p in &points {
+                let location = state.locate(p[0], p[1]).unwrap();
+                assert_eq!(location.iterations, iterations, "{p:?}");
+            }
+        }
+        batch_equals_single(&state, &points);
+    }
+}
+
+fn batch_equals_single(state: &OceanState, points: &[[f64; 2]]) {
     // 500 points go through the pool, 5 through the calling thread.
     for count in [500, 5] {
         let points = &points[..count];

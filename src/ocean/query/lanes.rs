@@ -6,8 +6,8 @@
 //! Every lane runs the scalar code's operations in the scalar code's order
 //! ([`super::inversion`] and [`spline`]: the same wrap and cell, the same weight formulas,
 //! a pair field's taps summed columns first and the taps added (0 + 2) + (1 + 3), the same
-//! Newton step), so each point's result has the bits of its single query. A lane whose search ends
-//! takes the batch's next point, so that a group does not wait for its slowest point.
+//! Newton step), so each point's result has the bits of its single query. How the lanes take
+//! their points depends on what the query reads (see [`locate`]).
 
 // Lanes are the same index into several arrays at once; an iterator over one of them hides
 // that.
@@ -598,7 +598,7 @@ fn newton_steps(residual: &[F64s; 2], j: &[F32s; 4]) -> [F64s; 2] {
 
 /// Up to eight points about to be searched for, with their first guesses.
 struct Guesses {
-    /// The batch index of the first, how many there are, and how many were taken.
+    /// The batch index of the first, how many there are, and how many were given a lane.
     first: usize,
     count: usize,
     taken: usize,
@@ -674,8 +674,10 @@ struct Searches {
     converged: [bool; LANES],
     /// The summed displacement at the best iterate.
     displacement: [F32s; 2],
-    /// The summed height at the best iterate (when the search reads it).
+    /// The summed height at the best iterate, where `height_read`.
     height: F32s,
+    /// Whether the evaluation of the best iterate read the height.
+    height_read: [bool; LANES],
 }
 
 /// What a search found: where the water at a point comes from, and the summed fields there
@@ -685,6 +687,8 @@ pub(super) struct Found {
     pub(super) location: Location,
     pub(super) displacement: [f32; 2],
     pub(super) height: f32,
+    /// Whether `height` was read (with the search or after it).
+    pub(super) height_read: bool,
     pub(super) slope: [f32; 2],
     /// Foam coverage in [0, 1] (with the slope).
     pub(super) foam: f32,
@@ -700,6 +704,7 @@ impl Found {
         },
         displacement: [0.0; 2],
         height: 0.0,
+        height_read: false,
         slope: [0.0; 2],
         foam: 0.0,
     };
@@ -753,32 +758,77 @@ impl Searches {
             converged: [false; LANES],
             displacement: [[0.0; LANES]; 2],
             height: [0.0; LANES],
+            height_read: [false; LANES],
         }
     }
 
-    /// Starts lane `l` on point `index`, the water landing on world `target`, from the
-    /// undisplaced point `start` (`Search::new`).
+    /// The searches of the points `guesses` holds, one a lane from lane 0 (`Search::new`
+    /// of each).
     #[inline(always)]
-    fn start(&mut self, l: usize, index: usize, target: [f64; 2], start: [f64; 2]) {
-        self.point[l] = Some(index);
+    fn begin(guesses: &Guesses) -> Searches {
+        let mut searches = Searches::new();
+        searches.point = each(|l| (l < guesses.count).then_some(guesses.first + l));
+        for k in 0..2 {
+            searches.target[k] = each(|l| guesses.target[l][k]);
+            searches.next[k] = guesses.start[k];
+            searches.base[k] = guesses.start[k];
+            searches.best[k] = guesses.start[k];
+        }
+        searches
+    }
+
+    /// Starts lane `l` on the point `guesses` holds at `p` (`Search::new`).
+    #[inline(always)]
+    fn start(&mut self, l: usize, guesses: &Guesses, p: usize) {
+        self.point[l] = Some(guesses.first + p);
         self.iteration[l] = 0;
         for k in 0..2 {
-            self.target[k][l] = target[k];
-            self.next[k][l] = start[k];
-            self.base[k][l] = start[k];
+            self.target[k][l] = guesses.target[p][k];
+            self.next[k][l] = guesses.start[k][p];
+            self.base[k][l] = guesses.start[k][p];
             self.step[k][l] = 0.0;
-            self.best[k][l] = start[k];
+            self.best[k][l] = guesses.start[k][p];
         }
         self.fraction[l] = 1.0;
         self.miss[l] = f32::INFINITY;
         self.iterations[l] = 0;
         self.converged[l] = false;
+        self.height_read[l] = false;
+    }
+
+    /// Moves lane `l`'s search to lane `to` of `other` (whose lane `to` is idle).
+    #[inline(always)]
+    fn hand_over(&mut self, l: usize, other: &mut Searches, to: usize) {
+        other.point[to] = self.point[l].take();
+        other.iteration[to] = self.iteration[l];
+        for k in 0..2 {
+            other.target[k][to] = self.target[k][l];
+            other.next[k][to] = self.next[k][l];
+            other.base[k][to] = self.base[k][l];
+            other.step[k][to] = self.step[k][l];
+            other.best[k][to] = self.best[k][l];
+            other.displacement[k][to] = self.displacement[k][l];
+        }
+        other.fraction[to] = self.fraction[l];
+        other.miss[to] = self.miss[l];
+        other.iterations[to] = self.iterations[l];
+        other.converged[to] = self.converged[l];
+        other.height[to] = self.height[l];
+        other.height_read[to] = self.height_read[l];
     }
 
     /// Takes the sums at each lane's iterate, and sets the iterate after it; returns which
-    /// lanes' searches ended.
+    /// lanes' searches ended. With `track` (a query of heights alone) each search keeps the
+    /// height at its best iterate, which the sums hold if `read`.
     #[inline(always)]
-    fn update(&mut self, summed: &SummedLanes, tolerance: f32, max: usize) -> [bool; LANES] {
+    fn update(
+        &mut self,
+        summed: &SummedLanes,
+        track: bool,
+        read: bool,
+        tolerance: f32,
+        max: usize,
+    ) -> [bool; LANES] {
         let (d, j) = (&summed.displacement, &summed.jacobian);
         let mut residual = [[0.0f64; LANES]; 2];
         for k in 0..2 {
@@ -822,13 +872,18 @@ impl Searches {
                 }
             });
         }
-        self.height = each(|l| {
-            if better[l] {
-                summed.height[l]
-            } else {
-                self.height[l]
+        if track {
+            if read {
+                self.height = each(|l| {
+                    if better[l] {
+                        summed.height[l]
+                    } else {
+                        self.height[l]
+                    }
+                });
             }
-        });
+            self.height_read = each(|l| if better[l] { read } else { self.height_read[l] });
+        }
         self.miss = each(|l| if better[l] { miss[l] } else { self.miss[l] });
         self.fraction = each(|l| {
             if better[l] {
@@ -865,18 +920,19 @@ impl Searches {
             },
             displacement: [self.displacement[0][l], self.displacement[1][l]],
             height: self.height[l],
+            height_read: self.height_read[l],
             slope: [0.0; 2],
             foam: 0.0,
         }
     }
 }
 
-/// Each of `points` located and its result written into `out`: the first guesses of eight
-/// points at a time, then Newton's method on x₀ + D(x₀) = p from them, eight searches at a
-/// time, each lane taking the next point when its search ends. A query of heights alone
-/// (`HEIGHT` without `SLOPE`) reads them at every iterate and keeps the best one's; with
-/// `SLOPE`, eight found points at a time, the height (with `HEIGHT`), the slope and the foam
-/// are read there. Each result has the bits of its single query.
+/// Each of `points` located and its result written into `out`, eight points at a time.
+/// A query of heights alone (`HEIGHT` without `SLOPE`) reads them with its search (see
+/// [`heights_with_search`]); otherwise lanes take the next point as their searches end (see
+/// [`refilling`]) and, with `SLOPE`, eight found points at a time, the height (with
+/// `HEIGHT`), the slope and the foam are read where they were found. Each result has the
+/// bits of its single query.
 #[inline(always)]
 pub(super) fn locate<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
     shuffle: S,
@@ -884,17 +940,37 @@ pub(super) fn locate<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, co
     points: &[[f64; 2]],
     out: &mut [T],
 ) {
-    let frame = fields.frame();
-    let query = &frame.query;
-    let cascades = 0..frame.grids.len();
+    let mut ended = Ended::EMPTY;
+    if HEIGHT && !SLOPE {
+        heights_with_search::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, points, &mut ended, out);
+    } else {
+        refilling::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, points, &mut ended, out);
+    }
+    let count = ended.count;
+    finish::<S, F, T, HEIGHT, SLOPE>(
+        shuffle,
+        fields,
+        &mut ended.found[..count],
+        &ended.at[..count],
+        out,
+    );
+}
+
+/// The searches for `points`, eight at a time from their first guesses, each lane taking
+/// the batch's next point when its search ends (so that a group does not wait for its
+/// slowest point); no heights are read.
+#[inline(always)]
+fn refilling<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
+    shuffle: S,
+    fields: &F,
+    points: &[[f64; 2]],
+    ended: &mut Ended,
+    out: &mut [T],
+) {
     let mut searches = Searches::new();
     // The points not yet started, eight at a time with their first guesses.
     let mut chunks = points.chunks(LANES).enumerate();
     let mut next = Guesses::EMPTY;
-    // Points found and not yet written, with their indices.
-    let mut found = [Found::EMPTY; LANES];
-    let mut found_at = [0usize; LANES];
-    let mut count = 0;
     loop {
         for l in 0..LANES {
             if searches.point[l].is_none() {
@@ -904,69 +980,161 @@ pub(super) fn locate<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, co
                     }
                 }
                 if next.taken < next.count {
-                    let p = next.taken;
-                    let start = [next.start[0][p], next.start[1][p]];
-                    searches.start(l, next.first + p, next.target[p], start);
+                    searches.start(l, &next, next.taken);
                     next.taken += 1;
                 }
             }
         }
-        // An idle lane evaluates a busy lane's iterate (any point the tiles cover would do).
-        let Some(busy) = searches.point.iter().position(Option::is_some) else {
+        if searches.point.iter().all(Option::is_none) {
             break;
-        };
+        }
+        // (Calls, not a closure: a closure out of line would run without the SIMD level.)
+        advance::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut searches, false, ended, out);
+    }
+}
+
+/// The searches for `points` of a query of heights alone, eight points at a time: their
+/// first guesses, an evaluation of the displacement and its Jacobian at each (after which
+/// a search almost never ends, so the heights are not read there) and a second that reads
+/// the heights too. The searches that go on (about one in twelve on the default sea) move
+/// to a second set of lanes, evaluated with the heights whenever all its lanes are busy and
+/// at the end. Each search keeps its best iterate's height; [`finish`] reads it for one
+/// whose best iterate was evaluated without it.
+#[inline(always)]
+fn heights_with_search<
+    S: Shuffle,
+    F: Fields,
+    T: FromFound,
+    const HEIGHT: bool,
+    const SLOPE: bool,
+>(
+    shuffle: S,
+    fields: &F,
+    points: &[[f64; 2]],
+    ended: &mut Ended,
+    out: &mut [T],
+) {
+    let mut stragglers = Searches::new();
+    for (c, chunk) in points.chunks(LANES).enumerate() {
+        let mut searches = Searches::begin(&Guesses::of(shuffle, fields, chunk, c * LANES));
+        advance::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut searches, false, ended, out);
+        advance::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut searches, true, ended, out);
         for l in 0..LANES {
             if searches.point[l].is_none() {
-                for k in 0..2 {
-                    searches.next[k][l] = searches.next[k][busy];
-                }
+                continue;
             }
-        }
-        // A query of heights alone reads them at every iterate, and so needs no final pass.
-        let summed = if HEIGHT && !SLOPE {
-            evaluate::<S, F, true, true, true, false>(
-                shuffle,
-                fields,
-                &searches.next,
-                cascades.clone(),
-            )
-        } else {
-            evaluate::<S, F, true, true, false, false>(
-                shuffle,
-                fields,
-                &searches.next,
-                cascades.clone(),
-            )
-        };
-        let ended = searches.update(&summed, query.tolerance, query.max_iterations);
-        for l in 0..LANES {
-            if ended[l] {
-                if let Some(index) = searches.point[l].take() {
-                    if count == LANES {
-                        finish::<S, F, T, HEIGHT, SLOPE>(
-                            shuffle, fields, &mut found, &found_at, out,
-                        );
-                        count = 0;
-                    }
-                    found[count] = searches.found(l);
-                    found_at[count] = index;
-                    count += 1;
+            let to = loop {
+                if let Some(to) = stragglers.point.iter().position(Option::is_none) {
+                    break to;
                 }
+                advance::<S, F, T, HEIGHT, SLOPE>(
+                    shuffle,
+                    fields,
+                    &mut stragglers,
+                    true,
+                    ended,
+                    out,
+                );
+            };
+            searches.hand_over(l, &mut stragglers, to);
+        }
+    }
+    while stragglers.point.iter().any(Option::is_some) {
+        advance::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut stragglers, true, ended, out);
+    }
+}
+
+/// One evaluation of the busy lanes of `searches` (the height too if `read`), their
+/// searches' updates, and the ended ones' results handed to `ended`.
+#[inline(always)]
+fn advance<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
+    shuffle: S,
+    fields: &F,
+    searches: &mut Searches,
+    read: bool,
+    ended: &mut Ended,
+    out: &mut [T],
+) {
+    let Some(busy) = searches.point.iter().position(Option::is_some) else {
+        return;
+    };
+    // An idle lane evaluates a busy lane's iterate (any point the tiles cover would do).
+    for l in 0..LANES {
+        if searches.point[l].is_none() {
+            for k in 0..2 {
+                searches.next[k][l] = searches.next[k][busy];
             }
         }
     }
-    finish::<S, F, T, HEIGHT, SLOPE>(
-        shuffle,
-        fields,
-        &mut found[..count],
-        &found_at[..count],
-        out,
+    let frame = fields.frame();
+    let cascades = 0..frame.grids.len();
+    let summed = if read {
+        evaluate::<S, F, true, true, true, false>(shuffle, fields, &searches.next, cascades)
+    } else {
+        evaluate::<S, F, true, true, false, false>(shuffle, fields, &searches.next, cascades)
+    };
+    let query = &frame.query;
+    let done = searches.update(
+        &summed,
+        HEIGHT && !SLOPE,
+        read,
+        query.tolerance,
+        query.max_iterations,
     );
+    for l in 0..LANES {
+        if done[l] {
+            if let Some(index) = searches.point[l].take() {
+                ended.push::<S, F, T, HEIGHT, SLOPE>(
+                    shuffle,
+                    fields,
+                    searches.found(l),
+                    index,
+                    out,
+                );
+            }
+        }
+    }
+}
+
+/// Searches ended whose results are not yet written: what each found, and its point's
+/// index in the batch.
+struct Ended {
+    found: [Found; LANES],
+    at: [usize; LANES],
+    count: usize,
+}
+
+impl Ended {
+    const EMPTY: Ended = Ended {
+        found: [Found::EMPTY; LANES],
+        at: [0; LANES],
+        count: 0,
+    };
+
+    /// Adds what the search for point `index` found, writing the results held so far first
+    /// (see [`finish`]) if there are [`LANES`] of them.
+    #[inline(always)]
+    fn push<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
+        &mut self,
+        shuffle: S,
+        fields: &F,
+        found: Found,
+        index: usize,
+        out: &mut [T],
+    ) {
+        if self.count == LANES {
+            finish::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut self.found, &self.at, out);
+            self.count = 0;
+        }
+        self.found[self.count] = found;
+        self.at[self.count] = index;
+        self.count += 1;
+    }
 }
 
 /// Reads the height (with `HEIGHT`), slope and foam at the points `found` (at most
-/// [`LANES`]) when the query asks for the slope (`SLOPE`; a query of heights alone read them
-/// with its search), and writes each result to `out[found_at[i]]`.
+/// [`LANES`]) when the query asks for the slope (`SLOPE`), or the height alone if a search
+/// did not read it at its best iterate, and writes each result to `out[found_at[i]]`.
 #[inline(always)]
 fn finish<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
     shuffle: S,
@@ -978,7 +1146,7 @@ fn finish<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: 
     if found.is_empty() {
         return;
     }
-    if SLOPE {
+    if SLOPE || (HEIGHT && found.iter().any(|f| !f.height_read)) {
         let at = [
             each(|l| found.get(l).unwrap_or(&found[0]).location.undisplaced[0]),
             each(|l| found.get(l).unwrap_or(&found[0]).location.undisplaced[1]),
@@ -986,13 +1154,19 @@ fn finish<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: 
         let cascades = 0..fields.frame().grids.len();
         let sums = evaluate::<S, F, false, false, HEIGHT, SLOPE>(shuffle, fields, &at, cascades);
         // The foam comes with the slope (a surface sample).
-        let foam = foam(fields, &at);
+        let foam = if SLOPE {
+            foam(fields, &at)
+        } else {
+            [0.0; LANES]
+        };
         for (l, found) in found.iter_mut().enumerate() {
             if HEIGHT {
                 found.height = sums.height[l];
             }
-            found.slope = [sums.slope[0][l], sums.slope[1][l]];
-            found.foam = foam[l];
+            if SLOPE {
+                found.slope = [sums.slope[0][l], sums.slope[1][l]];
+                found.foam = foam[l];
+            }
         }
     }
     for (found, &index) in found.iter().zip(found_at) {
