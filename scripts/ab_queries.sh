@@ -4,7 +4,8 @@
 # Both versions of the crate are linked into one harness (scripts/ab_queries/main.rs), built
 # on the default ocean and alternated batch by batch, so a machine whose speed wanders gives
 # both the same minutes. Prints ns a point (fastest and first-quartile batch) of `heights_at`
-# and `surfaces_at` over 100 to 100 000 points scattered across 2 km, and their ratios.
+# and `surfaces_at` over 100 to 100 000 points scattered across 2 km (the criterion benches'
+# points), and their ratios.
 # Needs REV to have `heights_at` and `surfaces_at` (0.2 and later). Builds both crates in
 # release (about five minutes on 2 cores), then runs for about a minute.
 set -euo pipefail
@@ -20,6 +21,7 @@ git -C "$root" worktree add -f --detach -q "$work/old" "$rev"
 sed -i '0,/^version = /s/^version = .*/version = "0.0.0-old"/' "$work/old/Cargo.toml"
 mkdir -p "$work/harness/src"
 cp "$root/scripts/ab_queries/main.rs" "$work/harness/src/main.rs"
+cp "$root/benches/common/points.rs" "$work/harness/src/points.rs"
 cat > "$work/harness/Cargo.toml" <<TOML
 [package]
 name = "ab-queries"

@@ -3,20 +3,9 @@
 
 use std::time::Instant;
 
-/// `count` points scattered uniformly over 2 km × 2 km (a fixed linear congruential
-/// sequence, so both versions and every run see the same points).
-fn scattered(count: usize) -> Vec<[f64; 2]> {
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
-    let mut next = move || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    (0..count)
-        .map(|_| [next() * 2000.0 - 1000.0, next() * 2000.0 - 1000.0])
-        .collect()
-}
+// The criterion benches' points (benches/common/points.rs, copied beside this file).
+mod points;
+use points::scattered;
 
 /// The default ocean of one version, stepped once.
 macro_rules! ocean {
