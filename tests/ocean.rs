@@ -372,9 +372,9 @@ fn batch_queries_equal_single_queries() {
             ]
         })
         .collect();
-    // A tolerance of 10 m ends every search at its first guess and one iteration ends most
-    // after their first step: `heights_at` does not read the heights at a search's first
-    // evaluation, so those heights come from its last pass instead.
+    // A tolerance of 10 m ends every search at its first guess, and one iteration every
+    // search after its first step (asserted below): `heights_at` does not read the heights
+    // at a search's first evaluation, so those heights come from its last pass instead.
     let configs = [
         (small_config(), None),
         (

@@ -724,8 +724,7 @@ impl OceanState {
     /// few per cent of the step), so stepping and asking one boat's height costs little more
     /// than the step. For many points use [`OceanState::heights_at`] (about 0.17 µs a
     /// point on one thread of an Intel Xeon at 2.3 GHz, eight points at a time in vector
-    /// lanes); to query from other
-    /// threads while the ocean steps, [`OceanState::surface`].
+    /// lanes); to query from other threads while the ocean steps, [`OceanState::surface`].
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
