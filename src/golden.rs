@@ -10,38 +10,10 @@
 //! values), check that they agree on every level and thread count (the test does), and
 //! say why in the commit.
 //!
-//! The constants were computed by this mode itself, on the project's machine (AMD EPYC
-//! Zen 4, x86-64 Linux) with every level the test runs (baseline SSE2, AVX2, AVX-512) at
-//! 1, 2 and 3 threads, all of which gave the same values; a golden test detects change,
-//! it does not verify correctness (the rest of the test suite does that, for both modes).
-//! The foam and query entries were recomputed when the new foam model (one calibrated field
-//! for the whole ocean) was merged, and again when the foam moved to the crate's own
-//! exponential (`src/exp.rs`, the same bits in both modes; the foam's SIMD level is forced
-//! here too), and when the foam's transport moved to a real-data transform (two rows packed
-//! in one complex row, half the columns transformed); every cascade entry stayed as it was.
-//! The query entries were recomputed once more when the foam's point interpolation became the
-//! queries' own bilinear stencil (the same weights summed in another order; 0.3). The
-//! "second order 48²" entries were added with the second-order waves (0.3); every other entry
-//! stayed as it was. The query entries were recomputed when the spline coefficients came to be
-//! computed in tiles (each filter pass started 16 samples outside its tile instead of from the
-//! exact periodic sum: the coefficients move in their last bits) and `locate` moved to
-//! Newton's method (another iterate within the tolerance; 0.3); every other entry stayed as
-//! it was. The cubic B-spline query entries were recomputed again when a query came to read
-//! each field's coefficients apart (displacement pairs, heights, slope pairs) and to add a
-//! row's four taps at the end rather than one by one, with the weights multiplied by 1/6
-//! rather than divided by 6 (0.3); the bilinear entry ("tma 48²") and every other entry stayed
-//! as they were. They were recomputed once more when a pair field's taps came to be summed
-//! columns first (Σ_r w_z c, then Σ_t w_x S_t, so that batches of eight points in lanes need
-//! fewer operations; 0.3); again only the cubic query entries changed. Every query entry, the
-//! bilinear one too, was recomputed when a search came to start from a first Newton step on
-//! the larger cascades instead of from the query point (another iterate within the
-//! tolerance; 0.3); every other entry stayed as it was. Every query entry was recomputed
-//! again when the queries came to add their products with fused multiply-adds (one rounding
-//! where there were two: the spline's tap sums and the Jacobian's sum over the cascades;
-//! 0.3); every other entry stayed as it was. The query entries of the oceans with more than
-//! one cascade were recomputed when a search's first guess came to subtract the smaller
-//! cascades' displacement where the first Newton step lands (another iterate within the
-//! tolerance; 0.3); every other entry stayed as it was.
+//! The constants were computed by this mode itself with every level the test runs (baseline
+//! SSE2, AVX2, AVX-512) at 1, 2 and 3 threads, all of which gave the same values; a golden
+//! test detects change, it does not verify correctness (the rest of the suite does that).
+//! When a constant changes on purpose, the commit that changes it says why.
 //!
 //! The hash is [`BitHash`] (FNV-1a over the little-endian bytes of each value's bit pattern),
 //! because std's `DefaultHasher` does not promise the same hashes across releases.

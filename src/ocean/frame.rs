@@ -117,79 +117,71 @@ impl Frame {
 }
 
 /// Where the queries of one frame read the fields: the ocean's own buffers, or a frame's
-/// copies.
-pub(crate) trait Fields: Sync {
+/// copies. One concrete type (not a trait with two implementations), so that every query is
+/// compiled once per SIMD level rather than once per source as well.
+#[derive(Clone, Copy)]
+pub(crate) enum Fields<'a> {
+    /// The queries of an [`OceanState`] between steps: its buffers and current frame.
+    Live(&'a OceanState),
+    /// A frame's copies, read by a [`Surface`] handle.
+    Frame(&'a Frame),
+}
+
+impl Fields<'_> {
     /// The frame (coefficients, configuration).
-    fn frame(&self) -> &Frame;
+    #[inline(always)]
+    pub(crate) fn frame(&self) -> &Frame {
+        match self {
+            Fields::Live(ocean) => &ocean.frames.current,
+            Fields::Frame(frame) => frame,
+        }
+    }
+
     /// The samples of cascade `c`.
-    fn source(&self, c: usize) -> Source<'_>;
-    /// Foam coverage in [0, 1] at undisplaced world (x, z).
-    fn foam_at(&self, x: f64, z: f64) -> f32;
-    /// The foam field [`Fields::foam_at`] interpolates: its values on an N×N grid, N, and
-    /// the grid's side in metres.
-    fn foam_grid(&self) -> (&[f32], usize, f64);
-}
-
-/// The queries of an [`OceanState`] between steps: its buffers and current frame.
-pub(crate) struct Live<'a>(pub(crate) &'a OceanState);
-
-impl Fields for Live<'_> {
     #[inline(always)]
-    fn frame(&self) -> &Frame {
-        &self.0.frames.current
-    }
-
-    #[inline(always)]
-    fn source(&self, c: usize) -> Source<'_> {
-        let cascade = &self.0.cascades[c];
-        Source {
-            height: cascade.height(),
-            displacement: cascade.displacement(),
-            slope: cascade.slope(),
+    pub(crate) fn source(&self, c: usize) -> Source<'_> {
+        match self {
+            Fields::Live(ocean) => {
+                let cascade = &ocean.cascades[c];
+                Source {
+                    height: cascade.height(),
+                    displacement: cascade.displacement(),
+                    slope: cascade.slope(),
+                }
+            }
+            Fields::Frame(frame) => {
+                let grid = &frame.grids[c];
+                Source {
+                    height: &grid.height,
+                    displacement: &grid.displacement,
+                    slope: &grid.slope,
+                }
+            }
         }
     }
 
+    /// Foam coverage in [0, 1] at undisplaced world (x, z): the ocean's own foam lookup
+    /// (`Foam::foam_at`), NaN included.
     #[inline(always)]
-    fn foam_at(&self, x: f64, z: f64) -> f32 {
-        self.0.foam.foam_at(x, z)
-    }
-
-    #[inline(always)]
-    fn foam_grid(&self) -> (&[f32], usize, f64) {
-        let foam = &self.0.foam;
-        (&foam.total, foam.n, f64::from(foam.length))
-    }
-}
-
-impl Fields for Frame {
-    #[inline(always)]
-    fn frame(&self) -> &Frame {
-        self
-    }
-
-    #[inline(always)]
-    fn source(&self, c: usize) -> Source<'_> {
-        let grid = &self.grids[c];
-        Source {
-            height: &grid.height,
-            displacement: &grid.displacement,
-            slope: &grid.slope,
-        }
-    }
-
-    #[inline(always)]
-    // The same operations as the ocean's own foam lookup (`Foam::foam_at`), NaN included.
     #[allow(clippy::manual_clamp)]
-    fn foam_at(&self, x: f64, z: f64) -> f32 {
-        let length = f64::from(self.foam_length);
-        super::query::periodic_bilinear(&self.foam, self.foam_n, length, x, z)
+    pub(crate) fn foam_at(&self, x: f64, z: f64) -> f32 {
+        let (values, n, length) = self.foam_grid();
+        super::query::periodic_bilinear(values, n, length, x, z)
             .max(0.0)
             .min(1.0)
     }
 
+    /// The foam field [`Fields::foam_at`] interpolates: its values on an N×N grid, N, and
+    /// the grid's side in metres.
     #[inline(always)]
-    fn foam_grid(&self) -> (&[f32], usize, f64) {
-        (&self.foam, self.foam_n, f64::from(self.foam_length))
+    pub(crate) fn foam_grid(&self) -> (&[f32], usize, f64) {
+        match self {
+            Fields::Live(ocean) => {
+                let foam = &ocean.foam;
+                (&foam.total, foam.n, f64::from(foam.length))
+            }
+            Fields::Frame(frame) => (&frame.foam, frame.foam_n, f64::from(frame.foam_length)),
+        }
     }
 }
 
@@ -311,7 +303,12 @@ impl Surface {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn sample(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         query::check_point(x, z)?;
-        Ok(query::run(&*self.0, Sample(0..self.0.grids.len()), x, z))
+        Ok(query::run(
+            &Fields::Frame(&self.0),
+            Sample(0..self.0.grids.len()),
+            x,
+            z,
+        ))
     }
 
     /// As [`OceanState::locate`], for this frame.
@@ -320,7 +317,7 @@ impl Surface {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn locate(&self, x: f64, z: f64) -> Result<Location, Error> {
         query::check_point(x, z)?;
-        Ok(query::run(&*self.0, Locate, x, z))
+        Ok(query::run(&Fields::Frame(&self.0), Locate, x, z))
     }
 
     /// As [`OceanState::surface_at`], for this frame.
@@ -329,7 +326,7 @@ impl Surface {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn surface_at(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         query::check_point(x, z)?;
-        Ok(query::run(&*self.0, SurfaceAt, x, z))
+        Ok(query::run(&Fields::Frame(&self.0), SurfaceAt, x, z))
     }
 
     /// Water height y in metres at world point (`x`, `z`) after horizontal displacement, as
@@ -339,7 +336,7 @@ impl Surface {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn height_at(&self, x: f64, z: f64) -> Result<f32, Error> {
         query::check_point(x, z)?;
-        Ok(query::run(&*self.0, HeightAt, x, z))
+        Ok(query::run(&Fields::Frame(&self.0), HeightAt, x, z))
     }
 
     /// As [`OceanState::heights_at`], for this frame: water heights in metres at world
@@ -350,7 +347,7 @@ impl Surface {
     /// for a NaN or infinite coordinate. Nothing is written then.
     pub fn heights_at(&self, points: &[[f64; 2]], out: &mut [f32]) -> Result<(), Error> {
         query::check_batch(points, out.len())?;
-        query::for_each_point(&*self.0, points, out, HeightAt);
+        query::for_each_point(&Fields::Frame(&self.0), points, out, HeightAt);
         Ok(())
     }
 
@@ -360,7 +357,7 @@ impl Surface {
     /// As [`Surface::heights_at`].
     pub fn surfaces_at(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         query::check_batch(points, out.len())?;
-        query::for_each_point(&*self.0, points, out, SurfaceAt);
+        query::for_each_point(&Fields::Frame(&self.0), points, out, SurfaceAt);
         Ok(())
     }
 
@@ -370,7 +367,12 @@ impl Surface {
     /// As [`Surface::heights_at`].
     pub fn sample_many(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         query::check_batch(points, out.len())?;
-        query::for_each_point(&*self.0, points, out, Sample(0..self.0.grids.len()));
+        query::for_each_point(
+            &Fields::Frame(&self.0),
+            points,
+            out,
+            Sample(0..self.0.grids.len()),
+        );
         Ok(())
     }
 }

@@ -33,7 +33,7 @@ enum Taps<'a> {
 /// The taps of undisplaced world (x, z) on cascade `c` (the weights' derivatives with
 /// `GRADIENT`), computing the spline tile it reads if no query did so yet.
 #[inline(always)]
-fn taps<F: Fields, const GRADIENT: bool>(fields: &F, c: usize, x: f64, z: f64) -> Taps<'_> {
+fn taps<'a, const GRADIENT: bool>(fields: &'a Fields<'a>, c: usize, x: f64, z: f64) -> Taps<'a> {
     let frame = fields.frame();
     let grid = &frame.grids[c];
     let at = cell_in(grid, x, z);
@@ -55,20 +55,19 @@ fn taps<F: Fields, const GRADIENT: bool>(fields: &F, c: usize, x: f64, z: f64) -
 /// time or several in turn (see [`PointQuery::group`](super::PointQuery::group)).
 #[inline(always)]
 fn accumulate<
-    F: Fields,
     const DISPLACEMENT: bool,
     const JACOBIAN: bool,
     const HEIGHT: bool,
     const SLOPE: bool,
 >(
-    fields: &F,
+    fields: &Fields<'_>,
     c: usize,
     [x, z]: [f64; 2],
     total: &mut Summed,
 ) {
     let frame = fields.frame();
     let (per_metre, simd) = (frame.grids[c].per_metre, frame.simd);
-    let (displacement, [gx, gz], height, slope) = match taps::<F, JACOBIAN>(fields, c, x, z) {
+    let (displacement, [gx, gz], height, slope) = match taps::<JACOBIAN>(fields, c, x, z) {
         Taps::Spline(tile, lx, lz, w) => {
             let [displacement, gx, gz] = if DISPLACEMENT || JACOBIAN {
                 spline::displacement::<JACOBIAN>(simd, tile, lx, lz, &w)
@@ -140,20 +139,19 @@ fn accumulate<
 /// [`accumulate`] of cascades `range` at undisplaced world (x, z), in order.
 #[inline(always)]
 fn evaluate<
-    F: Fields,
     const DISPLACEMENT: bool,
     const JACOBIAN: bool,
     const HEIGHT: bool,
     const SLOPE: bool,
 >(
-    fields: &F,
+    fields: &Fields<'_>,
     x: f64,
     z: f64,
     range: std::ops::Range<usize>,
 ) -> Summed {
     let mut total = Summed::default();
     for c in range {
-        accumulate::<F, DISPLACEMENT, JACOBIAN, HEIGHT, SLOPE>(fields, c, [x, z], &mut total);
+        accumulate::<DISPLACEMENT, JACOBIAN, HEIGHT, SLOPE>(fields, c, [x, z], &mut total);
     }
     total
 }
@@ -175,8 +173,8 @@ pub(super) fn surface_sample(displacement: [f32; 2], fields: Summed, foam: f32) 
 /// The surface at undisplaced world (x, z), summed over the cascades in `range` (the foam
 /// only if cascade 0 is among them).
 #[inline(always)]
-pub(super) fn sample<F: Fields>(
-    fields: &F,
+pub(super) fn sample(
+    fields: &Fields<'_>,
     x: f64,
     z: f64,
     range: std::ops::Range<usize>,
@@ -186,7 +184,7 @@ pub(super) fn sample<F: Fields>(
     } else {
         0.0
     };
-    let summed = evaluate::<F, true, false, true, true>(fields, x, z, range);
+    let summed = evaluate::<true, false, true, true>(fields, x, z, range);
     surface_sample(summed.displacement, summed, foam)
 }
 
@@ -229,15 +227,15 @@ pub(super) fn guessing(count: usize) -> std::ops::Range<usize> {
 /// then end after one Newton step (half without it): 9.2 cascades evaluated a point, one
 /// without the Jacobian, instead of 9.5 (10.2 from p).
 #[inline(always)]
-pub(super) fn first_guess<F: Fields>(fields: &F, x: f64, z: f64) -> [f64; 2] {
+pub(super) fn first_guess(fields: &Fields<'_>, x: f64, z: f64) -> [f64; 2] {
     let count = fields.frame().grids.len();
     let cascades = guessing(count);
     let rest = cascades.end..count;
-    let summed = evaluate::<F, true, true, false, false>(fields, x, z, cascades);
+    let summed = evaluate::<true, true, false, false>(fields, x, z, cascades);
     let [dx, dz] = summed.displacement.map(f64::from);
     let step = newton_step([-dx, -dz], summed.jacobian);
     let [x, z] = [x + step[0], z + step[1]];
-    let short = evaluate::<F, true, false, false, false>(fields, x, z, rest).displacement;
+    let short = evaluate::<true, false, false, false>(fields, x, z, rest).displacement;
     [x - f64::from(short[0]), z - f64::from(short[1])]
 }
 
@@ -335,12 +333,12 @@ impl Search {
 /// x₀ + D(x₀) = p from [`first_guess`] (see
 /// [`OceanState::locate`](crate::OceanState::locate)), and the summed displacement there.
 #[inline(always)]
-pub(super) fn locate<F: Fields>(fields: &F, x: f64, z: f64) -> (Location, [f32; 2]) {
+pub(super) fn locate(fields: &Fields<'_>, x: f64, z: f64) -> (Location, [f32; 2]) {
     let frame = fields.frame();
     let mut search = Search::new(x, z, first_guess(fields, x, z));
     for iteration in 0..=frame.query.max_iterations {
         let [x0, z0] = search.next;
-        let summed = evaluate::<F, true, true, false, false>(fields, x0, z0, 0..frame.grids.len());
+        let summed = evaluate::<true, true, false, false>(fields, x0, z0, 0..frame.grids.len());
         search.update(iteration, &summed, &frame.query);
         if search.done {
             break;
@@ -357,7 +355,7 @@ pub(super) const GROUP: usize = 8;
 /// iterations in step and each iteration's cascades visited point after point (the same
 /// operations for each point as [`locate`]'s, so the same bits).
 #[inline(always)]
-fn locate_group<F: Fields>(fields: &F, points: &[[f64; 2]], searches: &mut [Search; GROUP]) {
+fn locate_group(fields: &Fields<'_>, points: &[[f64; 2]], searches: &mut [Search; GROUP]) {
     let frame = fields.frame();
     let count = points.len();
     for (search, &[x, z]) in searches.iter_mut().zip(points) {
@@ -368,7 +366,7 @@ fn locate_group<F: Fields>(fields: &F, points: &[[f64; 2]], searches: &mut [Sear
         for c in 0..frame.grids.len() {
             for (sum, search) in sums.iter_mut().zip(&searches[..count]) {
                 if !search.done {
-                    accumulate::<F, true, true, false, false>(fields, c, search.next, sum);
+                    accumulate::<true, true, false, false>(fields, c, search.next, sum);
                 }
             }
         }
@@ -389,8 +387,8 @@ fn locate_group<F: Fields>(fields: &F, points: &[[f64; 2]], searches: &mut [Sear
 /// [`GROUP`]), the cascades visited point after point (the same operations for each point
 /// as [`evaluate`]'s, so the same bits).
 #[inline(always)]
-pub(super) fn evaluate_group<F: Fields, const DISPLACEMENT: bool, const SLOPE: bool>(
-    fields: &F,
+pub(super) fn evaluate_group<const DISPLACEMENT: bool, const SLOPE: bool>(
+    fields: &Fields<'_>,
     points: impl Fn(usize) -> [f64; 2],
     count: usize,
     range: std::ops::Range<usize>,
@@ -398,7 +396,7 @@ pub(super) fn evaluate_group<F: Fields, const DISPLACEMENT: bool, const SLOPE: b
     let mut sums = [Summed::default(); GROUP];
     for c in range {
         for (p, sum) in sums[..count].iter_mut().enumerate() {
-            accumulate::<F, DISPLACEMENT, false, true, SLOPE>(fields, c, points(p), sum);
+            accumulate::<DISPLACEMENT, false, true, SLOPE>(fields, c, points(p), sum);
         }
     }
     sums
@@ -406,34 +404,34 @@ pub(super) fn evaluate_group<F: Fields, const DISPLACEMENT: bool, const SLOPE: b
 
 /// The surface where the water at world (x, z) comes from: the sample at the located point.
 #[inline(always)]
-pub(super) fn surface_at<F: Fields>(fields: &F, x: f64, z: f64) -> SurfaceSample {
+pub(super) fn surface_at(fields: &Fields<'_>, x: f64, z: f64) -> SurfaceSample {
     let (location, displacement) = locate(fields, x, z);
     let [x0, z0] = location.undisplaced;
     let cascades = 0..fields.frame().grids.len();
-    let summed = evaluate::<F, false, false, true, true>(fields, x0, z0, cascades);
+    let summed = evaluate::<false, false, true, true>(fields, x0, z0, cascades);
     surface_sample(displacement, summed, fields.foam_at(x0, z0))
 }
 
 /// The water height at world (x, z).
 #[inline(always)]
-pub(super) fn height_at<F: Fields>(fields: &F, x: f64, z: f64) -> f32 {
+pub(super) fn height_at(fields: &Fields<'_>, x: f64, z: f64) -> f32 {
     let [x0, z0] = locate(fields, x, z).0.undisplaced;
     let cascades = 0..fields.frame().grids.len();
-    evaluate::<F, false, false, true, false>(fields, x0, z0, cascades).height
+    evaluate::<false, false, true, false>(fields, x0, z0, cascades).height
 }
 
 /// [`locate_group`] of `points` (at most [`GROUP`]), then the height (and with `SLOPE` the
 /// slope) of every cascade at each point found: what the grouped `heights_at` and
 /// `surfaces_at` need.
 #[inline(always)]
-pub(super) fn located_group<F: Fields, const SLOPE: bool>(
-    fields: &F,
+pub(super) fn located_group<const SLOPE: bool>(
+    fields: &Fields<'_>,
     points: &[[f64; 2]],
 ) -> ([Search; GROUP], [Summed; GROUP]) {
     let mut searches = [Search::new(0.0, 0.0, [0.0; 2]); GROUP];
     locate_group(fields, points, &mut searches);
     let at = |p: usize| searches[p].best.undisplaced;
     let cascades = 0..fields.frame().grids.len();
-    let sums = evaluate_group::<F, false, SLOPE>(fields, at, points.len(), cascades);
+    let sums = evaluate_group::<false, SLOPE>(fields, at, points.len(), cascades);
     (searches, sums)
 }

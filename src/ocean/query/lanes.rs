@@ -445,14 +445,13 @@ fn heights<S: Shuffle>(
 #[inline(always)]
 pub(super) fn evaluate<
     S: Shuffle,
-    F: Fields,
     const DISPLACEMENT: bool,
     const JACOBIAN: bool,
     const HEIGHT: bool,
     const SLOPE: bool,
 >(
     shuffle: S,
-    fields: &F,
+    fields: &Fields<'_>,
     [x, z]: &[F64s; 2],
     range: std::ops::Range<usize>,
 ) -> SummedLanes {
@@ -535,7 +534,7 @@ pub(super) fn evaluate<
 #[inline(always)]
 // max then min, as `Fields::foam_at` clamps (`clamp` differs on NaN and −0).
 #[allow(clippy::manual_clamp)]
-fn foam<F: Fields>(fields: &F, [x, z]: &[F64s; 2]) -> F32s {
+fn foam(fields: &Fields<'_>, [x, z]: &[F64s; 2]) -> F32s {
     let (values, n, length) = fields.foam_grid();
     let period = Period::new(length, n);
     let (ix, fx) = cells(x, &period);
@@ -620,9 +619,9 @@ impl Guesses {
     /// `first`): one Newton step on the larger cascades, less the smaller cascades'
     /// displacement there, with the single query's operations.
     #[inline(always)]
-    fn of<S: Shuffle, F: Fields>(
+    fn of<S: Shuffle>(
         shuffle: S,
-        fields: &F,
+        fields: &Fields<'_>,
         points: &[[f64; 2]],
         first: usize,
     ) -> Guesses {
@@ -632,7 +631,7 @@ impl Guesses {
         let count = fields.frame().grids.len();
         let cascades = guessing(count);
         let rest = cascades.end..count;
-        let summed = evaluate::<S, F, true, true, false, false>(shuffle, fields, &at, cascades);
+        let summed = evaluate::<S, true, true, false, false>(shuffle, fields, &at, cascades);
         let d = &summed.displacement;
         let residual = [each(|l| -f64::from(d[0][l])), each(|l| -f64::from(d[1][l]))];
         let step = newton_steps(&residual, &summed.jacobian);
@@ -640,7 +639,7 @@ impl Guesses {
             each(|l| at[0][l] + step[0][l]),
             each(|l| at[1][l] + step[1][l]),
         ];
-        let short = evaluate::<S, F, true, false, false, false>(shuffle, fields, &stepped, rest);
+        let short = evaluate::<S, true, false, false, false>(shuffle, fields, &stepped, rest);
         let d = &short.displacement;
         Guesses {
             first,
@@ -934,20 +933,20 @@ impl Searches {
 /// `HEIGHT`), the slope and the foam are read where they were found. Each result has the
 /// bits of its single query.
 #[inline(always)]
-pub(super) fn locate<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
+pub(super) fn locate<S: Shuffle, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
     shuffle: S,
-    fields: &F,
+    fields: &Fields<'_>,
     points: &[[f64; 2]],
     out: &mut [T],
 ) {
     let mut ended = Ended::EMPTY;
     if HEIGHT && !SLOPE {
-        heights_with_search::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, points, &mut ended, out);
+        heights_with_search::<S, T, HEIGHT, SLOPE>(shuffle, fields, points, &mut ended, out);
     } else {
-        refilling::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, points, &mut ended, out);
+        refilling::<S, T, HEIGHT, SLOPE>(shuffle, fields, points, &mut ended, out);
     }
     let count = ended.count;
-    finish::<S, F, T, HEIGHT, SLOPE>(
+    finish::<S, T, HEIGHT, SLOPE>(
         shuffle,
         fields,
         &mut ended.found[..count],
@@ -960,9 +959,9 @@ pub(super) fn locate<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, co
 /// the batch's next point when its search ends (so that a group does not wait for its
 /// slowest point); no heights are read.
 #[inline(always)]
-fn refilling<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
+fn refilling<S: Shuffle, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
     shuffle: S,
-    fields: &F,
+    fields: &Fields<'_>,
     points: &[[f64; 2]],
     ended: &mut Ended,
     out: &mut [T],
@@ -989,7 +988,7 @@ fn refilling<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOP
             break;
         }
         // (Calls, not a closure: a closure out of line would run without the SIMD level.)
-        advance::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut searches, false, ended, out);
+        advance::<S, T, HEIGHT, SLOPE>(shuffle, fields, &mut searches, false, ended, out);
     }
 }
 
@@ -1001,15 +1000,9 @@ fn refilling<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOP
 /// at the end. Each search keeps its best iterate's height; [`finish`] reads it for one
 /// whose best iterate was evaluated without it.
 #[inline(always)]
-fn heights_with_search<
-    S: Shuffle,
-    F: Fields,
-    T: FromFound,
-    const HEIGHT: bool,
-    const SLOPE: bool,
->(
+fn heights_with_search<S: Shuffle, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
     shuffle: S,
-    fields: &F,
+    fields: &Fields<'_>,
     points: &[[f64; 2]],
     ended: &mut Ended,
     out: &mut [T],
@@ -1017,8 +1010,8 @@ fn heights_with_search<
     let mut stragglers = Searches::new();
     for (c, chunk) in points.chunks(LANES).enumerate() {
         let mut searches = Searches::begin(&Guesses::of(shuffle, fields, chunk, c * LANES));
-        advance::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut searches, false, ended, out);
-        advance::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut searches, true, ended, out);
+        advance::<S, T, HEIGHT, SLOPE>(shuffle, fields, &mut searches, false, ended, out);
+        advance::<S, T, HEIGHT, SLOPE>(shuffle, fields, &mut searches, true, ended, out);
         for l in 0..LANES {
             if searches.point[l].is_none() {
                 continue;
@@ -1027,29 +1020,22 @@ fn heights_with_search<
                 if let Some(to) = stragglers.point.iter().position(Option::is_none) {
                     break to;
                 }
-                advance::<S, F, T, HEIGHT, SLOPE>(
-                    shuffle,
-                    fields,
-                    &mut stragglers,
-                    true,
-                    ended,
-                    out,
-                );
+                advance::<S, T, HEIGHT, SLOPE>(shuffle, fields, &mut stragglers, true, ended, out);
             };
             searches.hand_over(l, &mut stragglers, to);
         }
     }
     while stragglers.point.iter().any(Option::is_some) {
-        advance::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut stragglers, true, ended, out);
+        advance::<S, T, HEIGHT, SLOPE>(shuffle, fields, &mut stragglers, true, ended, out);
     }
 }
 
 /// One evaluation of the busy lanes of `searches` (the height too if `read`), their
 /// searches' updates, and the ended ones' results handed to `ended`.
 #[inline(always)]
-fn advance<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
+fn advance<S: Shuffle, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
     shuffle: S,
-    fields: &F,
+    fields: &Fields<'_>,
     searches: &mut Searches,
     read: bool,
     ended: &mut Ended,
@@ -1069,9 +1055,9 @@ fn advance<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE:
     let frame = fields.frame();
     let cascades = 0..frame.grids.len();
     let summed = if read {
-        evaluate::<S, F, true, true, true, false>(shuffle, fields, &searches.next, cascades)
+        evaluate::<S, true, true, true, false>(shuffle, fields, &searches.next, cascades)
     } else {
-        evaluate::<S, F, true, true, false, false>(shuffle, fields, &searches.next, cascades)
+        evaluate::<S, true, true, false, false>(shuffle, fields, &searches.next, cascades)
     };
     let query = &frame.query;
     let done = searches.update(
@@ -1084,13 +1070,7 @@ fn advance<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE:
     for l in 0..LANES {
         if done[l] {
             if let Some(index) = searches.point[l].take() {
-                ended.push::<S, F, T, HEIGHT, SLOPE>(
-                    shuffle,
-                    fields,
-                    searches.found(l),
-                    index,
-                    out,
-                );
+                ended.push::<S, T, HEIGHT, SLOPE>(shuffle, fields, searches.found(l), index, out);
             }
         }
     }
@@ -1114,16 +1094,16 @@ impl Ended {
     /// Adds what the search for point `index` found, writing the results held so far first
     /// (see [`finish`]) if there are [`LANES`] of them.
     #[inline(always)]
-    fn push<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
+    fn push<S: Shuffle, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
         &mut self,
         shuffle: S,
-        fields: &F,
+        fields: &Fields<'_>,
         found: Found,
         index: usize,
         out: &mut [T],
     ) {
         if self.count == LANES {
-            finish::<S, F, T, HEIGHT, SLOPE>(shuffle, fields, &mut self.found, &self.at, out);
+            finish::<S, T, HEIGHT, SLOPE>(shuffle, fields, &mut self.found, &self.at, out);
             self.count = 0;
         }
         self.found[self.count] = found;
@@ -1136,9 +1116,9 @@ impl Ended {
 /// [`LANES`]) when the query asks for the slope (`SLOPE`), or the height alone if a search
 /// did not read it at its best iterate, and writes each result to `out[found_at[i]]`.
 #[inline(always)]
-fn finish<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
+fn finish<S: Shuffle, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
     shuffle: S,
-    fields: &F,
+    fields: &Fields<'_>,
     found: &mut [Found],
     found_at: &[usize],
     out: &mut [T],
@@ -1152,7 +1132,7 @@ fn finish<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: 
             each(|l| found.get(l).unwrap_or(&found[0]).location.undisplaced[1]),
         ];
         let cascades = 0..fields.frame().grids.len();
-        let sums = evaluate::<S, F, false, false, HEIGHT, SLOPE>(shuffle, fields, &at, cascades);
+        let sums = evaluate::<S, false, false, HEIGHT, SLOPE>(shuffle, fields, &at, cascades);
         // The foam comes with the slope (a surface sample).
         let foam = if SLOPE {
             foam(fields, &at)
@@ -1177,9 +1157,9 @@ fn finish<S: Shuffle, F: Fields, T: FromFound, const HEIGHT: bool, const SLOPE: 
 /// The surface at each of `points` (undisplaced), summed over cascades `range` (the foam
 /// only if cascade 0 is among them), eight points at a time.
 #[inline(always)]
-pub(super) fn sample<S: Shuffle, F: Fields>(
+pub(super) fn sample<S: Shuffle>(
     shuffle: S,
-    fields: &F,
+    fields: &Fields<'_>,
     points: &[[f64; 2]],
     range: std::ops::Range<usize>,
     out: &mut [SurfaceSample],
@@ -1195,7 +1175,7 @@ pub(super) fn sample<S: Shuffle, F: Fields>(
             each(|l| points.get(l).unwrap_or(&points[0])[0]),
             each(|l| points.get(l).unwrap_or(&points[0])[1]),
         ];
-        let sums = evaluate::<S, F, true, false, true, true>(shuffle, fields, &at, range.clone());
+        let sums = evaluate::<S, true, false, true, true>(shuffle, fields, &at, range.clone());
         let foam = if range.contains(&0) {
             foam(fields, &at)
         } else {

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 mod inversion;
 pub(crate) mod lanes;
 
-use super::frame::{Fields, Grid, Live, Surface};
+use super::frame::{Fields, Grid, Surface};
 use super::spline::Tiles;
 use super::OceanState;
 use crate::error::{self, Error};
@@ -222,20 +222,20 @@ fn cell_in(grid: &Grid, x: f64, z: f64) -> (usize, f32, usize, f32) {
 /// A query at one world point, for [`run`] and [`for_each_point`]: plain functions of the
 /// fields rather than closures, so that each is compiled at the frame's SIMD level (see
 /// [`Kernel`]).
-pub(crate) trait PointQuery<F: Fields>: Sync {
+pub(crate) trait PointQuery: Sync {
     type Output: Send;
-    fn at(&self, fields: &F, x: f64, z: f64) -> Self::Output;
+    fn at(&self, fields: &Fields<'_>, x: f64, z: f64) -> Self::Output;
 
     /// [`PointQuery::at`] of each of `points` (at most [`GROUP`]) into `out`, with the same
     /// bits; the queries that read the spline interleave the points (see [`located_group`]).
     #[inline(always)]
-    fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [Self::Output]) {
+    fn group(&self, fields: &Fields<'_>, points: &[[f64; 2]], out: &mut [Self::Output]) {
         self.singles(fields, points, out);
     }
 
     /// [`PointQuery::at`] of each of `points` into `out`, one point at a time.
     #[inline(always)]
-    fn singles(&self, fields: &F, points: &[[f64; 2]], out: &mut [Self::Output]) {
+    fn singles(&self, fields: &Fields<'_>, points: &[[f64; 2]], out: &mut [Self::Output]) {
         for (value, &[x, z]) in out.iter_mut().zip(points) {
             *value = self.at(fields, x, z);
         }
@@ -243,7 +243,7 @@ pub(crate) trait PointQuery<F: Fields>: Sync {
 
     /// [`PointQuery::group`] of each [`GROUP`] of `points` in turn, into `out`.
     #[inline(always)]
-    fn groups(&self, fields: &F, points: &[[f64; 2]], out: &mut [Self::Output]) {
+    fn groups(&self, fields: &Fields<'_>, points: &[[f64; 2]], out: &mut [Self::Output]) {
         for (out, points) in out.chunks_mut(GROUP).zip(points.chunks(GROUP)) {
             self.group(fields, points, out);
         }
@@ -256,7 +256,7 @@ pub(crate) trait PointQuery<F: Fields>: Sync {
     fn batch<S: Shuffle>(
         &self,
         shuffle: S,
-        fields: &F,
+        fields: &Fields<'_>,
         points: &[[f64; 2]],
         out: &mut [Self::Output],
     ) {
@@ -267,7 +267,7 @@ pub(crate) trait PointQuery<F: Fields>: Sync {
 
 /// Whether cascades `range` all have spline tiles, so that a batch over them runs in lanes.
 #[inline(always)]
-fn in_lanes<F: Fields>(fields: &F, range: std::ops::Range<usize>) -> bool {
+fn in_lanes(fields: &Fields<'_>, range: std::ops::Range<usize>) -> bool {
     fields.frame().grids[range]
         .iter()
         .all(|grid| grid.tiles.is_some())
@@ -282,17 +282,17 @@ pub(crate) struct SurfaceAt;
 /// [`height_at`].
 pub(crate) struct HeightAt;
 
-impl<F: Fields> PointQuery<F> for Sample {
+impl PointQuery for Sample {
     type Output = SurfaceSample;
     #[inline(always)]
-    fn at(&self, fields: &F, x: f64, z: f64) -> SurfaceSample {
+    fn at(&self, fields: &Fields<'_>, x: f64, z: f64) -> SurfaceSample {
         sample(fields, x, z, self.0.clone())
     }
 
     #[inline(always)]
-    fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
+    fn group(&self, fields: &Fields<'_>, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
         let sums =
-            evaluate_group::<F, true, true>(fields, |p| points[p], points.len(), self.0.clone());
+            evaluate_group::<true, true>(fields, |p| points[p], points.len(), self.0.clone());
         for ((value, sum), &[x, z]) in out.iter_mut().zip(&sums).zip(points) {
             let foam = if self.0.contains(&0) {
                 fields.foam_at(x, z)
@@ -307,7 +307,7 @@ impl<F: Fields> PointQuery<F> for Sample {
     fn batch<S: Shuffle>(
         &self,
         shuffle: S,
-        fields: &F,
+        fields: &Fields<'_>,
         points: &[[f64; 2]],
         out: &mut [SurfaceSample],
     ) {
@@ -319,24 +319,24 @@ impl<F: Fields> PointQuery<F> for Sample {
     }
 }
 
-impl<F: Fields> PointQuery<F> for Locate {
+impl PointQuery for Locate {
     type Output = Location;
     #[inline(always)]
-    fn at(&self, fields: &F, x: f64, z: f64) -> Location {
+    fn at(&self, fields: &Fields<'_>, x: f64, z: f64) -> Location {
         locate(fields, x, z).0
     }
 }
 
-impl<F: Fields> PointQuery<F> for SurfaceAt {
+impl PointQuery for SurfaceAt {
     type Output = SurfaceSample;
     #[inline(always)]
-    fn at(&self, fields: &F, x: f64, z: f64) -> SurfaceSample {
+    fn at(&self, fields: &Fields<'_>, x: f64, z: f64) -> SurfaceSample {
         surface_at(fields, x, z)
     }
 
     #[inline(always)]
-    fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
-        let (searches, sums) = located_group::<F, true>(fields, points);
+    fn group(&self, fields: &Fields<'_>, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
+        let (searches, sums) = located_group::<true>(fields, points);
         for ((value, sum), search) in out.iter_mut().zip(&sums).zip(&searches) {
             let [x0, z0] = search.best.undisplaced;
             *value = surface_sample(search.displacement, *sum, fields.foam_at(x0, z0));
@@ -347,50 +347,57 @@ impl<F: Fields> PointQuery<F> for SurfaceAt {
     fn batch<S: Shuffle>(
         &self,
         shuffle: S,
-        fields: &F,
+        fields: &Fields<'_>,
         points: &[[f64; 2]],
         out: &mut [SurfaceSample],
     ) {
         if points.len() < lanes::FEWEST {
             self.singles(fields, points, out);
         } else if in_lanes(fields, 0..fields.frame().grids.len()) {
-            lanes::locate::<S, F, SurfaceSample, true, true>(shuffle, fields, points, out);
+            lanes::locate::<S, SurfaceSample, true, true>(shuffle, fields, points, out);
         } else {
             self.groups(fields, points, out);
         }
     }
 }
 
-impl<F: Fields> PointQuery<F> for HeightAt {
+impl PointQuery for HeightAt {
     type Output = f32;
     #[inline(always)]
-    fn at(&self, fields: &F, x: f64, z: f64) -> f32 {
+    fn at(&self, fields: &Fields<'_>, x: f64, z: f64) -> f32 {
         height_at(fields, x, z)
     }
 
     #[inline(always)]
-    fn group(&self, fields: &F, points: &[[f64; 2]], out: &mut [f32]) {
-        let (_, sums) = located_group::<F, false>(fields, points);
+    fn group(&self, fields: &Fields<'_>, points: &[[f64; 2]], out: &mut [f32]) {
+        let (_, sums) = located_group::<false>(fields, points);
         for (value, sum) in out.iter_mut().zip(&sums) {
             *value = sum.height;
         }
     }
 
     #[inline(always)]
-    fn batch<S: Shuffle>(&self, shuffle: S, fields: &F, points: &[[f64; 2]], out: &mut [f32]) {
+    fn batch<S: Shuffle>(
+        &self,
+        shuffle: S,
+        fields: &Fields<'_>,
+        points: &[[f64; 2]],
+        out: &mut [f32],
+    ) {
         if points.len() < lanes::FEWEST {
             self.singles(fields, points, out);
         } else if in_lanes(fields, 0..fields.frame().grids.len()) {
-            lanes::locate::<S, F, f32, true, false>(shuffle, fields, points, out);
+            lanes::locate::<S, f32, true, false>(shuffle, fields, points, out);
         } else {
             self.groups(fields, points, out);
         }
     }
 }
 
-/// `query` at world (x, z), at the frame's SIMD level.
-#[inline(always)]
-pub(crate) fn run<F: Fields, Q: PointQuery<F>>(fields: &F, query: Q, x: f64, z: f64) -> Q::Output {
+/// `query` at world (x, z), at the frame's SIMD level. Out of line, so that an ocean's
+/// query and a [`Surface`]'s share one compiled copy.
+#[inline(never)]
+pub(crate) fn run<Q: PointQuery>(fields: &Fields<'_>, query: Q, x: f64, z: f64) -> Q::Output {
     fields.frame().simd.run_kernel(One {
         fields,
         query,
@@ -399,13 +406,13 @@ pub(crate) fn run<F: Fields, Q: PointQuery<F>>(fields: &F, query: Q, x: f64, z: 
 }
 
 /// One point's query, as a [`Kernel`].
-struct One<'a, F, Q> {
-    fields: &'a F,
+struct One<'a, Q> {
+    fields: &'a Fields<'a>,
     query: Q,
     point: [f64; 2],
 }
 
-impl<F: Fields, Q: PointQuery<F>> Kernel for One<'_, F, Q> {
+impl<Q: PointQuery> Kernel for One<'_, Q> {
     type Output = Q::Output;
 
     #[inline(always)]
@@ -454,14 +461,14 @@ fn run_shuffled<K: ShuffledKernel>(simd: Simd, kernel: K) {
 }
 
 /// A batch's query of each point into `out`, as a [`ShuffledKernel`].
-struct Batch<'a, F, T, Q> {
-    fields: &'a F,
+struct Batch<'a, T, Q> {
+    fields: &'a Fields<'a>,
     points: &'a [[f64; 2]],
     out: &'a mut [T],
     query: &'a Q,
 }
 
-impl<F: Fields, Q: PointQuery<F>> ShuffledKernel for Batch<'_, F, Q::Output, Q> {
+impl<Q: PointQuery> ShuffledKernel for Batch<'_, Q::Output, Q> {
     #[inline(always)]
     fn run<S: Shuffle>(self, shuffle: S) {
         self.query
@@ -469,11 +476,13 @@ impl<F: Fields, Q: PointQuery<F>> ShuffledKernel for Batch<'_, F, Q::Output, Q> 
     }
 }
 
-/// [`Batch`] at SIMD level `simd`.
-#[inline(always)]
-fn run_batch<F: Fields, Q: PointQuery<F>>(
+/// [`Batch`] at SIMD level `simd`. Out of line: [`for_each_point`] calls it from two
+/// places (the calling thread and rayon's tasks), which would otherwise each hold a copy of
+/// the baseline level's lanes, the largest code of the crate to compile.
+#[inline(never)]
+fn run_batch<Q: PointQuery>(
     simd: Simd,
-    fields: &F,
+    fields: &Fields<'_>,
     points: &[[f64; 2]],
     out: &mut [Q::Output],
     query: &Q,
@@ -491,8 +500,8 @@ fn run_batch<F: Fields, Q: PointQuery<F>>(
 
 /// One row of [`OceanState::sample_grid`], as a [`ShuffledKernel`]: its points eight at a
 /// time, as [`OceanState::sample_many`] samples them.
-struct GridRow<'a, F> {
-    fields: &'a F,
+struct GridRow<'a> {
+    fields: &'a Fields<'a>,
     /// The row's first point `[x, z]`, in metres.
     start: [f64; 2],
     spacing: f64,
@@ -500,7 +509,7 @@ struct GridRow<'a, F> {
     cascades: &'a std::ops::Range<usize>,
 }
 
-impl<F: Fields> ShuffledKernel for GridRow<'_, F> {
+impl ShuffledKernel for GridRow<'_> {
     #[inline(always)]
     fn run<S: Shuffle>(self, shuffle: S) {
         let [x, z] = self.start;
@@ -524,8 +533,8 @@ const PARALLEL_BATCH: usize = 64;
 const TASK_POINTS: [usize; 2] = [32, 1024];
 
 /// `query` of every point into `out`, at the frame's SIMD level.
-pub(crate) fn for_each_point<F: Fields, Q: PointQuery<F>>(
-    fields: &F,
+pub(crate) fn for_each_point<Q: PointQuery>(
+    fields: &Fields<'_>,
     points: &[[f64; 2]],
     out: &mut [Q::Output],
     query: Q,
@@ -549,7 +558,7 @@ pub(crate) fn for_each_point<F: Fields, Q: PointQuery<F>>(
 /// Computes, in parallel, the spline tiles under a batch's `points` that no query computed
 /// yet (the queries' threads would otherwise wait for each other's tiles; the tiles a
 /// query's Newton iterates move on to are computed when they are read, as always).
-fn prepare_tiles<F: Fields>(fields: &F, points: &[[f64; 2]]) {
+fn prepare_tiles(fields: &Fields<'_>, points: &[[f64; 2]]) {
     let frame = fields.frame();
     // Nothing to do with bilinear queries, or once every tile is computed (a second batch
     // on the same frame).
@@ -637,7 +646,7 @@ impl OceanState {
     /// bilinear.
     ///
     /// The spline's coefficients are computed in tiles of 32×32 grid cells, each by the
-    /// first query after a step that reads it (about 10 µs a tile); a query reads one tile
+    /// first query after a step that reads it; a query reads one tile
     /// of each cascade, rarely two.
     ///
     /// # Errors
@@ -645,7 +654,7 @@ impl OceanState {
     pub fn sample(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
         let cascades = 0..self.cascades.len();
-        Ok(run(&Live(self), Sample(cascades), x, z))
+        Ok(run(&Fields::Live(self), Sample(cascades), x, z))
     }
 
     /// [`OceanState::sample`] summed over the cascades in `cascades` only (indices into
@@ -664,7 +673,7 @@ impl OceanState {
     ) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
         check_range(&cascades, self.cascades.len())?;
-        Ok(run(&Live(self), Sample(cascades), x, z))
+        Ok(run(&Fields::Live(self), Sample(cascades), x, z))
     }
 
     /// Finds the undisplaced point x₀ whose water lands on world point (`x`, `z`), i.e.
@@ -698,7 +707,7 @@ impl OceanState {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn locate(&self, x: f64, z: f64) -> Result<Location, Error> {
         check_point(x, z)?;
-        Ok(run(&Live(self), Locate, x, z))
+        Ok(run(&Fields::Live(self), Locate, x, z))
     }
 
     /// The surface at world point (`x`, `z`) after horizontal displacement: the sample of
@@ -710,27 +719,26 @@ impl OceanState {
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn surface_at(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
         check_point(x, z)?;
-        Ok(run(&Live(self), SurfaceAt, x, z))
+        Ok(run(&Fields::Live(self), SurfaceAt, x, z))
     }
 
     /// Water height y in metres at world point (`x`, `z`), after horizontal displacement —
     /// the query buoyancy and gameplay need. Where the surface folds the inversion may not
     /// converge; [`OceanState::locate`] reports how close it came.
     ///
-    /// Cost (default ocean, three 256² cascades, one thread of an AMD EPYC Zen 3;
-    /// `docs/performance.md`): about 0.6 µs once the tiles it reads are computed (three or
-    /// four evaluations of the displacement, one of the height); the first query after a
-    /// step computes them (a tile of 32×32 cells of each cascade, rarely two: tens of µs, a
-    /// few per cent of the step), so stepping and asking one boat's height costs little more
-    /// than the step. For many points use [`OceanState::heights_at`] (about 0.17 µs a
-    /// point on one thread of an Intel Xeon at 2.3 GHz, eight points at a time in vector
-    /// lanes); to query from other threads while the ocean steps, [`OceanState::surface`].
+    /// Cost: a few evaluations of the displacement and one of the height once the spline
+    /// tiles it reads are computed; the first query after a step computes them (a tile of
+    /// 32×32 cells of each cascade, rarely two: a few per cent of the step), so stepping and
+    /// asking one boat's height costs little more than the step (measured figures: the
+    /// repository's `docs/performance.md`). For many points use [`OceanState::heights_at`]
+    /// (eight points at a time in vector lanes); to query from other threads while the ocean
+    /// steps, [`OceanState::surface`].
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn height_at(&self, x: f64, z: f64) -> Result<f32, Error> {
         check_point(x, z)?;
-        Ok(run(&Live(self), HeightAt, x, z))
+        Ok(run(&Fields::Live(self), HeightAt, x, z))
     }
 
     /// [`OceanState::height_at`] for many world points (x, z), into `out` (same length as
@@ -742,7 +750,7 @@ impl OceanState {
     /// for a NaN or infinite coordinate. Nothing is written then.
     pub fn heights_at(&self, points: &[[f64; 2]], out: &mut [f32]) -> Result<(), Error> {
         check_batch(points, out.len())?;
-        for_each_point(&Live(self), points, out, HeightAt);
+        for_each_point(&Fields::Live(self), points, out, HeightAt);
         Ok(())
     }
 
@@ -753,7 +761,7 @@ impl OceanState {
     /// As [`OceanState::heights_at`].
     pub fn surfaces_at(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
-        for_each_point(&Live(self), points, out, SurfaceAt);
+        for_each_point(&Fields::Live(self), points, out, SurfaceAt);
         Ok(())
     }
 
@@ -765,7 +773,7 @@ impl OceanState {
     pub fn sample_many(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
         check_batch(points, out.len())?;
         let cascades = 0..self.cascades.len();
-        for_each_point(&Live(self), points, out, Sample(cascades));
+        for_each_point(&Fields::Live(self), points, out, Sample(cascades));
         Ok(())
     }
 
@@ -773,7 +781,7 @@ impl OceanState {
     /// steps on: the [`Surface`] keeps answering about this frame's time, with the same bits
     /// as this ocean's own queries give now. The first handle of a frame copies the fields
     /// the queries read (the height, displacement and slope of every cascade and the foam,
-    /// about 24·N² bytes per cascade: a few hundred µs at the default size); later handles
+    /// about 24·N² bytes per cascade); later handles
     /// of the same frame share it. See [`Surface`] for what a step does while a handle is
     /// held.
     pub fn surface(&mut self) -> Surface {
@@ -839,7 +847,7 @@ impl OceanState {
             max: usize::MAX / columns,
         })?;
         error::length("out", out.len(), len)?;
-        let fields = Live(self);
+        let fields = Fields::Live(self);
         let cascades = 0..self.cascades.len();
         let simd = self.frames.current.simd;
         out.par_chunks_mut(columns)
