@@ -265,12 +265,20 @@ pub(crate) trait PointQuery: Sync {
     }
 }
 
-/// Whether cascades `range` all have spline tiles, so that a batch over them runs in lanes.
+/// Whether batches run in lanes in this build: not with debug assertions (a game's dev
+/// profile), where overflow checks break the lanes' loops into scalar code that LLVM's SLP
+/// vectorizer then takes minutes over at each SIMD level; such builds answer batches by
+/// groups of points, with the same bits (see docs/performance.md, "Compile time").
+const LANES_BUILT: bool = !cfg!(debug_assertions);
+
+/// Whether cascades `range` all have spline tiles, so that a batch over them runs in lanes
+/// (in a build that has them, [`LANES_BUILT`]).
 #[inline(always)]
 fn in_lanes(fields: &Fields<'_>, range: std::ops::Range<usize>) -> bool {
-    fields.frame().grids[range]
-        .iter()
-        .all(|grid| grid.tiles.is_some())
+    LANES_BUILT
+        && fields.frame().grids[range]
+            .iter()
+            .all(|grid| grid.tiles.is_some())
 }
 
 /// [`sample`] over a range of cascades.
@@ -311,7 +319,7 @@ impl PointQuery for Sample {
         points: &[[f64; 2]],
         out: &mut [SurfaceSample],
     ) {
-        if in_lanes(fields, self.0.clone()) {
+        if LANES_BUILT && in_lanes(fields, self.0.clone()) {
             lanes::sample(shuffle, fields, points, self.0.clone(), out);
         } else {
             self.groups(fields, points, out);
@@ -353,7 +361,7 @@ impl PointQuery for SurfaceAt {
     ) {
         if points.len() < lanes::FEWEST {
             self.singles(fields, points, out);
-        } else if in_lanes(fields, 0..fields.frame().grids.len()) {
+        } else if LANES_BUILT && in_lanes(fields, 0..fields.frame().grids.len()) {
             lanes::locate::<S, SurfaceSample, true, true>(shuffle, fields, points, out);
         } else {
             self.groups(fields, points, out);
@@ -386,7 +394,7 @@ impl PointQuery for HeightAt {
     ) {
         if points.len() < lanes::FEWEST {
             self.singles(fields, points, out);
-        } else if in_lanes(fields, 0..fields.frame().grids.len()) {
+        } else if LANES_BUILT && in_lanes(fields, 0..fields.frame().grids.len()) {
             lanes::locate::<S, f32, true, false>(shuffle, fields, points, out);
         } else {
             self.groups(fields, points, out);
