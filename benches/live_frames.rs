@@ -82,6 +82,12 @@ fn main() {
         if std::env::var_os("LIVE_FRAMES_ALL").is_some() {
             let all: Vec<String> = ratios[..prepared].iter().map(|r| format!("{r:.2}")).collect();
             println!("preparation frames: {}", all.join(" "));
+            let first: Vec<String> = ratios[prepared..]
+                .iter()
+                .take(10)
+                .map(|r| format!("{r:.2}"))
+                .collect();
+            println!("first blend frames: {}", first.join(" "));
         }
         report("preparation", &ratios[..prepared]);
         report("blend", &ratios[prepared..]);
