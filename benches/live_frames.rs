@@ -88,6 +88,12 @@ fn main() {
                 .map(|r| format!("{r:.2}"))
                 .collect();
             println!("first blend frames: {}", first.join(" "));
+            let (largest, ratio) = ratios[prepared..]
+                .iter()
+                .enumerate()
+                .max_by(|a, b| a.1.total_cmp(b.1))
+                .expect("a blend");
+            println!("largest blend frame: {largest} ({ratio:.2})");
         }
         report("preparation", &ratios[..prepared]);
         report("blend", &ratios[prepared..]);

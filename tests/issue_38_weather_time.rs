@@ -154,7 +154,11 @@ fn the_sea_is_a_function_of_time_whatever_the_frame_rate() {
         // The weight is `None` for both, the times equal: compared above.
         print.retain(|(name, _)| name != "time and weight");
         expected.retain(|(name, _)| name != "time and weight");
-        assert_same(&print, &expected, &format!("at {t} s against a fresh ocean"));
+        assert_same(
+            &print,
+            &expected,
+            &format!("at {t} s against a fresh ocean"),
+        );
     }
 }
 
@@ -216,8 +220,8 @@ fn set_time_into_a_change_shows_the_sea_of_that_time() {
 #[test]
 fn a_dragged_slider_ends_on_the_last_spectrum() {
     let config = OceanConfig::default();
-    let mut ocean = OceanState::new(Spectrum::jonswap(6.0, 100_000.0).unwrap(), config.clone())
-        .unwrap();
+    let mut ocean =
+        OceanState::new(Spectrum::jonswap(6.0, 100_000.0).unwrap(), config.clone()).unwrap();
     let mut last = None;
     for i in 1..=300 {
         let spectrum = Spectrum::jonswap((6.0 + 0.03 * f64::from(i)) as f32, 100_000.0).unwrap();

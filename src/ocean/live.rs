@@ -44,7 +44,9 @@ impl Change {
             return usize::MAX;
         }
         let share = (t - self.called) / (self.start - self.called);
-        (share * self.work as f64).ceil().clamp(0.0, self.work as f64) as usize
+        (share * self.work as f64)
+            .ceil()
+            .clamp(0.0, self.work as f64) as usize
     }
 
     /// The new sea's weight in energy at time `t`: 0 before the blend begins, 1 from
@@ -108,12 +110,12 @@ impl OceanState {
     ///
     /// **When.** With a positive `duration` the blend begins
     /// [`TRANSITION_LAG`](Self::TRANSITION_LAG) seconds of simulated time after the call and
-    /// `duration` counts from there. Over the lag the new sea is prepared in pieces (new
-    /// amplitudes drawn a few rows at a time, the foam's calibrations), each step doing as
-    /// many as the share of the lag elapsed by its time asks for: on the default ocean 60
-    /// pieces of up to a third of a plain step, about two a frame at 60 fps. A step that
-    /// reaches the blend's start does whatever is left (a single step across the lag does it
-    /// all: about as much as building the cascades). With `duration` 0 the new sea is
+    /// `duration` counts from there. Over the lag the new sea is prepared in pieces of up to
+    /// about half a plain step (new amplitudes drawn a few rows at a time, the foam's
+    /// calibrations), each step doing the share of the work that the share of the lag
+    /// elapsed by its time asks for: on the default ocean at 60 fps about a third of a plain
+    /// step a frame. A step that reaches the blend's start does whatever is left (a single
+    /// step across the lag does it all: about as much as building the cascades). With `duration` 0 the new sea is
     /// prepared here at once (this call then costs about as much as building the cascades)
     /// and the next step shows it. Once the blend is over, every cascade and the foam's
     /// model are exactly those of an ocean built with `spectrum` and this config (the same
