@@ -115,11 +115,11 @@ impl OceanState {
     /// calibrations), each step doing the share of the work that the share of the lag
     /// elapsed by its time asks for: on the default ocean at 60 fps about a third of a plain
     /// step a frame. A step that reaches the blend's start does whatever is left (a single
-    /// step across the lag does it all: about as much as building the cascades). With `duration` 0 the new sea is
-    /// prepared here at once (this call then costs about as much as building the cascades)
-    /// and the next step shows it. Once the blend is over, every cascade and the foam's
-    /// model are exactly those of an ocean built with `spectrum` and this config (the same
-    /// bits at the same time).
+    /// step across the lag does it all: about as much as building the cascades). With
+    /// `duration` 0 the new sea is prepared here at once (this call then costs about as much
+    /// as building the cascades) and the next step shows it. Once the blend is over, every
+    /// cascade and the foam's model are exactly those of an ocean built with `spectrum` and
+    /// this config (the same bits at the same time).
     ///
     /// **A function of time.** The waves are a function of the calls, the simulated times
     /// they were made at and the current time, never of the steps between: every cascade
