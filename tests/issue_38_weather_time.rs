@@ -241,3 +241,34 @@ fn a_dragged_slider_ends_on_the_last_spectrum() {
         "a second after the slider, against a fresh ocean",
     );
 }
+
+/// A pre-roll in the middle of a change goes back before the call and forward again: the
+/// cascades come back to the sea of the time, the change goes on as the 60 fps ocean's.
+#[test]
+fn a_pre_roll_inside_a_change_keeps_the_sea_of_the_time() {
+    let (calm, wind) = seas();
+    let config = OceanConfig::default();
+    let run = |pre_roll: bool| {
+        let mut ocean = OceanState::new(calm.clone(), config.clone()).unwrap();
+        let mut prints = Vec::new();
+        for i in 1..=240 {
+            let t = f64::from(i) / 60.0;
+            ocean.step_to(t).unwrap();
+            if t == CALL {
+                ocean.set_spectrum(wind.clone(), DURATION).unwrap();
+            }
+            if pre_roll && t == 2.75 {
+                ocean.pre_roll(1.5, 0.1).unwrap();
+            }
+            if CHECKS.contains(&t) || t == 2.75 {
+                prints.push((t, fingerprint(&ocean)));
+            }
+        }
+        prints
+    };
+    let (plain, rolled) = (run(false), run(true));
+    assert_eq!(plain.len(), 4);
+    for ((t, a), (_, b)) in plain.iter().zip(&rolled) {
+        assert_same(b, a, &format!("after a pre-roll at 2.75 s, at {t} s"));
+    }
+}
