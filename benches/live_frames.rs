@@ -82,6 +82,18 @@ fn main() {
         if std::env::var_os("LIVE_FRAMES_ALL").is_some() {
             let all: Vec<String> = ratios[..prepared].iter().map(|r| format!("{r:.2}")).collect();
             println!("preparation frames: {}", all.join(" "));
+            let first: Vec<String> = ratios[prepared..]
+                .iter()
+                .take(10)
+                .map(|r| format!("{r:.2}"))
+                .collect();
+            println!("first blend frames: {}", first.join(" "));
+            let (largest, ratio) = ratios[prepared..]
+                .iter()
+                .enumerate()
+                .max_by(|a, b| a.1.total_cmp(b.1))
+                .expect("a blend");
+            println!("largest blend frame: {largest} ({ratio:.2})");
         }
         report("preparation", &ratios[..prepared]);
         report("blend", &ratios[prepared..]);

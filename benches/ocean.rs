@@ -583,6 +583,25 @@ fn live(c: &mut Criterion) {
             })
         });
     }
+    // The step that reaches the blend's start with the whole preparation left (a jump or a
+    // long frame across the lag): the dearest step of a change.
+    group.bench_function("set_spectrum_and_step_across_lag", |b| {
+        pool.install(|| {
+            b.iter_batched_ref(
+                || {
+                    let mut state = base.clone();
+                    state.set_spectrum(gale.clone(), 10.0).expect("change");
+                    state
+                },
+                |state| {
+                    state
+                        .step(black_box(OceanState::TRANSITION_LAG))
+                        .expect("step")
+                },
+                BatchSize::PerIteration,
+            )
+        })
+    });
     group.bench_function("transition_step", |b| {
         let mut state = base.clone();
         let mut toward_gale = true;

@@ -139,6 +139,66 @@ fn a_change_of_weather_is_a_transition_and_a_new_grid_a_rebuild() {
     });
 }
 
+/// The heights the game saw in an app whose `OceanClock::Manual` runs at `fps` frames a
+/// second for 4 s, the weather changing (over 1 s) in the frame after the clock read 1 s:
+/// the plugin calls `set_spectrum` before it steps, so at sea time 1 s whatever the rate.
+fn heights_at_fps(fps: u32, points: &[[f32; 2]]) -> (Vec<(f64, Vec<f32>)>, OceanSettings) {
+    let mut app = app(settings(SeaState::ModerateBreeze, 1.0));
+    app.insert_resource(OceanClock::Manual(0.0))
+        .insert_resource(Probe {
+            points: points.to_vec(),
+            seen: Vec::new(),
+        })
+        .add_systems(Update, probe);
+    run_until(&mut app, "the first ocean", |w| {
+        w.resource::<OceanStatus>().ready
+    });
+    for i in 1..=4 * fps {
+        if i == fps + 1 {
+            app.world_mut()
+                .resource_mut::<OceanSettings>()
+                .set_weather(SeaState::FreshBreeze);
+        }
+        app.insert_resource(OceanClock::Manual(f64::from(i) / f64::from(fps)));
+        app.update();
+    }
+    // The frame that collects the last step.
+    app.update();
+    assert_eq!(status(&app).last_error, None);
+    assert_eq!(status(&app).transition_progress, None, "the change is over");
+    let target = app.world().resource::<OceanSettings>().clone();
+    assert_eq!(status(&app).spectrum.as_ref(), Some(&target.spectrum));
+    let seen = app.world().resource::<Probe>().seen.clone();
+    (seen, target)
+}
+
+/// Two games on a manual clock, at 30 and 144 fps, see the same heights at the same sea
+/// times through a change of weather (the waves, changes of weather included, are a
+/// function of the time), and at 4 s those of a fresh ocean of the new spectrum.
+#[test]
+fn a_change_of_weather_looks_the_same_at_any_frame_rate() {
+    let points = [[0.0, 0.0], [13.7, -4.2], [-30.5, 22.25]];
+    let (slow, target) = heights_at_fps(30, &points);
+    let (fast, _) = heights_at_fps(144, &points);
+    let mut common = 0;
+    for (time, heights) in &slow {
+        if let Some((_, other)) = fast.iter().find(|(t, _)| t == time) {
+            assert_eq!(heights, other, "30 against 144 fps at t = {time}");
+            common += 1;
+        }
+    }
+    // Every sixth of a second from 1/6 s to 4 s, the change (1.45 s to 2.45 s) among them.
+    assert!(common >= 20, "{common} common sea times");
+    let (time, seen) = slow.last().expect("probed").clone();
+    assert_eq!(time, 4.0);
+    let mut fresh = OceanState::new(target.spectrum.clone(), target.config.clone()).unwrap();
+    fresh.set_time(time).unwrap();
+    for (&[x, z], height) in points.iter().zip(seen) {
+        let expected = fresh.height_at(f64::from(x), f64::from(z)).unwrap();
+        assert_eq!(height, expected, "at ({x}, {z}), t = {time}");
+    }
+}
+
 /// The columns of a test body, as the plugin places them: world (x, z) of each.
 fn columns(body: &Buoyancy, transform: &Transform) -> Vec<[f64; 2]> {
     body.points

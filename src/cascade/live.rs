@@ -1,7 +1,8 @@
 //! A live change of a cascade's amplitudes (see `OceanState::set_spectrum`): the new
 //! spectrum's amplitudes drawn a few rows at a time as `Cascade::new` draws them, then blended
 //! with the old ones by energy, every wave keeping its random phase, and installed exactly at
-//! the end.
+//! the end. The blend is a function of its weight alone: the old amplitudes are kept, so a
+//! weight of 0 shows them again bit for bit.
 
 use num_complex::Complex32;
 use rayon::prelude::*;
@@ -59,9 +60,11 @@ struct Drawn {
 pub(crate) struct AmplitudeChange {
     /// Whether a change is in progress.
     active: bool,
-    /// The amplitudes the blend starts from (N×N, FFT order).
+    /// The amplitudes the blend starts from (N×N, FFT order), kept throughout.
     from: Vec<Complex32>,
     from_stats: Option<AmplitudeStats>,
+    /// The amplitude bound of `from`.
+    from_bound: f64,
     /// The new amplitudes, rows `0..rows_drawn` drawn so far.
     target: Vec<Complex32>,
     /// Σ S(k)Δk² of each drawn row.
@@ -70,11 +73,11 @@ pub(crate) struct AmplitudeChange {
     band_rows: Vec<u32>,
     /// Whether grid column i holds a wave vector of the band.
     band_columns: Vec<bool>,
-    /// Once the blend has begun, per point the energy of the side `from` no longer holds
-    /// relative to the one it holds (see [`Cascade::blend_change`]).
+    /// Per point the energy of the smaller side relative to the larger one, the reference,
+    /// negative when the reference is the new side (see [`Cascade::blend_change`]).
     coef: Vec<f32>,
-    /// Whether `from` and `coef` hold the blend's form.
-    blending: bool,
+    /// Whether `coef` is computed for the new amplitudes.
+    formed: bool,
     /// Which points are zero in the blend as the band pruning last saw it: 0 the old
     /// amplitudes' (w = 0), 1 either side's (0 < w < 1), 2 the new ones' (w = 1).
     pruned_for: u8,
@@ -132,10 +135,11 @@ impl Cascade {
             mean_level: self.mean_level,
             subgrid_slope: self.subgrid_slope,
         });
+        change.from_bound = self.amplitude_bound;
         change.rows_drawn = 0;
         change.radial_rows = 0;
         change.drawn = None;
-        change.blending = false;
+        change.formed = false;
         change.pruned_for = 0;
         change.active = true;
     }
@@ -177,38 +181,64 @@ impl Cascade {
         self.change.rows_drawn == self.n
     }
 
+    /// Whether the blend's form of a change (its `coef`) is computed.
+    pub(crate) fn change_formed(&self) -> bool {
+        self.change.formed
+    }
+
+    /// What preparing a change costs here (after [`reserve_change`](Self::reserve_change)),
+    /// in wave vectors drawn: the calls of [`draw_change`](Self::draw_change) with `budget`,
+    /// then [`finish_change`](Self::finish_change) and [`form_change`](Self::form_change).
+    pub(crate) fn change_cost(&self, budget: usize) -> usize {
+        let (n, half) = (self.n, self.n / 2);
+        let mut cost = self.finish_cost() + self.form_cost();
+        let mut start = 0;
+        while start <= half {
+            let end = radial_end(start, half, budget);
+            cost += radial_cost(start, end);
+            start = end;
+        }
+        let mut start = 0;
+        while start < n {
+            let (end, work) = rows_end(&self.change.band_rows, start, budget);
+            cost += work;
+            start = end;
+        }
+        cost
+    }
+
+    /// What [`finish_change`](Self::finish_change) costs, in wave vectors drawn (a few
+    /// passes over the grid).
+    pub(crate) fn finish_cost(&self) -> usize {
+        self.n * self.n / 4
+    }
+
+    /// What [`form_change`](Self::form_change) costs, in wave vectors drawn (a division a
+    /// point).
+    pub(crate) fn form_cost(&self) -> usize {
+        self.n * self.n / 8
+    }
+
     /// Draws the next part of the new amplitudes of `spectrum`, as `Cascade::new` draws
     /// them: first the radial table (each entry counted as [`RADIAL_COST`] wave vectors), then
     /// grid rows, until the work holds at least `budget` wave vectors of the band (at least
-    /// one row; a fixed amount of work, whatever the machine).
-    pub(crate) fn draw_change<M: Math>(&mut self, spectrum: &Spectrum, budget: usize) {
+    /// one row; a fixed amount of work, whatever the machine). Returns that work.
+    pub(crate) fn draw_change<M: Math>(&mut self, spectrum: &Spectrum, budget: usize) -> usize {
         let n = self.n;
         let change = &mut self.change;
         if !change.active || change.rows_drawn == n {
-            return;
+            return 0;
         }
         let half = n / 2;
         if change.radial_rows <= half {
             let start = change.radial_rows;
-            let mut end = start;
-            // Row a of the table holds a + 1 lengths.
-            while end <= half
-                && (end == start
-                    || (end * (end + 1) / 2 - start * (start + 1) / 2) * RADIAL_COST < budget)
-            {
-                end += 1;
-            }
+            let end = radial_end(start, half, budget);
             tables::fill_radial::<M>(spectrum, &self.config, start..end, &mut change.radial);
             change.radial_rows = end;
-            return;
+            return radial_cost(start, end);
         }
         let start = change.rows_drawn;
-        let mut end = start;
-        let mut work = 0usize;
-        while end < n && (end == start || work < budget) {
-            work += change.band_rows[end] as usize;
-            end += 1;
-        }
+        let (end, work) = rows_end(&change.band_rows, start, budget);
         tables::draw_rows::<M>(
             spectrum,
             &self.config,
@@ -218,6 +248,7 @@ impl Cascade {
             &mut change.variance_rows[start..end],
         );
         change.rows_drawn = end;
+        work
     }
 
     /// Once every row is drawn, derives from the new amplitudes what [`Cascade::new`] derives
@@ -262,6 +293,30 @@ impl Cascade {
         }
     }
 
+    /// Once the new amplitudes and what follows from them are drawn, puts the blend in a form
+    /// a step evaluates in a few operations a point: per point the smaller side's energy
+    /// relative to the larger one's, the reference r, c = |h0_new|²/|r|² (sign bit clear)
+    /// where r is the old amplitude and −|h0_old|²/|r|² (sign bit set, −0 for a wave the old
+    /// sea lacks) where it is the new one. The amplitudes themselves are kept as they are.
+    pub(crate) fn form_change(&mut self) {
+        let n = self.n;
+        let change = &mut self.change;
+        if !change.active || change.drawn.is_none() || change.formed {
+            return;
+        }
+        let AmplitudeChange {
+            from, target, coef, ..
+        } = change;
+        coef.par_chunks_mut(n)
+            .zip(from.par_chunks(n).zip(target.par_chunks(n)))
+            .for_each(|(coef, (from, target))| {
+                for ((c, &a), &b) in coef.iter_mut().zip(from).zip(target) {
+                    *c = reference_coef(a, b);
+                }
+            });
+        change.formed = true;
+    }
+
     /// The new amplitudes once all are drawn.
     pub(crate) fn change_target(&self) -> Option<&[Complex32]> {
         self.change.drawn.map(|_| &self.change.target[..])
@@ -273,35 +328,22 @@ impl Cascade {
     }
 
     /// Sets the amplitudes to the energy blend of the change's old and new ones with weight
-    /// `w` in [0, 1] on the new (all drawn): every wave keeps its phase (old and new share
-    /// their random draw) and |h0|² = (1 − w)|h0_old|² + w|h0_new|², so the variance, the
-    /// mean level and every second moment move linearly from the old sea's to the new sea's.
-    /// At w = 1 the new amplitudes are installed exactly, with everything `Cascade::new`
-    /// derives from them, and the change ends: the cascade is then the one `Cascade::new`
-    /// builds for the new spectrum. Allocates nothing.
-    ///
-    /// The first call puts the blend in a form a step evaluates in a few operations a point:
-    /// `from` holds the larger of the two amplitudes (the reference r) and `coef` the other's
-    /// energy relative to it, c = |h0_new|²/|r|² (sign bit clear) where r is the old one and
-    /// −|h0_old|²/|r|² (sign bit set, −0 for a wave the old sea lacks) where it is the new
-    /// one; then h0 = r·√((1 − w)·c_old + w·c_new).
+    /// `w` in [0, 1] on the new (all drawn, the blend formed): every wave keeps its phase (old
+    /// and new share their random draw) and |h0|² = (1 − w)|h0_old|² + w|h0_new|², so the
+    /// variance, the mean level and every second moment move linearly from the old sea's to
+    /// the new sea's. The result depends on `w` alone, whatever weights came before: at w ≤ 0
+    /// the old amplitudes and their statistics come back exactly; at w = 1 the new ones are
+    /// installed exactly, with everything `Cascade::new` derives from them, and the change
+    /// ends: the cascade is then the one `Cascade::new` builds for the new spectrum. In
+    /// between, h0 = r·√((1 − w)·c_old + w·c_new) with the reference r and the coefficients of
+    /// [`form_change`](Self::form_change). Allocates nothing.
     pub(crate) fn blend_change(&mut self, w: f64) {
         let n = self.n;
         let Some(drawn) = self.change.drawn else {
             return;
         };
-        if !self.change.blending {
-            self.change.blending = true;
-            let AmplitudeChange {
-                from, target, coef, ..
-            } = &mut self.change;
-            from.par_chunks_mut(n)
-                .zip(target.par_chunks(n).zip(coef.par_chunks_mut(n)))
-                .for_each(|(from, (target, coef))| {
-                    for ((a, &b), c) in from.iter_mut().zip(target).zip(coef) {
-                        (*a, *c) = reference_form(*a, b);
-                    }
-                });
+        if !self.change.formed {
+            return;
         }
         let from_stats = self.change.from_stats.unwrap_or(drawn.stats);
         let (stats, class) = if w >= 1.0 {
@@ -310,30 +352,40 @@ impl Cascade {
             self.loop_error = drawn.loop_error;
             self.change.active = false;
             (drawn.stats, 2)
+        } else if w <= 0.0 {
+            self.h0.copy_from_slice(&self.change.from);
+            self.amplitude_bound = self.change.from_bound;
+            (from_stats, 0)
         } else {
             let (old, new) = ((1.0 - w) as f32, w as f32);
-            let (reference, coef) = (&self.change.from, &self.change.coef);
-            let band_rows = &self.change.band_rows;
+            let AmplitudeChange {
+                from,
+                target,
+                coef,
+                band_rows,
+                ..
+            } = &self.change;
             self.h0
                 .par_chunks_mut(n)
-                .zip(reference.par_chunks(n).zip(coef.par_chunks(n)))
+                .zip(from.par_chunks(n).zip(target.par_chunks(n)))
+                .zip(coef.par_chunks(n))
                 .enumerate()
                 // Rows without a wave vector of the band are zero on both sides.
                 .filter(|(j, _)| band_rows[*j] > 0)
-                .for_each(|(_, (h0, (reference, coef)))| {
-                    for ((h, &r), &c) in h0.iter_mut().zip(reference).zip(coef) {
+                .for_each(|(_, ((h0, (from, target)), coef))| {
+                    for (((h, &a), &b), &c) in h0.iter_mut().zip(from).zip(target).zip(coef) {
                         // The sign bit says which side is the reference (−0 for a new wave).
-                        let (c_old, c_new) = if c.is_sign_negative() {
-                            (-c, 1.0)
+                        let (r, c_old, c_new) = if c.is_sign_negative() {
+                            (b, -c, 1.0)
                         } else {
-                            (1.0, c)
+                            (a, 1.0, c)
                         };
                         *h = r * (old * c_old + new * c_new).sqrt();
                     }
                 });
             // The blend of two bounds is within their larger (each |h0| is).
-            self.amplitude_bound = self.amplitude_bound.max(drawn.amplitude_bound);
-            (from_stats.blend(&drawn.stats, w), u8::from(w > 0.0))
+            self.amplitude_bound = self.change.from_bound.max(drawn.amplitude_bound);
+            (from_stats.blend(&drawn.stats, w), 1)
         };
         self.expected_variance = stats.expected_variance;
         self.mean_level = stats.mean_level;
@@ -383,16 +435,44 @@ impl Cascade {
     }
 }
 
-/// The blend's form of an old amplitude `a` and a new one `b` (which share their phase: the
-/// same random draw times two non-negative reals): the larger, and the other's energy
-/// relative to it, negative when the larger is the new one (see [`Cascade::blend_change`]).
-fn reference_form(a: Complex32, b: Complex32) -> (Complex32, f32) {
+/// The blend's coefficient of an old amplitude `a` and a new one `b` (which share their
+/// phase: the same random draw times two non-negative reals): the smaller one's energy
+/// relative to the larger one's, negative when the larger is the new one (see
+/// [`Cascade::form_change`]).
+fn reference_coef(a: Complex32, b: Complex32) -> f32 {
     let (na, nb) = (f64::from(a.norm_sqr()), f64::from(b.norm_sqr()));
     if na == 0.0 && nb == 0.0 {
-        (Complex32::default(), 0.0)
+        0.0
     } else if na >= nb {
-        (a, (nb / na) as f32)
+        (nb / na) as f32
     } else {
-        (b, -(na / nb) as f32)
+        -(na / nb) as f32
     }
+}
+
+/// The end of the radial table's rows that one call of [`Cascade::draw_change`] fills from
+/// row `start` (of `0..=half`) with `budget`.
+fn radial_end(start: usize, half: usize, budget: usize) -> usize {
+    let mut end = start;
+    while end <= half && (end == start || radial_cost(start, end) < budget) {
+        end += 1;
+    }
+    end
+}
+
+/// The work of the radial table's rows `start..end`: row a holds a + 1 lengths.
+fn radial_cost(start: usize, end: usize) -> usize {
+    (end * (end + 1) / 2 - start * (start + 1) / 2) * RADIAL_COST
+}
+
+/// The end of the grid rows that one call of [`Cascade::draw_change`] draws from row `start`
+/// with `budget`, and their wave vectors of the band.
+fn rows_end(band_rows: &[u32], start: usize, budget: usize) -> (usize, usize) {
+    let mut end = start;
+    let mut work = 0usize;
+    while end < band_rows.len() && (end == start || work < budget) {
+        work += band_rows[end] as usize;
+        end += 1;
+    }
+    (end, work)
 }

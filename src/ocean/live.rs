@@ -11,33 +11,51 @@ use crate::spectrum::Spectrum;
 use super::foam::FoamConfig;
 use super::OceanState;
 
-/// Wave vectors of the band whose new amplitudes a step draws during a change of weather: a
-/// fixed amount (so that the result depends on the steps taken, never on the machine), about
-/// a third of a default step's work.
+/// Wave vectors of the band whose new amplitudes one piece of a change's preparation draws:
+/// a fixed amount (so that the pieces are the same on every machine), about a third of a
+/// default step's work.
 const DRAW_BUDGET: usize = 4096;
 
 /// A change of weather in progress.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Change {
+    /// The time of the call, s.
+    called: f64,
     /// The blend's length in seconds of simulated time.
     duration: f64,
-    /// The time the blend began: the step that finished drawing the new amplitudes (`None`
-    /// while they are drawn).
-    start: Option<f64>,
-    /// The new sea's weight at the last update.
+    /// The time the blend begins: `called` + [`OceanState::TRANSITION_LAG`] (`called` for a
+    /// change at once).
+    start: f64,
+    /// The work that prepares the new sea in wave vectors drawn (see
+    /// `OceanState::prepare_piece`), and how much of it is done.
+    work: usize,
+    done: usize,
+    /// Whether every piece is done.
+    prepared: bool,
+    /// The new sea's weight at the last update (what the cascades and the foam show).
     weight: f64,
 }
 
 impl Change {
+    /// The work of the preparation due by time `t`: the elapsed share of the lag, so that
+    /// the work follows simulated time, not steps; all of it from the blend's start on.
+    fn work_due(&self, t: f64) -> usize {
+        if t >= self.start {
+            return usize::MAX;
+        }
+        let share = (t - self.called) / (self.start - self.called);
+        (share * self.work as f64)
+            .ceil()
+            .clamp(0.0, self.work as f64) as usize
+    }
+
     /// The new sea's weight in energy at time `t`: 0 before the blend begins, 1 from
     /// `start + duration` on, and in between the smoothstep 3τ² − 2τ³ of τ = (t − start)/
     /// duration, whose zero slope at both ends lets waves that appear or vanish grow or
     /// shrink in amplitude at a bounded rate (√3/duration of their full height) rather than
     /// with the infinite rate √τ would give them at the start.
     fn weight_at(&self, t: f64) -> f64 {
-        let Some(start) = self.start else {
-            return 0.0;
-        };
+        let start = self.start;
         if t >= start + self.duration {
             return 1.0;
         }
@@ -53,6 +71,11 @@ impl OceanState {
     /// Longest accepted `duration` of [`set_spectrum`](Self::set_spectrum), in seconds (as
     /// long as the ocean's time can run).
     pub const MAX_TRANSITION: f64 = Cascade::MAX_TIME;
+
+    /// Delay in seconds of simulated time between a call of
+    /// [`set_spectrum`](Self::set_spectrum) with a positive duration and the start of its
+    /// blend, over which the new sea is prepared a piece at a time.
+    pub const TRANSITION_LAG: f64 = 0.45;
 
     /// Changes the weather: from the current time the sea turns into `spectrum` over
     /// `duration` seconds of simulated time, every wave keeping its phase, the foam kept.
@@ -85,25 +108,38 @@ impl OceanState {
     /// 3τ² − 2τ³ of the elapsed fraction τ of `duration`, so waves that appear or vanish do so
     /// smoothly; [`expected_variance`](Self::expected_variance) moves monotonically.
     ///
-    /// **When.** The new amplitudes are drawn a few rows per step (a fixed amount of work,
-    /// about half a default step on top of it), so the blend begins at the step that finishes
-    /// them: for the default ocean about 24 steps after the call (0.4 s at 60 fps); `duration`
-    /// counts from there. With `duration` 0 they are drawn here at once (this call then costs
-    /// about as much as building the cascades) and the next step shows the new sea. Once the
-    /// blend is over, every cascade and the foam's model are exactly those of an ocean built
-    /// with `spectrum` and this config (the same bits at the same time). A new call during a
-    /// change starts from the sea as it is.
+    /// **When.** With a positive `duration` the blend begins
+    /// [`TRANSITION_LAG`](Self::TRANSITION_LAG) seconds of simulated time after the call and
+    /// `duration` counts from there. Over the lag the new sea is prepared in pieces of up to
+    /// about half a plain step (new amplitudes drawn a few rows at a time, the foam's
+    /// calibrations), each step doing the share of the work that the share of the lag
+    /// elapsed by its time asks for: on the default ocean at 60 fps about a third of a plain
+    /// step a frame. A step that reaches the blend's start does whatever is left (a single
+    /// step across the lag does it all: about as much as building the cascades). With
+    /// `duration` 0 the new sea is prepared here at once (this call then costs about as much
+    /// as building the cascades) and the next step shows it. Once the blend is over, every
+    /// cascade and the foam's model are exactly those of an ocean built with `spectrum` and
+    /// this config (the same bits at the same time).
+    ///
+    /// **A function of time.** The waves are a function of the calls, the simulated times
+    /// they were made at and the current time, never of the steps between: every cascade
+    /// buffer, [`Cascade::h0`], the statistics and the [foam calibration](Self::foam_calibration)
+    /// have the same bits at the same time whether the ocean stepped at 30 or 144 fps, took
+    /// one step across the change or jumped into it with [`set_time`](Self::set_time) (before
+    /// the blend's start the old sea, during it the blend of that time, after its end the new
+    /// sea, and the change is over: a later jump back shows the new sea). A new call during a
+    /// change starts from the sea as it is at the current time. The foam on the water is
+    /// not a function of time: it is integrated over the steps taken, as always.
     ///
     /// **What the getters say.** [`spectrum`](Self::spectrum) returns `spectrum` from this call
-    /// on; [`transition_progress`](Self::transition_progress) the new sea's weight w while
-    /// the change lasts; the cascades' buffers, [`Cascade::h0`], the expected variance and
-    /// the [foam calibration](Self::foam_calibration) the sea as blended at the last update.
-    /// The change is a function of the simulated time: [`set_time`](Self::set_time) before
-    /// its start shows the old sea, after its end the new one (and ends the change).
+    /// on; [`transition_progress`](Self::transition_progress) the new sea's weight w at the
+    /// last update while the change lasts (0 before the blend begins); the cascades'
+    /// buffers, [`Cascade::h0`], the expected variance and the
+    /// [foam calibration](Self::foam_calibration) the sea as blended at the last update.
     ///
     /// **Foam.** The foam is kept; its breaking threshold follows the blended sea (calibrated
-    /// afresh at w = 0, 1/8, …, 1 and interpolated between), its drift and streaks follow
-    /// the wind.
+    /// afresh at w = 0, 1/8, …, 1 and interpolated between, so a function of w), its drift
+    /// and streaks follow the wind.
     ///
     /// **Depth.** The water depth, and with it the waves' speeds, cannot change while the
     /// ocean runs: a spectrum with another [`Dispersion`](crate::Dispersion) is refused (waves
@@ -141,20 +177,37 @@ impl OceanState {
         }
         self.foam.begin_change();
         self.spectrum = spectrum;
+        let work = self
+            .cascades
+            .iter()
+            .map(|c| c.change_cost(DRAW_BUDGET))
+            .sum::<usize>()
+            + self.foam.change_cost(&self.cascades);
+        let called = self.time;
+        let lag = if duration == 0.0 {
+            0.0
+        } else {
+            Self::TRANSITION_LAG
+        };
         self.change = Some(Change {
+            called,
             duration,
-            start: None,
+            start: called + lag,
+            work,
+            done: 0,
+            prepared: false,
             weight: 0.0,
         });
         if duration == 0.0 {
-            self.prepare_change(self.time, true);
+            self.prepare_all();
         }
         Ok(())
     }
 
     /// The weight w in [0, 1] of the new sea in a change of weather at the last update
-    /// (`None` when no change is in progress): 0 while its amplitudes are drawn, then rising
-    /// to 1 over the change's duration (see [`set_spectrum`](Self::set_spectrum)).
+    /// (`None` when no change is in progress): 0 until the blend begins
+    /// ([`TRANSITION_LAG`](Self::TRANSITION_LAG) after the call), then rising to 1 over the
+    /// change's duration (see [`set_spectrum`](Self::set_spectrum)).
     pub fn transition_progress(&self) -> Option<f64> {
         self.change.map(|change| change.weight)
     }
@@ -182,55 +235,82 @@ impl OceanState {
         Ok(())
     }
 
-    /// Moves a change of weather on to time `t`, as part of the step to `t`: while the new sea
-    /// is prepared, one piece of that work; then the cascades and the foam blended with the
-    /// weight at `t`, and the change ended at weight 1.
+    /// Moves a change of weather on to time `t`, as part of the step to `t`: the pieces of
+    /// the preparation due by `t` (all that are left from the blend's start on), then the
+    /// cascades and the foam blended with the weight at `t` (only the foam when the weight is
+    /// the last one), and the change ended at weight 1.
     pub(super) fn advance_change(&mut self, t: f64) {
-        if self.change.is_some_and(|c| c.start.is_none()) {
-            self.prepare_change(t, false);
+        let Some(change) = self.change else {
+            return;
+        };
+        if !change.prepared {
+            let due = change.work_due(t);
+            let mut done = change.done;
+            let mut prepared = false;
+            while done < due && self.change.is_some() {
+                let Some(work) = self.prepare_piece() else {
+                    prepared = true;
+                    break;
+                };
+                done = done.saturating_add(work);
+            }
+            let Some(change) = self.change.as_mut() else {
+                return; // Cancelled.
+            };
+            change.done = done;
+            change.prepared = prepared;
         }
         let Some(change) = self.change.as_mut() else {
             return;
         };
         let w = change.weight_at(t);
+        if change.prepared {
+            if w != change.weight {
+                for cascade in &mut self.cascades {
+                    cascade.blend_change(w);
+                }
+            }
+            self.foam.blend_change(w);
+        }
         change.weight = w;
-        if change.start.is_none() {
-            return;
-        }
-        for cascade in &mut self.cascades {
-            cascade.blend_change(w);
-        }
-        self.foam.blend_change(w);
         if w >= 1.0 {
             self.change = None;
         }
     }
 
-    /// Prepares the change's new sea: one piece of the work (`all`: every piece left), each
-    /// at most about a third of a default step: a few rows of one cascade's new amplitudes,
-    /// what one cascade derives from them, the foam's moments of one cascade, the foam's new
-    /// model, or one of its calibrations. When nothing is left, the blend begins at time `t`.
-    fn prepare_change(&mut self, t: f64, all: bool) {
+    /// Does the next piece of the work that prepares the change's new sea, each at most about
+    /// half a default step: a few rows of one cascade's new amplitudes, what one cascade
+    /// derives from them, one cascade's blend coefficients, the foam's moments of one
+    /// cascade, the foam's new model, or one of its calibrations. Returns its cost in wave
+    /// vectors drawn, `None` if none was left (the change may have been cancelled then).
+    fn prepare_piece(&mut self) -> Option<usize> {
         let determinism = self.config.determinism;
-        loop {
-            let spectrum = &self.spectrum;
-            if let Some(cascade) = self.cascades.iter_mut().find(|c| !c.change_rows_drawn()) {
-                with_math!(determinism, M => cascade.draw_change::<M>(spectrum, DRAW_BUDGET));
-            } else if let Some(cascade) = self.cascades.iter_mut().find(|c| !c.change_drawn()) {
-                with_math!(determinism, M => cascade.finish_change::<M>(spectrum));
-                if cascade.check_change().is_err() {
-                    // Not reached: `set_spectrum` checked a bound on these amplitudes.
-                    self.cancel_change();
-                    return;
-                }
-            } else if !self.foam.prepare_change(&self.cascades, spectrum) {
-                if let Some(change) = self.change.as_mut() {
-                    change.start = Some(t);
-                }
-                return;
+        let spectrum = &self.spectrum;
+        if let Some(cascade) = self.cascades.iter_mut().find(|c| !c.change_rows_drawn()) {
+            Some(with_math!(determinism, M => cascade.draw_change::<M>(spectrum, DRAW_BUDGET)))
+        } else if let Some(cascade) = self.cascades.iter_mut().find(|c| !c.change_drawn()) {
+            with_math!(determinism, M => cascade.finish_change::<M>(spectrum));
+            let cost = cascade.finish_cost();
+            if cascade.check_change().is_err() {
+                // Not reached: `set_spectrum` checked a bound on these amplitudes.
+                self.cancel_change();
             }
-            if !all {
-                return;
+            Some(cost)
+        } else if let Some(cascade) = self.cascades.iter_mut().find(|c| !c.change_formed()) {
+            cascade.form_change();
+            Some(cascade.form_cost())
+        } else {
+            self.foam.prepare_change(&self.cascades, spectrum)
+        }
+    }
+
+    /// Does every piece of the change's preparation left.
+    fn prepare_all(&mut self) {
+        while self.change.is_some_and(|c| !c.prepared) {
+            if self.prepare_piece().is_none() {
+                if let Some(change) = self.change.as_mut() {
+                    change.prepared = true;
+                }
             }
         }
     }
@@ -244,11 +324,9 @@ impl OceanState {
         self.change = None;
     }
 
-    /// Draws whatever is left of a change's new amplitudes at once, so that its blend begins
-    /// at time `t` (before a pre-roll, whose steps go back in time).
-    pub(super) fn finish_drawing(&mut self, t: f64) {
-        if self.change.is_some_and(|c| c.start.is_none()) {
-            self.prepare_change(t, true);
-        }
+    /// Prepares whatever is left of a change's new sea at once (before a pre-roll, whose
+    /// steps go back in time and forward again; the blend stays a function of time).
+    pub(super) fn finish_preparing(&mut self) {
+        self.prepare_all();
     }
 }

@@ -141,7 +141,7 @@ impl OceanState {
         // the other cascades' statistics), so the roll moves cascade 0 alone and the others
         // once at the end: the same bits as moving all of them at every step.
         rayon::scope(|_| {
-            self.finish_drawing(end);
+            self.finish_preparing();
             self.foam.clear_state();
             self.advance(start, FoamMotion::Jump, Scope::FoamSource);
             let mut previous = start;

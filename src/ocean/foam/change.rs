@@ -145,6 +145,15 @@ fn params(sea: &FoamSea, config: &FoamConfig, calibration: &FoamCalibration) -> 
 /// interpolated linearly in the blend weight.
 const CHECKPOINTS: usize = 8;
 
+/// What one calibration costs, in wave vectors drawn (the unit of a change's preparation;
+/// only the pacing of the preparation depends on it).
+const CALIBRATION_COST: usize = 20_000;
+
+/// What the gradient moments of `cascade`'s amplitudes cost, in wave vectors drawn.
+fn moments_cost(cascade: &Cascade) -> usize {
+    cascade.size() * cascade.size() / 4
+}
+
 /// The foam's side of a change of weather: the sea it comes from and the one it goes to,
 /// their transports, and the calibrations made so far at the checkpoints w = k/8.
 #[derive(Debug, Clone)]
@@ -175,21 +184,30 @@ impl Foam {
         });
     }
 
+    /// What [`prepare_change`](Self::prepare_change) costs for `cascades`, in wave vectors
+    /// drawn (the unit of a change's preparation).
+    pub(crate) fn change_cost(&self, cascades: &[Cascade]) -> usize {
+        cascades.iter().map(moments_cost).sum::<usize>() + CHECKPOINTS * CALIBRATION_COST
+    }
+
     /// One piece of the work that prepares the foam for the change's new sea of `cascades`
     /// (each with its new amplitudes drawn) and `spectrum`, the next one not done yet: the
     /// moments of one cascade, or the new sea's model, or the calibration at one checkpoint.
-    /// Each costs up to a third of a default step. Returns whether there was any left.
-    pub(crate) fn prepare_change(&mut self, cascades: &[Cascade], spectrum: &Spectrum) -> bool {
+    /// Each costs up to half a default step. Returns its cost in wave vectors drawn, `None`
+    /// if none was left.
+    pub(crate) fn prepare_change(
+        &mut self,
+        cascades: &[Cascade],
+        spectrum: &Spectrum,
+    ) -> Option<usize> {
         let (config, length, determinism) = (self.config, self.length, self.determinism);
-        let Some(change) = self.change.as_mut() else {
-            return false;
-        };
+        let change = self.change.as_mut()?;
         with_math!(determinism, M => {
             if let Some(c) = (0..cascades.len()).find(|&c| change.moments[c].is_none()) {
                 let cascade = &cascades[c];
                 let amplitudes = cascade.change_target().unwrap_or(cascade.h0());
                 change.moments[c] = Some(GradientMoments::of_amplitudes::<M>(cascade, amplitudes));
-                return true;
+                return Some(moments_cost(cascade));
             }
             if change.to.is_none() {
                 let moments = |c: usize| change.moments[c].unwrap_or_default();
@@ -202,23 +220,24 @@ impl Foam {
                     Some(to.calibration::<M>(&config, to.wind_speed(&config)));
                 change.to_transport = Some(to.transport::<M>(&config, length));
                 change.to = Some(to);
-                return true;
+                return Some(CALIBRATION_COST);
             }
             let to = change.to.expect("made above");
             if let Some(k) = (1..CHECKPOINTS).find(|&k| change.calibrations[k].is_none()) {
                 let at = change.from.blend(&to, k as f64 / CHECKPOINTS as f64);
                 change.calibrations[k] = Some(at.calibration::<M>(&config, at.wind_speed(&config)));
-                return true;
+                return Some(CALIBRATION_COST);
             }
-            false
+            None
         })
     }
 
     /// Follows the change to the blend weight `w` in [0, 1] of the new sea: the moments and
     /// the wind move linearly, the threshold through the calibrations at the checkpoints
-    /// around `w` (made here the first time they are needed), the transport linearly. At
-    /// w = 1 the new sea's model is installed, the one `Foam::new` builds for it, and the
-    /// change ends. The foam's state is kept throughout.
+    /// around `w` (made here the first time they are needed), the transport linearly. The
+    /// model depends on `w` alone: at w ≤ 0 the old sea's model comes back exactly, at w = 1
+    /// the new sea's is installed, the one `Foam::new` builds for it, and the change ends.
+    /// The foam's state is kept throughout.
     pub(crate) fn blend_change(&mut self, w: f64) {
         let Some(mut change) = self.change.take() else {
             return;
@@ -235,6 +254,15 @@ impl Foam {
             self.calibration = calibration;
             self.set_transport(to_transport);
             self.sea = to;
+            return;
+        }
+        if w <= 0.0 {
+            let calibration = change.calibrations[0].expect("calibrated when the change began");
+            self.params = params(&change.from, &config, &calibration);
+            self.calibration = calibration;
+            self.set_transport(change.from_transport.clone());
+            self.sea = change.from;
+            self.change = Some(change);
             return;
         }
         let sea = change.from.blend(&to, w);
