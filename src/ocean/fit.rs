@@ -22,7 +22,9 @@ pub struct SeaFit {
     /// Fraction of the variance the cascades hold: (simulated H_s / the sea's H_s)².
     pub held: f64,
     /// Fraction in waves too long for the largest tile: wave numbers below 2π/(L₀√π), the
-    /// grid's first ring of wave vectors (the cell around k = 0 of area (2π/L₀)² holds none).
+    /// grid's first ring of wave vectors (the cell around k = 0 of area (2π/L₀)² holds
+    /// none); with a very low [`band_split`](OceanConfig::band_split), also the part of
+    /// another cascade's band below its own such limit.
     pub too_long: f64,
     /// Fraction in waves too short for the finest grid cell: wave numbers above the last
     /// cascade's band, πN/L_last.
@@ -67,21 +69,23 @@ impl OceanConfig {
     pub(super) fn fit_bands(&self, spectrum: &Spectrum, bands: &[(f32, f32)]) -> SeaFit {
         let variance = |lo: f64, hi: f64| spectrum.band_variance_f64(lo, hi);
         let (k_min, k_max) = (f64::from(self.k_min), f64::from(self.k_max));
-        // The grid of cascade 0 holds no wave vector inside the cell of area Δk² around
-        // k = 0: a disc of radius Δk/√π.
-        let dk = std::f64::consts::TAU / f64::from(self.lengths[0]);
-        let first = (dk / std::f64::consts::PI.sqrt()).max(k_min);
         let top = bands.last().map_or(k_max, |&(_, hi)| f64::from(hi));
         let sea = variance(k_min, k_max);
-        let mut held = 0.0;
-        for (index, &(lo, hi)) in bands.iter().enumerate() {
-            let lo = if index == 0 { first } else { f64::from(lo) };
-            held += variance(lo, f64::from(hi));
+        let (mut held, mut long) = (0.0, 0.0);
+        for (&(lo, hi), &length) in bands.iter().zip(&self.lengths) {
+            let (lo, hi) = (f64::from(lo), f64::from(hi));
+            // A grid holds no wave vector inside the cell of area Δk² around k = 0, a disc
+            // of radius Δk/√π: the part of its band below that is too long for its tile
+            // (only cascade 0's, unless a band split puts a band's start that low).
+            let first = (std::f64::consts::TAU / f64::from(length) / std::f64::consts::PI.sqrt())
+                .clamp(lo, hi.max(lo));
+            long += variance(lo, first);
+            held += variance(first, hi);
         }
         let fraction = |v: f64| if sea > 0.0 { v / sea } else { 0.0 };
         SeaFit {
             held: if sea > 0.0 { held / sea } else { 1.0 },
-            too_long: fraction(variance(k_min, first)),
+            too_long: fraction(long),
             too_short: fraction(variance(top, k_max)),
             variance: sea,
         }
