@@ -4,6 +4,7 @@
 
 use std::ops::Bound::Included;
 
+use crate::determinism::{Libm, Math};
 use crate::error::{self, Error};
 use crate::spectrum::Spectrum;
 
@@ -56,7 +57,7 @@ impl OceanConfig {
     pub const FITTED_SHARE: f64 = 0.97;
 
     /// What these grids hold of `spectrum` (see [`SeaFit`]). Costs a few quadratures of the
-    /// spectrum, about a third of a millisecond: not a per-frame call.
+    /// spectrum, about half a millisecond: not a per-frame call.
     ///
     /// # Errors
     /// Those of [`OceanConfig::validate`].
@@ -126,7 +127,8 @@ impl OceanConfig {
     /// [`CascadeConfig::MAX_LENGTH`](crate::CascadeConfig::MAX_LENGTH) hold the share at
     /// this size.
     pub fn with_fitted_lengths(self, spectrum: &Spectrum) -> Result<OceanConfig, Error> {
-        let peak = std::f64::consts::TAU / spectrum.peak_wave_number_f64();
+        // Libm: the same lengths on every machine, for `Determinism::CrossPlatform`.
+        let peak = std::f64::consts::TAU / spectrum.peak_wave_number_with::<Libm>();
         let wavelengths = f64::from(Self::FIT_PEAK_WAVELENGTHS).min(self.size as f64 / 4.0);
         let mut largest = peak * wavelengths;
         let mut count = 3;
@@ -170,7 +172,7 @@ fn fitted_lengths(largest: f64, count: usize) -> Vec<f32> {
             let ratio = if c < 3 {
                 ratios[c]
             } else {
-                0.051 * 0.23f64.powi(c as i32 - 2)
+                0.051 * Libm::powi(0.23, c as i32 - 2)
             };
             three_digits(largest * ratio) as f32
         })
@@ -179,12 +181,12 @@ fn fitted_lengths(largest: f64, count: usize) -> Vec<f32> {
     lengths
 }
 
-/// `x` rounded to three significant digits.
+/// `x` rounded to three significant digits (in libm: the same digits on every machine).
 fn three_digits(x: f64) -> f64 {
     if x <= 0.0 || !x.is_finite() {
         return x;
     }
-    let scale = 10f64.powi(2 - x.log10().floor() as i32);
+    let scale = Libm::powi(10.0, 2 - Libm::log10(x).floor() as i32);
     (x * scale).round() / scale
 }
 
@@ -223,7 +225,7 @@ impl OceanState {
     pub const MAX_FOLD_SCALE: f32 = 4.0;
 
     /// What the grids hold of the current spectrum (see [`SeaFit`]; during a change of
-    /// weather, of the new one). Costs a few quadratures, about a third of a millisecond.
+    /// weather, of the new one). Costs a few quadratures, about half a millisecond.
     pub fn fit(&self) -> SeaFit {
         self.config
             .fit_bands(&self.spectrum, &self.config.bands_unchecked())
@@ -232,7 +234,8 @@ impl OceanState {
     /// The largest choppiness [`set_choppiness`](Self::set_choppiness) and
     /// [`OceanState::new`] accept for this spectrum and these grids,
     /// [`MAX_FOLD_SCALE`](Self::MAX_FOLD_SCALE)/σ, with σ² the mean-square slope the
-    /// cascades' bands hold ([`Spectrum::slope_variance`] summed over them).
+    /// cascades' bands hold ([`Spectrum::slope_variance`] summed over them: a quadrature of
+    /// about a millisecond, which [`set_choppiness`](Self::set_choppiness) pays too).
     ///
     /// Why: the Jacobian of the horizontal displacement is J = (1 + λD_xx)(1 + λD_zz) −
     /// λ²D_xz², and D_xx + D_zz (multiplier −|k|) has the variance of the slope, σ². For a

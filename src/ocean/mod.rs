@@ -139,6 +139,8 @@ impl OceanState {
     /// [`Error::OutOfRange`] naming `choppiness` above
     /// [`max_choppiness`](Self::max_choppiness), where the surface folds nearly everywhere
     /// it can; as [`Cascade::set_choppiness`], for any cascade; no cascade changes then.
+    /// (The check costs a slope quadrature, about a millisecond: set it when it changes, not
+    /// every frame.)
     pub fn set_choppiness(&mut self, choppiness: f32) -> Result<(), Error> {
         self.check_choppiness(choppiness)?;
         self.set_choppiness_checked(choppiness);
