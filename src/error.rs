@@ -118,6 +118,39 @@ pub enum Error {
         /// The largest accepted bound.
         limit: f64,
     },
+    /// The grids hold less than `min` of a sea's height variance (see
+    /// [`OceanConfig::fit`](crate::OceanConfig::fit)): the simulated sea would be much
+    /// smaller than the spectrum's. Fractions are of the variance, whose square root scales
+    /// H_s.
+    SeaDoesNotFit {
+        /// Name of the parameter (`"spectrum"`).
+        name: &'static str,
+        /// Fraction of the sea's variance the grids would hold.
+        held: f64,
+        /// The least fraction accepted.
+        min: f64,
+        /// Fraction in waves longer than the largest tile.
+        too_long: f64,
+        /// Fraction in waves shorter than the finest grid cell.
+        too_short: f64,
+        /// The sea's significant wave height in metres.
+        significant_wave_height: f64,
+        /// Side of the largest tile in metres.
+        largest_tile: f64,
+        /// Side of the finest grid cell in metres.
+        finest_cell: f64,
+    },
+    /// A list that must strictly decrease (the cascade lengths, largest tile first) did not.
+    NotDecreasing {
+        /// Name of the list.
+        name: &'static str,
+        /// Index of the first element not below the one before it.
+        index: usize,
+        /// That element.
+        value: f64,
+        /// The element before it.
+        previous: f64,
+    },
     /// What a constructor would allocate exceeds the memory limit it was given.
     MemoryLimit {
         /// Bytes the object would hold.
@@ -195,6 +228,54 @@ impl fmt::Display for Error {
                 Number(bound),
                 Number(limit)
             ),
+            Error::SeaDoesNotFit {
+                name,
+                held,
+                min,
+                too_long,
+                too_short,
+                significant_wave_height,
+                largest_tile,
+                finest_cell,
+            } => {
+                let lost = if too_long >= too_short {
+                    format!(
+                        "{:.0} % is in waves longer than the largest tile ({} m)",
+                        100.0 * too_long,
+                        Number(largest_tile)
+                    )
+                } else {
+                    format!(
+                        "{:.0} % is in waves shorter than the finest grid cell ({} m)",
+                        100.0 * too_short,
+                        Number(finest_cell)
+                    )
+                };
+                write!(
+                    f,
+                    "`{name}` does not fit the grids: they hold {:.0} % of its height variance \
+                     (H_s {:.3} m of {:.3} m; at least {:.0} % expected), {lost}; fit the \
+                     lengths to the roughest sea with `OceanConfig::fitted` (or \
+                     `with_fitted_lengths`)",
+                    100.0 * held,
+                    significant_wave_height * held.max(0.0).sqrt(),
+                    significant_wave_height,
+                    100.0 * min
+                )
+            }
+            Error::NotDecreasing {
+                name,
+                index,
+                value,
+                previous,
+            } => write!(
+                f,
+                "`{name}` must strictly decrease, the largest first: {name}[{index}] = {} is not \
+                 below {name}[{}] = {}",
+                Number(value),
+                index - 1,
+                Number(previous)
+            ),
             Error::MemoryLimit { bytes, limit } => write!(
                 f,
                 "this would hold {} of memory, over the limit of {}",
@@ -270,7 +351,7 @@ impl fmt::Display for Bytes {
 
 /// An f32 parameter as an f64 through its shortest decimal form: `0.1_f32` gives `0.1`, not
 /// `0.10000000149011612`.
-fn widen(value: f32) -> f64 {
+pub(crate) fn widen(value: f32) -> f64 {
     value.to_string().parse().unwrap_or(f64::from(value))
 }
 

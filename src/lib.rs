@@ -192,7 +192,7 @@ pub use error::Error;
 pub use half;
 pub use ocean::{
     FoamConfig, FoamCoverage, Interpolation, Location, OceanConfig, OceanSnapshot, OceanState,
-    QueryConfig, Surface, SurfaceSample,
+    QueryConfig, SeaFit, Surface, SurfaceSample,
 };
 pub use presets::SeaState;
 pub use spectrum::{DepthFactor, Spectrum, Spreading};

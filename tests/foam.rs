@@ -142,9 +142,12 @@ fn breaking_intensity_follows_the_documented_model_on_extreme_seas() {
         let spectrum = Spectrum::jonswap_from_parameters(alpha, 3.2373254, 7.4815707)
             .and_then(|s| s.with_wind_direction(wind))
             .unwrap();
+        // Choppiness 0: these seas fold everywhere at any λ above their max_choppiness
+        // (1e-9 and less); the foam follows the surface at λ = 1 whatever the choppiness.
         let config = OceanConfig {
             lengths: vec![117.6, 27.3, 6.2],
             size,
+            choppiness: 0.0,
             ..OceanConfig::default()
         };
         let mut ocean = OceanState::new(spectrum, config).unwrap();

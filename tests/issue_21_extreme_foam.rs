@@ -3,7 +3,7 @@
 // Reference computations in the standard library's maths: tests are not simulation code.
 #![allow(clippy::disallowed_methods)]
 
-use ocean_fft::{OceanConfig, OceanState, Spectrum};
+use ocean_fft::{Error, OceanConfig, OceanState, Spectrum};
 
 /// Every foam output of `ocean` finite, the foam in [0, 1] and the breaking intensity ≥ 0.
 fn assert_foam_finite(ocean: &OceanState, when: &str) {
@@ -34,9 +34,12 @@ fn assert_foam_finite(ocean: &OceanState, when: &str) {
 #[test]
 fn issue_21_jonswap_alpha_1e19_foam_is_finite() {
     let s = Spectrum::jonswap_from_parameters(1e19, 3.2373254, 7.4815707).unwrap();
+    // Choppiness 0: a sea this steep folds everywhere at any λ above 1e-9 (max_choppiness);
+    // the foam follows the summed surface at λ = 1 whatever the choppiness.
     let cfg = OceanConfig {
         lengths: vec![117.6, 27.3, 6.2],
         size: 16,
+        choppiness: 0.0,
         ..OceanConfig::default()
     };
     let mut o = OceanState::new(s, cfg).unwrap();
@@ -53,9 +56,19 @@ fn issue_21_jonswap_alpha_1e21_default_lengths_foam_is_finite() {
     let s = Spectrum::jonswap_from_parameters(1e21, 3.2373254, 7.4815707).unwrap();
     let cfg = OceanConfig {
         size: 16,
+        choppiness: 0.0,
         ..OceanConfig::default()
     };
-    let mut o = OceanState::new(s, cfg).unwrap();
+    // 16² cells of 3.2 m cannot hold its 5.9 m peak: `new` refuses it now; the foam is
+    // checked on the same sea reached by a change the caller accepts.
+    assert!(matches!(
+        OceanState::new(s.clone(), cfg.clone()),
+        Err(Error::SeaDoesNotFit { .. })
+    ));
+    let ordinary = Spectrum::jonswap(10.0, 100_000.0).unwrap();
+    let mut o = OceanState::new(ordinary, cfg).unwrap();
+    o.set_spectrum_unfitted(s, 0.0).unwrap();
+    o.step(0.0).unwrap();
     assert_foam_finite(&o, "after new");
     for _ in 0..3 {
         o.step(0.5).unwrap();
@@ -81,7 +94,16 @@ fn issue_21_peak_far_beyond_the_tiles_keeps_residual_foam_bounded() {
         ..OceanConfig::default()
     };
     let tau = f64::from(cfg.foam.active_decay);
-    let mut o = OceanState::new(s, cfg).unwrap();
+    // No tile holds such a sea: `new` refuses it now; the foam is checked on the same sea
+    // reached by a change the caller accepts (drawn at once, duration 0).
+    assert!(matches!(
+        OceanState::new(s.clone(), cfg.clone()),
+        Err(Error::SeaDoesNotFit { .. })
+    ));
+    let ordinary = Spectrum::jonswap(10.0, 100_000.0).unwrap();
+    let mut o = OceanState::new(ordinary, cfg).unwrap();
+    o.clear_foam();
+    o.set_spectrum_unfitted(s, 0.0).unwrap();
     o.step(0.5).unwrap();
     assert_foam_finite(&o, "after a step of 0.5 s");
     let residual = f64::from(o.foam_coverage().residual);

@@ -717,9 +717,14 @@ fn ocean_state_can_be_shared_between_threads() {
 #[test]
 fn a_refused_choppiness_changes_no_cascade() {
     // λ = 1e12 would let the fields overflow f32 (the amplitude bound): refused, and every
-    // cascade keeps its choppiness.
+    // cascade keeps its choppiness. (This sea is so steep, σ about 130, that its largest
+    // choppiness is 0.03: it is built at 0.01.)
     let spectrum = Spectrum::phillips(30.0, 1e3).unwrap();
-    let mut state = OceanState::new(spectrum, small_config()).unwrap();
+    let config = OceanConfig {
+        choppiness: 0.01,
+        ..small_config()
+    };
+    let mut state = OceanState::new(spectrum, config).unwrap();
     let before: Vec<f32> = state
         .cascades()
         .iter()
@@ -735,12 +740,21 @@ fn a_refused_choppiness_changes_no_cascade() {
         .map(|c| c.config().choppiness)
         .collect();
     assert_eq!(before, after);
-    assert_eq!(state.config().choppiness, 1.0);
-    state.set_choppiness(0.5).unwrap();
+    assert_eq!(state.config().choppiness, 0.01);
+    // Above the largest choppiness: refused too, nothing changed.
+    assert!(matches!(
+        state.set_choppiness(1.0),
+        Err(Error::OutOfRange {
+            name: "choppiness",
+            ..
+        })
+    ));
+    assert_eq!(state.config().choppiness, 0.01);
+    state.set_choppiness(0.02).unwrap();
     assert!(state
         .cascades()
         .iter()
-        .all(|c| c.config().choppiness == 0.5));
+        .all(|c| c.config().choppiness == 0.02));
 }
 
 #[test]

@@ -23,7 +23,8 @@ use ocean_fft::inspect;
 use ocean_fft::inspect::{Fft2d, Field};
 use ocean_fft::{
     Cascade, CascadeConfig, DepthFactor, Determinism, Dispersion, Error, FoamConfig, Interpolation,
-    OceanConfig, OceanState, QueryConfig, SeaState, Spectrum, Spreading, Surface, SurfaceSample,
+    OceanConfig, OceanState, QueryConfig, SeaFit, SeaState, Spectrum, Spreading, Surface,
+    SurfaceSample,
 };
 use proptest::prelude::*;
 use proptest::test_runner::Config;
@@ -239,9 +240,14 @@ fn check_error(error: &Error) {
         | Error::CountOutOfRange { name, .. }
         | Error::IndexOutOfRange { name, .. }
         | Error::LengthMismatch { name, .. }
-        | Error::NotApplicable { name, .. } => Some(*name),
+        | Error::NotApplicable { name, .. }
+        | Error::SeaDoesNotFit { name, .. }
+        | Error::NotDecreasing { name, .. } => Some(*name),
         _ => None,
     };
+    if let Error::SeaDoesNotFit { held, min, .. } = error {
+        assert!(held < min && held.is_finite(), "{error:?}");
+    }
     if let Some(name) = name {
         assert!(text.contains(name), "{text:?} does not name {name}");
     }
@@ -845,6 +851,7 @@ enum OceanOp {
     Snapshot,
     Restore,
     SetSpectrum(Spectrum, f64),
+    SetSpectrumUnfitted(Spectrum, f64),
     SetFoamConfig(FoamConfig),
     FoamAt(f64, f64),
     /// Takes a `Surface` handle and queries it at these points (and keeps it for the end).
@@ -882,6 +889,11 @@ fn any_ocean_op() -> impl Strategy<Value = OceanOp> {
             prop_oneof![2 => Just(0.0), 3 => 0f64..0.5, 1 => any_f64()],
         )
             .prop_map(|(spectrum, duration)| OceanOp::SetSpectrum(spectrum, duration)),
+        1 => (
+            valid_spectrum(),
+            prop_oneof![2 => Just(0.0), 3 => 0f64..0.5, 1 => any_f64()],
+        )
+            .prop_map(|(spectrum, duration)| OceanOp::SetSpectrumUnfitted(spectrum, duration)),
         1 => any_foam().prop_map(OceanOp::SetFoamConfig),
         1 => prop::collection::vec((any_f64(), any_f64()).prop_map(|(x, z)| [x, z]), 0..20)
             .prop_map(OceanOp::Surface),
@@ -985,7 +997,15 @@ proptest! {
             Ok(bands) => prop_assert_eq!(bands.len(), config.lengths.len()),
             Err(error) => check_error(&error),
         }
-        let mut ocean = match OceanState::new(spectrum, config) {
+        let built = match OceanState::new(spectrum.clone(), config.clone()) {
+            // Random tiles often miss a random sea: go on with tiles fitted to it, so that
+            // the operations below still meet every kind of ocean.
+            Err(Error::SeaDoesNotFit { .. }) => config
+                .with_fitted_lengths(&spectrum)
+                .and_then(|fitted| OceanState::new(spectrum, fitted)),
+            other => other,
+        };
+        let mut ocean = match built {
             Err(error) => {
                 check_error(&error);
                 return Ok(());
@@ -993,6 +1013,9 @@ proptest! {
             Ok(ocean) => ocean,
         };
         prop_assert!(ocean_finite(&ocean));
+        check_fit(&ocean.fit());
+        prop_assert!(ocean.fit().held >= OceanState::MIN_BUILD_SHARE);
+        prop_assert!(ocean.config().choppiness <= ocean.max_choppiness());
         let mut saved = ocean.snapshot();
         // Handles taken by `OceanOp::Surface`, with the answers they gave then.
         let mut handles: Vec<Held> = Vec::new();
@@ -1008,6 +1031,7 @@ proptest! {
                     | OceanOp::Restore
                     | OceanOp::PreRoll(..)
                     | OceanOp::SetSpectrum(..)
+                    | OceanOp::SetSpectrumUnfitted(..)
                     | OceanOp::SetFoamConfig(_)
             );
             let spectrum_before = ocean.spectrum().clone();
@@ -1034,6 +1058,13 @@ proptest! {
                 }),
                 OceanOp::SetSpectrum(ref spectrum, duration) => ocean
                     .set_spectrum(spectrum.clone(), duration)
+                    .map(|()| {
+                        assert_eq!(ocean.spectrum(), spectrum);
+                        // Accepted only if the grids hold the share.
+                        assert!(ocean.fit().held >= OceanState::MIN_CHANGE_SHARE);
+                    }),
+                OceanOp::SetSpectrumUnfitted(ref spectrum, duration) => ocean
+                    .set_spectrum_unfitted(spectrum.clone(), duration)
                     .map(|()| assert_eq!(ocean.spectrum(), spectrum)),
                 OceanOp::SetFoamConfig(foam) => ocean
                     .set_foam_config(foam)
@@ -1094,6 +1125,8 @@ proptest! {
                 }
             }
         }
+        check_fit(&ocean.fit());
+        prop_assert!(ocean.max_choppiness() > 0.0);
         // The last choppiness set shows at the next step.
         if ocean.step(0.0).is_ok() {
             prop_assert!(ocean_finite(&ocean));
@@ -1103,6 +1136,48 @@ proptest! {
             for (&[x, z], answer) in points.iter().zip(answers) {
                 prop_assert_eq!(&surface.surface_at(x, z), answer);
             }
+        }
+    }
+}
+
+/// A `SeaFit`'s fractions lie in [0, 1] and add up to 1 (to the quadratures' precision,
+/// 1e-4 with room), its variance finite and not negative.
+fn check_fit(fit: &SeaFit) {
+    for share in [fit.held, fit.too_long, fit.too_short] {
+        assert!((-1e-6..=1.0 + 1e-6).contains(&share), "{fit:?}");
+    }
+    assert!(fit.variance.is_finite() && fit.variance >= 0.0, "{fit:?}");
+    if fit.variance > 0.0 {
+        assert!(
+            (fit.held + fit.too_long + fit.too_short - 1.0).abs() < 1e-3,
+            "{fit:?}"
+        );
+    }
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// Grids fitted to any valid spectrum hold the fitted share and build an ocean (at 16²,
+    /// to keep it quick), or the call fails with a well-formed error; `fit` of any config is
+    /// well formed or its validation error.
+    #[test]
+    fn fitted_grids_hold_any_sea(spectrum in valid_spectrum(), config in any_ocean_config()) {
+        match config.fit(&spectrum) {
+            Ok(fit) => check_fit(&fit),
+            Err(error) => check_error(&error),
+        }
+        match OceanConfig::fitted(&spectrum) {
+            Ok(fitted) => {
+                let fit = fitted.fit(&spectrum).unwrap();
+                check_fit(&fit);
+                prop_assert!(fit.held >= OceanConfig::FITTED_SHARE, "{:?}", fit);
+                let small = OceanConfig { size: 16, ..fitted };
+                if let Err(error) = OceanState::new(spectrum, small) {
+                    check_error(&error);
+                }
+            }
+            Err(error) => check_error(&error),
         }
     }
 }

@@ -2,7 +2,7 @@
 //! ([`OceanClock`]).
 
 use bevy::prelude::*;
-use ocean_fft::{FoamConfig, OceanConfig, SeaState, Spectrum};
+use ocean_fft::{FoamConfig, OceanConfig, OceanState, SeaState, Spectrum};
 
 /// The sea the plugin simulates. Change it at any time: the plugin compares it with what the
 /// ocean runs and applies the difference through the crate's live API —
@@ -11,10 +11,12 @@ use ocean_fft::{FoamConfig, OceanConfig, SeaState, Spectrum};
 ///   `transition_seconds` of sea time: every wave keeps its phase, the foam stays;
 /// - a new `config.choppiness` with [`OceanState::set_choppiness`];
 /// - new `config.foam` settings with [`OceanState::set_foam_config`];
-/// - anything else in `config` (the grids: lengths, size, seed, band limits…) or a spectrum
-///   with another water depth, which a running ocean cannot take, builds a new ocean off the
-///   main thread (its foam spun up) and swaps it in when it is ready; the old one runs until
-///   then.
+/// - anything else in `config` (the grids: lengths, size, seed, band limits…), a spectrum
+///   with another water depth, or a spectrum the grids cannot hold (a storm on a calm
+///   sea's grids: below [`OceanState::MIN_CHANGE_SHARE`] of its variance), which a running
+///   ocean cannot take, builds a new ocean off the main thread (its foam spun up; for a
+///   sea the grids cannot hold, on grids fitted to it, [`OceanSettings::grids`]) and swaps
+///   it in when it is ready; the old one runs until then.
 ///
 /// A change the crate refuses (say a storm too strong for the grids) leaves the sea as it is
 /// and is reported in [`OceanStatus::last_error`](crate::OceanStatus::last_error).
@@ -22,6 +24,7 @@ use ocean_fft::{FoamConfig, OceanConfig, SeaState, Spectrum};
 /// [`OceanState::set_spectrum`]: ocean_fft::OceanState::set_spectrum
 /// [`OceanState::set_choppiness`]: ocean_fft::OceanState::set_choppiness
 /// [`OceanState::set_foam_config`]: ocean_fft::OceanState::set_foam_config
+/// [`OceanState::MIN_CHANGE_SHARE`]: ocean_fft::OceanState::MIN_CHANGE_SHARE
 #[derive(Resource, Debug, Clone, PartialEq)]
 pub struct OceanSettings {
     /// The wave spectrum: wind, fetch, spreading, depth.
@@ -54,7 +57,8 @@ impl OceanSettings {
 
     /// Takes the preset's weather (spectrum, choppiness, foam) and keeps the grids, so that the
     /// change is a live transition, not a new ocean (unless the preset's water depth differs:
-    /// the shallow bay's does).
+    /// the shallow bay's does; or the grids cannot hold the new sea, a storm on a calm sea's
+    /// grids: then the new ocean's grids are fitted to it, see [`OceanSettings::grids`]).
     pub fn set_weather(&mut self, state: SeaState) {
         let (spectrum, config) = state.build();
         self.spectrum = spectrum;
@@ -63,13 +67,42 @@ impl OceanSettings {
     }
 
     /// Whether going from `self` to `other` needs a new ocean because of the grids: a config
-    /// that differs in anything but the choppiness and the foam. (The plugin also rebuilds
-    /// for a spectrum of another water depth, which `set_spectrum` would refuse.)
+    /// that differs in anything but the choppiness and the foam, or a new spectrum the grids
+    /// hold less than [`OceanState::MIN_CHANGE_SHARE`] of (`set_spectrum` would refuse it;
+    /// the new ocean's grids are then fitted to it, see [`OceanSettings::grids`]). (The
+    /// plugin also rebuilds for a spectrum of another water depth, which `set_spectrum`
+    /// would refuse.)
+    ///
+    /// [`OceanState::MIN_CHANGE_SHARE`]: ocean_fft::OceanState::MIN_CHANGE_SHARE
     pub fn needs_rebuild(&self, other: &OceanSettings) -> bool {
         let mut a = self.config.clone();
         a.choppiness = other.config.choppiness;
         a.foam = other.config.foam;
-        a != other.config
+        a != other.config || self.spectrum != other.spectrum && !other.fits()
+    }
+
+    /// Whether the grids of `config` hold at least [`OceanState::MIN_CHANGE_SHARE`] of the
+    /// spectrum's variance.
+    ///
+    /// [`OceanState::MIN_CHANGE_SHARE`]: ocean_fft::OceanState::MIN_CHANGE_SHARE
+    pub fn fits(&self) -> bool {
+        self.config
+            .fit(&self.spectrum)
+            .is_ok_and(|fit| fit.held >= OceanState::MIN_CHANGE_SHARE)
+    }
+
+    /// The config an ocean of these settings is built with: `config` itself if its grids
+    /// hold the spectrum ([`fits`](Self::fits)), else `config` with its lengths fitted to the
+    /// spectrum ([`OceanConfig::with_fitted_lengths`]).
+    pub fn grids(&self) -> OceanConfig {
+        if self.fits() {
+            self.config.clone()
+        } else {
+            self.config
+                .clone()
+                .with_fitted_lengths(&self.spectrum)
+                .unwrap_or_else(|_| self.config.clone())
+        }
     }
 }
 

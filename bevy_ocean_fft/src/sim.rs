@@ -262,7 +262,7 @@ pub(crate) fn clock_time(clock: &OceanClock, time: &Time<Virtual>) -> f64 {
 
 /// A new ocean of `settings` at sea time `time`, its foam spun up.
 fn build_ocean(settings: &OceanSettings, time: f64) -> Result<OceanState, Error> {
-    let mut ocean = OceanState::new(settings.spectrum.clone(), settings.config.clone())?;
+    let mut ocean = OceanState::new(settings.spectrum.clone(), settings.grids())?;
     ocean.set_time(time)?;
     ocean.pre_roll(PRE_ROLL, PRE_ROLL_DT)?;
     Ok(ocean)
@@ -359,6 +359,11 @@ pub(crate) fn launch(
             (Some(applied), Some(ocean)) => {
                 !applied.needs_rebuild(wanted)
                     && wanted.spectrum.dispersion() == ocean.spectrum().dispersion()
+                    // The running grids may be fitted to an earlier sea: they must hold this one.
+                    && (wanted.spectrum == *ocean.spectrum()
+                        || ocean.config().fit(&wanted.spectrum).is_ok_and(|fit| {
+                            fit.held >= OceanState::MIN_CHANGE_SHARE
+                        }))
             }
             _ => false,
         };

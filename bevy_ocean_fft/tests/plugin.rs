@@ -251,6 +251,29 @@ fn float(sea: &OceanSettings, body: &Buoyancy) -> Vec<(f32, f32)> {
 /// in the water and the model is linear) and follows the waves (on a moderate sea): its
 /// height against the mean water height under its columns, the latter from an independent
 /// ocean, and the rest depth from Archimedes.
+/// A storm on the calm preset's grids, which hold 8 % of it: `set_spectrum` would refuse it,
+/// so the plugin builds a new ocean on grids fitted to the storm instead of reporting an
+/// error.
+#[test]
+fn a_sea_the_grids_cannot_hold_rebuilds_on_fitted_grids() {
+    let mut app = app(settings(SeaState::Calm, 1.0));
+    run_until(&mut app, "the first ocean", |w| {
+        w.resource::<OceanStatus>().ready
+    });
+    assert_eq!(status(&app).rebuilds, 1);
+    app.world_mut()
+        .resource_mut::<OceanSettings>()
+        .set_weather(SeaState::Storm);
+    let storm = app.world().resource::<OceanSettings>().clone();
+    assert!(!storm.fits());
+    assert!(storm.grids().fit(&storm.spectrum).unwrap().held >= 0.97);
+    run_until(&mut app, "the storm's ocean", |w| {
+        w.resource::<OceanStatus>().rebuilds == 2
+    });
+    assert_eq!(status(&app).last_error, None);
+    assert_eq!(status(&app).spectrum.as_ref(), Some(&storm.spectrum));
+}
+
 #[test]
 fn a_body_settles_at_its_water_line_and_follows_the_waves() {
     // A 2 × 2 × 2 m body of 1 t: draft m/(ρA) = 0.244 m, heave frequency √(ρgA/m) =

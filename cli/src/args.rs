@@ -109,14 +109,29 @@ pub struct SeaArgs {
     pub source: Source,
     /// Override: wind speed U10 in m/s (rebuilds the spectrum with the fetch law; needs
     /// --fetch if the spectrum has no fetch).
-    #[arg(long, value_name = "M/S", help_heading = "Overrides")]
+    #[arg(
+        long,
+        value_name = "M/S",
+        allow_negative_numbers = true,
+        help_heading = "Overrides"
+    )]
     pub wind: Option<f32>,
     /// Override: fetch in metres (rebuilds the spectrum with the fetch law).
-    #[arg(long, value_name = "M", help_heading = "Overrides")]
+    #[arg(
+        long,
+        value_name = "M",
+        allow_negative_numbers = true,
+        help_heading = "Overrides"
+    )]
     pub fetch: Option<f32>,
     /// Override: water depth in metres (finite-depth dispersion; a TMA spectrum's depth
     /// factor follows).
-    #[arg(long, value_name = "M", help_heading = "Overrides")]
+    #[arg(
+        long,
+        value_name = "M",
+        allow_negative_numbers = true,
+        help_heading = "Overrides"
+    )]
     pub depth: Option<f32>,
     /// Override: the direction the wind blows toward, in degrees from +x toward +z.
     #[arg(
@@ -138,6 +153,7 @@ pub struct SeaArgs {
         long,
         value_name = "L0,L1,…",
         value_delimiter = ',',
+        allow_negative_numbers = true,
         help_heading = "Overrides",
         help = format!(
             "Override: the cascades' tiles, comma-separated ({}; presets use three, the \
@@ -147,19 +163,24 @@ pub struct SeaArgs {
     )]
     pub lengths: Option<Vec<f32>>,
     /// Override: choppiness λ ≥ 0 (horizontal displacement; presets use 0.8 to 1.2).
-    #[arg(long, value_name = "L", help_heading = "Overrides")]
+    #[arg(
+        long,
+        value_name = "L",
+        allow_negative_numbers = true,
+        help_heading = "Overrides"
+    )]
     pub choppiness: Option<f32>,
     /// Override: the random seed (cascade c uses seed + c).
     #[arg(long, value_name = "S", help_heading = "Overrides")]
     pub seed: Option<u64>,
     /// Frames per second: frame f shows time t = f / fps ([`FPS_RANGE`]).
-    #[arg(long, value_name = "F", default_value_t = 30.0, help = format!(
+    #[arg(long, value_name = "F", default_value_t = 30.0, allow_negative_numbers = true, help = format!(
         "Frames per second: frame f shows time t = f / fps ({})",
         range_text(FPS_RANGE.0, FPS_RANGE.1)
     ))]
     pub fps: f64,
     /// Make a seamless loop of this many seconds ([`loop_range`]).
-    #[arg(long = "loop", value_name = "SECONDS", help = format!(
+    #[arg(long = "loop", value_name = "SECONDS", allow_negative_numbers = true, help = format!(
         "Make a seamless loop of this many seconds ({}, a whole number of frames at --fps; \
          at least twice the sea's peak period looks natural): frame f shows the same as \
          frame f + loop·fps, foam included",

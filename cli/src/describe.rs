@@ -134,6 +134,7 @@ pub fn sidecar(sea: &Sea, format: Format, ocean: &OceanState, scales: &[PngScale
             "files_per_frame_and_cascade": 2,
             "decode_scales": scales,
             "scales_from": "8 standard deviations of the cascade's Gaussian fields (from h0); J: m + 2m² with m = 8σ of its linear part; values beyond are clamped",
+            "viewing": "the alpha channel is data (foam in disp files, the Jacobian in normal files), not transparency: an image viewer that honours alpha shows a disp file nearly blank where there is no foam. To look at one, drop or flatten its alpha (for example `magick NAME_c0_disp_0000.png -alpha off preview.png`)",
         }),
     };
     let value = json!({

@@ -160,8 +160,17 @@ impl<'a> Simulator<'a> {
     /// # Errors
     /// The library's refusal of the config (kind `Config`).
     pub fn new(sea: &'a Sea) -> Result<Simulator<'a>, CliError> {
-        let ocean = OceanState::new(sea.spectrum.clone(), sea.config.clone())
-            .map_err(|e| CliError::config(format!("the sea's configuration: {e}")))?;
+        let ocean = OceanState::new(sea.spectrum.clone(), sea.config.clone()).map_err(|e| {
+            // Tiles that cannot hold the sea: say which would.
+            let advice = match (&e, sea.config.clone().with_fitted_lengths(&sea.spectrum)) {
+                (ocean_fft::Error::SeaDoesNotFit { .. }, Ok(fitted)) => format!(
+                    "; use --lengths {}",
+                    crate::warnings::lengths_text(&fitted.lengths)
+                ),
+                _ => String::new(),
+            };
+            CliError::config(format!("the sea's configuration: {e}{advice}"))
+        })?;
         Ok(Simulator {
             sea,
             ocean,

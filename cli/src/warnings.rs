@@ -8,7 +8,7 @@
 
 use std::fmt;
 
-use ocean_fft::{CascadeConfig, OceanConfig, OceanState, Spectrum};
+use ocean_fft::{CascadeConfig, OceanConfig, OceanState, SeaFit, Spectrum};
 
 use crate::encode::three_digits;
 use crate::setup::Sea;
@@ -115,23 +115,19 @@ fn check_loop(sea: &Sea, ocean: &OceanState) -> Option<Warning> {
     })
 }
 
-/// What the tiles of a config hold of a spectrum, from the spectrum's integrals over each
-/// cascade's band (the grid's sums, `Cascade::expected_variance`, agree with them to a few
-/// percent from 64² up; cheap and free of the grid, they also judge a suggested config
-/// without building it).
+/// What the tiles of a config hold of a spectrum: the library's [`SeaFit`] (the sea held,
+/// and where the rest is lost), with each cascade's share of the height and slope variance
+/// from the spectrum's integrals over its band (the grid's sums,
+/// `Cascade::expected_variance`, agree with them to a few percent from 64² up; cheap and free
+/// of the grid, they also judge a suggested config without building it).
 #[derive(Debug, Clone, PartialEq)]
 pub struct TileFit {
     /// Height variance of each cascade's band in m².
     pub height: Vec<f64>,
     /// Slope variance of each cascade's band (dimensionless).
     pub slope: Vec<f64>,
-    /// The whole spectrum's height variance in m² ((H_s/4)²).
-    pub sea_height: f64,
-    /// Height variance in m² at wave numbers below cascade 0's grid (waves longer than the
-    /// largest tile).
-    pub below: f64,
-    /// Height variance in m² above the finest cascade's band.
-    pub above: f64,
+    /// What the tiles hold of the sea, from `OceanConfig::fit`.
+    pub fit: SeaFit,
     /// The sea's peak wavelength in metres.
     pub peak_wavelength: f64,
 }
@@ -140,10 +136,14 @@ impl TileFit {
     /// Integrates `spectrum` over the bands of `config`; `None` for a config the library
     /// refuses (or a spectrum without variance, which nothing would fit).
     pub fn new(spectrum: &Spectrum, config: &OceanConfig) -> Option<TileFit> {
+        let fit = config.fit(spectrum).ok()?;
+        if !(fit.variance > 0.0 && fit.variance.is_finite()) {
+            return None;
+        }
         let mut bands = config.bands().ok()?;
         // Cascade 0's grid holds no wave longer than its tile: its lowest wave vectors are
         // Δk = 2π/L apart and k = 0 is left out, a cell of area Δk², i.e. a disc of radius
-        // Δk/√π.
+        // Δk/√π (as `OceanConfig::fit` counts it).
         let dk = std::f32::consts::TAU / config.lengths[0];
         bands[0].0 = bands[0].0.max(dk / std::f32::consts::PI.sqrt());
         let height = bands
@@ -154,18 +154,11 @@ impl TileFit {
             .iter()
             .map(|&(lo, hi)| f64::from(spectrum.slope_variance(lo, hi).total()))
             .collect();
-        let sea_height = f64::from(spectrum.band_variance(0.0, f32::INFINITY));
-        if !(sea_height > 0.0 && sea_height.is_finite()) {
-            return None;
-        }
-        let top = bands[bands.len() - 1].1;
         let k_peak = spectrum.dispersion().k_from_omega(spectrum.peak_omega());
         Some(TileFit {
             height,
             slope,
-            sea_height,
-            below: f64::from(spectrum.band_variance(0.0, bands[0].0)),
-            above: f64::from(spectrum.band_variance(top, f32::INFINITY)),
+            fit,
             peak_wavelength: std::f64::consts::TAU / f64::from(k_peak),
         })
     }
@@ -182,7 +175,7 @@ impl TileFit {
 
     /// The share of the sea's height variance the tiles hold.
     pub fn coverage(&self) -> f64 {
-        self.height.iter().sum::<f64>() / self.sea_height
+        self.fit.held
     }
 
     /// The cascades that are nearly empty.
@@ -273,7 +266,7 @@ fn check_tiles(sea: &Sea) -> Option<Warning> {
             "cascade {c} (waves {waves}) is nearly empty, with H_s {:.3} m of the sea's {:.3} m \
              ({:.2} % of the height variance, {:.2} % of the slope variance)",
             hs(fit.height[c]),
-            hs(fit.sea_height),
+            fit.fit.significant_wave_height(),
             100.0 * fit.height_share(c),
             100.0 * fit.slope_share(c),
         ));
@@ -286,7 +279,7 @@ fn check_tiles(sea: &Sea) -> Option<Warning> {
         ));
     }
     if coverage < MIN_COVERAGE {
-        let missing = if fit.below >= fit.above {
+        let missing = if fit.fit.too_long >= fit.fit.too_short {
             format!(
                 "waves longer than the largest tile ({}) are missing",
                 metres(f64::from(config.lengths[0]))
@@ -301,8 +294,8 @@ fn check_tiles(sea: &Sea) -> Option<Warning> {
         why.push(format!(
             "the tiles hold about H_s {:.3} m of the sea's {:.3} m ({:.0} % of its height \
              variance): {missing}",
-            hs(fit.height.iter().sum()),
-            hs(fit.sea_height),
+            fit.fit.held_significant_wave_height(),
+            fit.fit.significant_wave_height(),
             100.0 * coverage
         ));
     }

@@ -384,7 +384,30 @@ fn a_loop_closes_in_every_channel_with_the_foam_in_its_periodic_steady_state() {
 fn bad_input_exits_with_its_code_and_names_the_argument() {
     let dir = scratch("errors");
     let o = dir.to_str().unwrap();
-    let cases: [(&[&str], i32, &str); 9] = [
+    let cases: [(&[&str], i32, &str); 11] = [
+        // A negative value is a value, refused by the library's check, not an unknown option.
+        (
+            &[
+                "bake", "--preset", "calm", "--wind", "-5", "--frames", "1", "--out", o,
+            ],
+            2,
+            "--wind -5",
+        ),
+        (
+            &[
+                "bake",
+                "--preset",
+                "calm",
+                "--choppiness",
+                "-1",
+                "--frames",
+                "1",
+                "--out",
+                o,
+            ],
+            2,
+            "--choppiness -1",
+        ),
         (
             &["bake", "--preset", "calm", "--frames", "10-1", "--out", o],
             2,

@@ -231,7 +231,7 @@ impl OceanConfig {
     }
 
     /// The bands of a config whose fields (not yet its bands) have been checked.
-    fn bands_unchecked(&self) -> Vec<(f32, f32)> {
+    pub(super) fn bands_unchecked(&self) -> Vec<(f32, f32)> {
         let count = self.lengths.len();
         let nyquist = |length: f32| std::f32::consts::PI * self.size as f32 / length;
         let mut edges = Vec::with_capacity(count + 1);
@@ -252,7 +252,7 @@ impl OceanConfig {
     ///
     /// # Errors
     /// [`Error::CountOutOfRange`] for the number of `lengths`; those of
-    /// [`CascadeConfig::validate`] for `size`, each length (also [`Error::OutOfRange`] unless
+    /// [`CascadeConfig::validate`] for `size`, each length ([`Error::NotDecreasing`] unless
     /// the lengths strictly decrease), `choppiness`, `k_min`, `k_max` and `repeat_period`;
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `band_split`; those of
     /// [`FoamConfig::validate`] and [`QueryConfig::validate`]; [`Error::EmptyBand`] if a
@@ -270,11 +270,20 @@ impl OceanConfig {
         grid::check_size("size", self.size)?;
         for (index, &length) in self.lengths.iter().enumerate() {
             // Within the cascades' limits, and below the length before.
-            let max = match index {
-                0 => Included(CascadeConfig::MAX_LENGTH),
-                _ => Excluded(self.lengths[index - 1]),
-            };
-            error::in_range("lengths", length, Included(CascadeConfig::MIN_LENGTH), max)?;
+            error::in_range(
+                "lengths",
+                length,
+                Included(CascadeConfig::MIN_LENGTH),
+                Included(CascadeConfig::MAX_LENGTH),
+            )?;
+            if index > 0 && length >= self.lengths[index - 1] {
+                return Err(Error::NotDecreasing {
+                    name: "lengths",
+                    index,
+                    value: error::widen(length),
+                    previous: error::widen(self.lengths[index - 1]),
+                });
+            }
         }
         error::non_negative("choppiness", self.choppiness)?;
         check_band(self.k_min, self.k_max)?;

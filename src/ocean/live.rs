@@ -149,12 +149,29 @@ impl OceanState {
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for a negative, NaN or infinite
     /// `duration` or one above [`MAX_TRANSITION`](Self::MAX_TRANSITION);
-    /// [`Error::NotApplicable`] naming `spectrum.dispersion` for another dispersion;
+    /// [`Error::SeaDoesNotFit`] naming `spectrum` if the grids hold less than
+    /// [`MIN_CHANGE_SHARE`](Self::MIN_CHANGE_SHARE) of its variance (build the ocean for the
+    /// roughest sea it will change to, with [`OceanConfig::fitted`](crate::OceanConfig::fitted),
+    /// or accept the loss with [`set_spectrum_unfitted`](Self::set_spectrum_unfitted));
+    /// [`Error::NotApplicable`] naming `spectrum.dispersion` for another dispersion, or
+    /// naming `spectrum` for a sea so steep that the current choppiness is above its
+    /// [`max_choppiness`](Self::max_choppiness);
     /// [`Error::AmplitudeTooLarge`] if the new sea is too strong for the grids at the
     /// current choppiness (as [`OceanState::new`] would refuse it); [`Error::OutOfMemory`] if
     /// the system refuses the change's buffers (16 bytes a grid point, once). Nothing
     /// changes then.
     pub fn set_spectrum(&mut self, spectrum: Spectrum, duration: f64) -> Result<(), Error> {
+        self.check_change_fit(&spectrum)?;
+        self.set_spectrum_unfitted(spectrum, duration)
+    }
+
+    /// [`set_spectrum`](Self::set_spectrum) without its checks of the fit and the
+    /// choppiness.
+    pub(super) fn change_spectrum(
+        &mut self,
+        spectrum: Spectrum,
+        duration: f64,
+    ) -> Result<(), Error> {
         error::in_range_f64(
             "duration",
             duration,

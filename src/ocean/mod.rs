@@ -2,6 +2,7 @@
 //! time, and the foam.
 
 mod config;
+mod fit;
 mod foam;
 mod frame;
 mod live;
@@ -15,6 +16,7 @@ use crate::error::{self, Error};
 use crate::spectrum::{SlopeVariance, Spectrum};
 
 pub use config::{Interpolation, OceanConfig, QueryConfig};
+pub use fit::SeaFit;
 pub use foam::{FoamCalibration, FoamConfig, FoamCoverage};
 pub use frame::Surface;
 pub use query::{Location, SurfaceSample};
@@ -64,6 +66,11 @@ impl OceanState {
     ///
     /// # Errors
     /// Those of [`OceanConfig::validate`] and of [`Cascade::new`] for each cascade;
+    /// [`Error::SeaDoesNotFit`] naming `spectrum` if the grids hold less than
+    /// [`MIN_BUILD_SHARE`](Self::MIN_BUILD_SHARE) of its variance (the message says whether
+    /// the largest tile or the finest cell is at fault; [`OceanConfig::fitted`] gives grids
+    /// that hold it); [`Error::OutOfRange`] naming `choppiness` above
+    /// [`max_choppiness`](Self::max_choppiness);
     /// [`Error::AmplitudeTooLarge`] also if, with [`OceanConfig::second_order`], the
     /// second-order terms could overflow f32; [`Error::OutOfMemory`] if the system refuses the
     /// foam's or the second order's buffers.
@@ -74,6 +81,10 @@ impl OceanState {
             .enumerate()
             .map(|(index, &band)| Cascade::new(&spectrum, config.cascade_config(index, band)))
             .collect::<Result<Vec<_>, _>>()?;
+        // After the cascades' own checks, whose errors (an amplitude that could overflow)
+        // say more about an absurd spectrum.
+        fit::check_build_fit(&spectrum, &config, &bands)?;
+        fit::check_choppiness(&spectrum, &bands, config.choppiness)?;
         let mut cascades = cascades;
         if config.second_order {
             if let Some(first) = cascades.first_mut() {
@@ -125,7 +136,11 @@ impl OceanState {
     /// Sets the choppiness λ ≥ 0 of every cascade (takes effect at the next step).
     ///
     /// # Errors
-    /// As [`Cascade::set_choppiness`], for any cascade; no cascade changes then.
+    /// [`Error::OutOfRange`] naming `choppiness` above
+    /// [`max_choppiness`](Self::max_choppiness), where the surface folds nearly everywhere
+    /// it can; as [`Cascade::set_choppiness`], for any cascade; no cascade changes then.
+    /// (The check costs a slope quadrature, about a millisecond: set it when it changes, not
+    /// every frame.)
     pub fn set_choppiness(&mut self, choppiness: f32) -> Result<(), Error> {
         self.check_choppiness(choppiness)?;
         self.set_choppiness_checked(choppiness);
@@ -139,6 +154,7 @@ impl OceanState {
         for cascade in &self.cascades {
             cascade.check_choppiness(lambda)?;
         }
+        fit::check_choppiness(&self.spectrum, &self.config.bands_unchecked(), lambda)?;
         Ok(())
     }
 

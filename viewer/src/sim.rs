@@ -47,7 +47,9 @@ pub enum SeaChange {
 /// Every sea-state change of the viewer goes through here: new weather `spectrum` reached
 /// over `duration` seconds of simulated time with the ocean's live change
 /// (`OceanState::set_spectrum`: every wave's phase and the foam kept). A new water depth,
-/// which the live change refuses, takes the rebuild path: a new ocean at the same time.
+/// which the live change refuses, takes the rebuild path: a new ocean at the same time; so
+/// does a sea the grids cannot hold (`Error::SeaDoesNotFit`), on grids fitted to it
+/// (`OceanConfig::with_fitted_lengths`).
 ///
 /// # Errors
 /// The crate's, for a spectrum the ocean refuses; nothing changes then.
@@ -58,6 +60,10 @@ pub fn change_sea(ocean: &mut OceanState, spectrum: Spectrum, duration: f64) -> 
             ..
         }) => {
             let config = ocean.config().clone();
+            rebuild(ocean, spectrum, config)
+        }
+        Err(Error::SeaDoesNotFit { .. }) => {
+            let config = ocean.config().clone().with_fitted_lengths(&spectrum)?;
             rebuild(ocean, spectrum, config)
         }
         other => other,
