@@ -227,24 +227,28 @@ impl OceanConfig {
     /// Those of [`OceanConfig::validate`]: the bands of an invalid config are not computed.
     pub fn bands(&self) -> Result<Vec<(f32, f32)>, Error> {
         self.validate()?;
-        Ok(self.bands_unchecked())
+        Ok(self.bands_unchecked().to_vec())
     }
 
     /// The bands of a config whose fields (not yet its bands) have been checked.
-    pub(super) fn bands_unchecked(&self) -> Vec<(f32, f32)> {
-        let count = self.lengths.len();
+    pub(super) fn bands_unchecked(&self) -> Bands {
+        // Held on the stack: a live ocean's checks (`set_spectrum`, `set_choppiness`) read
+        // them and allocate nothing.
+        let count = self.lengths.len().min(Self::MAX_CASCADES);
         let nyquist = |length: f32| std::f32::consts::PI * self.size as f32 / length;
-        let mut edges = Vec::with_capacity(count + 1);
-        edges.push(self.k_min);
-        for &length in &self.lengths[..count - 1] {
-            edges.push((self.band_split * nyquist(length)).clamp(self.k_min, self.k_max));
+        let mut edges = [self.k_min; Self::MAX_CASCADES + 1];
+        for (edge, &length) in edges[1..count].iter_mut().zip(&self.lengths) {
+            *edge = (self.band_split * nyquist(length)).clamp(self.k_min, self.k_max);
         }
-        edges.push(
-            self.k_max
-                .min(nyquist(self.lengths[count - 1]))
-                .max(self.k_min),
-        );
-        edges.windows(2).map(|w| (w[0], w[1])).collect()
+        edges[count] = self
+            .k_max
+            .min(nyquist(self.lengths[count - 1]))
+            .max(self.k_min);
+        let mut bands = [(0.0, 0.0); Self::MAX_CASCADES];
+        for (band, edge) in bands.iter_mut().zip(edges.windows(2)).take(count) {
+            *band = (edge[0], edge[1]);
+        }
+        Bands { bands, count }
     }
 
     /// Checks every field, that every cascade's band is non-empty, and the memory the ocean
@@ -298,7 +302,7 @@ impl OceanConfig {
             )?;
         }
         self.query.validate()?;
-        for (lower, upper) in self.bands_unchecked() {
+        for &(lower, upper) in self.bands_unchecked().iter() {
             if upper <= lower {
                 return Err(Error::EmptyBand {
                     k_min: f64::from(lower),
@@ -347,5 +351,21 @@ impl OceanConfig {
             memory_limit: self.memory_limit,
             determinism: self.determinism,
         }
+    }
+}
+
+/// The wave-number bands of a config's cascades, `(lower, upper)` in rad/m, largest cascade
+/// first (see [`OceanConfig::bands`]), on the stack.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Bands {
+    bands: [(f32, f32); OceanConfig::MAX_CASCADES],
+    count: usize,
+}
+
+impl std::ops::Deref for Bands {
+    type Target = [(f32, f32)];
+
+    fn deref(&self) -> &[(f32, f32)] {
+        &self.bands[..self.count]
     }
 }
