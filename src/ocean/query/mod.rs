@@ -272,13 +272,12 @@ pub(crate) trait PointQuery: Sync {
 const LANES_BUILT: bool = !cfg!(debug_assertions);
 
 /// Whether cascades `range` all have spline tiles, so that a batch over them runs in lanes
-/// (in a build that has them, [`LANES_BUILT`]).
+/// (callers test [`LANES_BUILT`] first, so that a build without lanes never compiles them).
 #[inline(always)]
 fn in_lanes(fields: &Fields<'_>, range: std::ops::Range<usize>) -> bool {
-    LANES_BUILT
-        && fields.frame().grids[range]
-            .iter()
-            .all(|grid| grid.tiles.is_some())
+    fields.frame().grids[range]
+        .iter()
+        .all(|grid| grid.tiles.is_some())
 }
 
 /// [`sample`] over a range of cascades.
