@@ -1,0 +1,28 @@
+//! ocean-fft's render layer: what every engine that draws the ocean needs besides its own
+//! API, written once and engine-neutral (no GPU API, no engine).
+//!
+//! - [`Texels`]: every cascade's RGBA16F texels with their mip chains, ready to upload.
+//! - [`OceanInfo`] and [`OceanUniforms`]: the shader's per-frame inputs (σ², the slope table,
+//!   the channel variances, the tile origins) in the layout of `OceanUniforms` in
+//!   shaders/ocean_common.wgsl; [`Light`] the palette it is shaded with.
+//! - [`clipmap`]: the rings of grid points the water is drawn on.
+//! - [`SeaSettings`] and [`SeaSettings::plan`]: a change of the sea an engine asks for, turned
+//!   into live changes or a new ocean.
+//! - [`Simulation`]: a double-buffered simulation thread that steps, packs and queries while
+//!   the engine draws the previous frame.
+//!
+//! The viewer (viewer/) and the Bevy plugin (bevy_ocean_fft/) draw with it; a port to another
+//! engine adds only that engine's glue (textures, buffers, pipelines, its scheduling).
+
+pub mod clipmap;
+mod info;
+mod sea;
+mod texels;
+mod thread;
+mod uniforms;
+
+pub use info::{OceanInfo, SlopeTable, MAX_CASCADES, SLOPE_TABLE};
+pub use sea::{apply, build, follow_clock, Change, Plan, SeaSettings, PRE_ROLL, PRE_ROLL_DT};
+pub use texels::{mip_levels, Level, Texels};
+pub use thread::{Frame, SimTimes, Simulation};
+pub use uniforms::{Light, OceanUniforms, Tiling, EXACT_WITHIN};

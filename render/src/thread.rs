@@ -1,0 +1,313 @@
+//! The double-buffered simulation thread: it owns the [`OceanState`], steps it, packs every
+//! cascade into RGBA16F texels with their mipmaps, and answers the frame's CPU queries, while
+//! the engine draws the previous frame.
+//!
+//! Two [`Frame`]s circulate between the threads: the engine uploads one while the simulation
+//! fills the other, so step n + 1 runs while frame n renders. Once both exist the loop
+//! allocates nothing: the frames keep their buffers, the channels are bounded (their slots
+//! are allocated once), and every step, pack and query runs inside the thread's own rayon
+//! pool (called from outside a pool, rayon's job queue would allocate a block every 63
+//! calls). Only a change of sea allocates (a new ocean, new tables).
+
+use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
+use std::thread::JoinHandle;
+use std::time::Instant;
+
+use ocean_fft::{Error, OceanState, SurfaceSample};
+
+use crate::info::{OceanInfo, SlopeTable};
+use crate::sea::{apply, build, Plan, SeaSettings, PRE_ROLL, PRE_ROLL_DT};
+use crate::texels::Texels;
+
+/// Timings of the simulation's share of a frame, ms.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SimTimes {
+    /// The step.
+    pub step: f64,
+    /// Packing the texels, their mipmaps and the f16 conversion.
+    pub pack: f64,
+    /// The frame's CPU queries.
+    pub query: f64,
+    /// A change of sea applied before the step (0 on most frames).
+    pub change: f64,
+}
+
+/// One frame's data, passed back and forth between the threads.
+#[derive(Debug, Default)]
+pub struct Frame {
+    /// Every cascade's texels with their mip chains.
+    pub texels: Texels,
+    /// The world points (x, z; m) queried after the step, and their surfaces.
+    pub queries: Vec<[f64; 2]>,
+    pub samples: Vec<SurfaceSample>,
+    /// What the shader needs besides the textures, for the time the textures hold.
+    pub info: OceanInfo,
+    pub times: SimTimes,
+    /// New oceans built since the start (a new grid or depth; the textures' size may change).
+    pub rebuilds: u64,
+    /// The last error of a change of sea or a step, if any.
+    pub error: Option<String>,
+}
+
+impl Frame {
+    fn new(queries: usize) -> Frame {
+        Frame {
+            queries: vec![[0.0; 2]; queries],
+            samples: vec![SurfaceSample::default(); queries],
+            ..Frame::default()
+        }
+    }
+}
+
+/// A request to the simulation thread: take the sea to `sea` (if given), step by `dt`
+/// seconds, fill `frame`.
+struct Request {
+    dt: f64,
+    sea: Option<SeaSettings>,
+    frame: Box<Frame>,
+}
+
+/// The simulation thread's own state.
+struct Worker {
+    ocean: OceanState,
+    running: SeaSettings,
+    slopes: SlopeTable,
+    rebuilds: u64,
+}
+
+/// The engine's handle on the simulation thread.
+pub struct Simulation {
+    requests: SyncSender<Option<Request>>,
+    results: Receiver<Box<Frame>>,
+    /// The frame the engine holds (uploaded, sent back with the next request).
+    spare: Option<Box<Frame>>,
+    thread: Option<JoinHandle<()>>,
+}
+
+impl Simulation {
+    /// Builds the ocean of `sea` at sea time `time` with its foam spun up over `pre_roll`
+    /// seconds (at most `time`), on a thread of its own with a rayon pool of `threads`
+    /// threads, and starts the first frame. `queries` is the number of world points queried
+    /// every frame.
+    ///
+    /// # Errors
+    /// The crate's for the sea; a message if a thread cannot start.
+    pub fn start(
+        sea: SeaSettings,
+        time: f64,
+        pre_roll: f64,
+        threads: usize,
+        queries: usize,
+    ) -> Result<Simulation, String> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .thread_name(|i| format!("ocean-sim-{i}"))
+            .build()
+            .map_err(|e| format!("rayon pool: {e}"))?;
+        let mut first = Box::new(Frame::new(queries));
+        let mut worker = pool
+            .install(|| -> Result<Worker, Error> {
+                let mut ocean = OceanState::new(sea.spectrum.clone(), sea.grids())?;
+                ocean.set_time(time)?;
+                if pre_roll > 0.0 {
+                    ocean.pre_roll(pre_roll.min(time.max(PRE_ROLL_DT)), PRE_ROLL_DT)?;
+                }
+                let mut worker = Worker {
+                    ocean,
+                    running: sea,
+                    slopes: SlopeTable::default(),
+                    rebuilds: 0,
+                };
+                worker.fill(&mut first)?;
+                Ok(worker)
+            })
+            .map_err(|e| e.to_string())?;
+        let (request_tx, request_rx) = sync_channel::<Option<Request>>(1);
+        let (result_tx, result_rx) = sync_channel::<Box<Frame>>(2);
+        result_tx.send(first).map_err(|e| e.to_string())?;
+        let thread = std::thread::Builder::new()
+            .name("ocean-sim".into())
+            .spawn(move || {
+                while let Ok(Some(request)) = request_rx.recv() {
+                    let frame = pool.install(|| worker.serve(request));
+                    if result_tx.send(frame).is_err() {
+                        break;
+                    }
+                }
+            })
+            .map_err(|e| format!("simulation thread: {e}"))?;
+        Ok(Simulation {
+            requests: request_tx,
+            results: result_rx,
+            spare: Some(Box::new(Frame::new(queries))),
+            thread: Some(thread),
+        })
+    }
+
+    /// Waits for the next stepped frame, then at once asks for the one after it (the sea
+    /// taken to `sea` if given, a step of `dt` seconds, queries at `queries`), so that it is
+    /// computed while the caller uploads and draws the frame returned. The caller gives the
+    /// frame back with [`Simulation::give_back`] once uploaded.
+    ///
+    /// # Errors
+    /// A message if the simulation thread stopped, or `queries` is not as long as the number
+    /// given to [`start`](Self::start).
+    pub fn next(
+        &mut self,
+        dt: f64,
+        sea: Option<SeaSettings>,
+        queries: &[[f64; 2]],
+    ) -> Result<Box<Frame>, String> {
+        let ready = self
+            .results
+            .recv()
+            .map_err(|_| "the simulation thread stopped".to_string())?;
+        let mut spare = self.spare.take().ok_or("no frame to fill")?;
+        if spare.queries.len() != queries.len() {
+            return Err(format!(
+                "{} queries, {} expected",
+                queries.len(),
+                spare.queries.len()
+            ));
+        }
+        spare.queries.copy_from_slice(queries);
+        self.requests
+            .send(Some(Request {
+                dt,
+                sea,
+                frame: spare,
+            }))
+            .map_err(|_| "the simulation thread stopped".to_string())?;
+        Ok(ready)
+    }
+
+    /// Returns an uploaded frame, to be filled again.
+    pub fn give_back(&mut self, frame: Box<Frame>) {
+        self.spare = Some(frame);
+    }
+}
+
+impl Drop for Simulation {
+    fn drop(&mut self) {
+        let _ = self.requests.send(None);
+        // Unblock a thread waiting to hand back a result.
+        while self.results.try_recv().is_ok() {}
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
+}
+
+impl Worker {
+    /// Takes the ocean to `sea`: live changes where it can, a new ocean at the same time
+    /// otherwise (or when a live change is refused).
+    fn change(&mut self, sea: SeaSettings) -> Result<(), Error> {
+        let config = match sea.plan(&self.running, &self.ocean) {
+            Plan::Nothing => return Ok(()),
+            Plan::Live(changes) => {
+                let mut refused = None;
+                for change in changes {
+                    if let Err(e) = apply(&mut self.ocean, change) {
+                        refused = Some(e);
+                        break;
+                    }
+                }
+                match refused {
+                    None => {
+                        self.running = sea;
+                        return Ok(());
+                    }
+                    // A change the running ocean refuses (a choppiness its sea cannot take
+                    // until the new spectrum is in): a new ocean of the whole sea.
+                    Some(_) => sea.grids(),
+                }
+            }
+            Plan::Rebuild(config) => config,
+        };
+        let time = self.ocean.time();
+        self.ocean = build(sea.spectrum.clone(), config, time)?;
+        self.running = sea;
+        self.rebuilds += 1;
+        Ok(())
+    }
+
+    /// Packs the ocean as it is into `frame` and answers its queries.
+    fn fill(&mut self, frame: &mut Frame) -> Result<(), Error> {
+        let start = Instant::now();
+        frame.texels.pack(&self.ocean)?;
+        frame.info.update(&self.ocean, &mut self.slopes)?;
+        frame.info.jacobian_sd = frame.texels.jacobian_sd;
+        frame.rebuilds = self.rebuilds;
+        frame.times.pack = start.elapsed().as_secs_f64() * 1e3;
+        let start = Instant::now();
+        let Frame {
+            queries, samples, ..
+        } = frame;
+        self.ocean.surfaces_at(queries, samples)?;
+        frame.times.query = start.elapsed().as_secs_f64() * 1e3;
+        Ok(())
+    }
+
+    /// One request: the change, the step, the pack and the queries.
+    fn serve(&mut self, request: Request) -> Box<Frame> {
+        let Request { dt, sea, mut frame } = request;
+        frame.times = SimTimes::default();
+        frame.error = None;
+        if let Some(sea) = sea {
+            let start = Instant::now();
+            if let Err(e) = self.change(sea) {
+                frame.error = Some(e.to_string());
+            }
+            frame.times.change = start.elapsed().as_secs_f64() * 1e3;
+        }
+        let start = Instant::now();
+        if let Err(e) = self.ocean.step(dt) {
+            frame.error = Some(e.to_string());
+        }
+        frame.times.step = start.elapsed().as_secs_f64() * 1e3;
+        if let Err(e) = self.fill(&mut frame) {
+            frame.error = Some(e.to_string());
+        }
+        frame
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ocean_fft::SeaState;
+
+    /// The thread answers frame after frame at the clock's times, takes a new sea live or by a
+    /// rebuild as the plan says, and hands back the frame it was given.
+    #[test]
+    fn frames_follow_the_clock_and_the_sea() {
+        let mut sea = SeaSettings::preset(SeaState::FreshBreeze);
+        sea.config.size = 32;
+        let mut sim = Simulation::start(sea.clone(), 10.0, 0.5, 1, 2).unwrap();
+        let queries = [[0.0, 0.0], [3.0, -4.0]];
+        let mut times = Vec::new();
+        let mut calmer = sea.clone();
+        calmer.set_weather(SeaState::ModerateBreeze);
+        let mut grids = sea.clone();
+        grids.config.seed += 1;
+        for n in 0..6 {
+            let change = match n {
+                2 => Some(calmer.clone()),
+                4 => Some(grids.clone()),
+                _ => None,
+            };
+            let frame = sim.next(0.5, change, &queries).unwrap();
+            assert_eq!(frame.error, None);
+            assert_eq!(frame.texels.cascades, frame.info.cascades);
+            assert!(frame.samples.iter().all(|s| s.height.is_finite()));
+            times.push((frame.info.time, frame.rebuilds));
+            sim.give_back(frame);
+        }
+        // Frame n holds the time after n steps; the new grids (asked with frame 4's request)
+        // are a rebuild, seen from frame 5 on; the calmer weather was live.
+        let expected: Vec<(f64, u64)> = (0..6)
+            .map(|n| (10.0 + 0.5 * n as f64, u64::from(n >= 5)))
+            .collect();
+        assert_eq!(times, expected);
+    }
+}
