@@ -335,3 +335,192 @@ fn ocean_tone_map(colour: vec3<f32>, exposure: f32) -> vec3<f32> {
     let x = max(colour * exposure, vec3<f32>(0.0));
     return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
 }
+
+// ---- The per-frame inputs and the water's two stages ----
+//
+// What an engine binds besides the two textures and their samplers: `OceanUniforms`
+// (ocean_fft_render::OceanUniforms in Rust, field for field, filled by its `set_light` and
+// `set_ocean`). The functions below take it and the textures as parameters, so the viewer and
+// an engine's material draw the water with the same code and only bind it their own way.
+
+struct OceanUniforms {
+    // xyz: unit vector toward the sun; w: overcast in [0, 1].
+    sun: vec4<f32>,
+    // rgb: sun irradiance; w: the engine's own (the viewer's exposure; in Bevy the shader's
+    // sun per unit of Bevy's exposed illuminance).
+    sun_colour: vec4<f32>,
+    // rgb: sky at the zenith; w: haze distance (m).
+    zenith: vec4<f32>,
+    // rgb: sky at the horizon; w: strength of the tiling breaker in [0, 1].
+    horizon: vec4<f32>,
+    // rgb: deep water; w: standard deviation of the summed height (m).
+    deep: vec4<f32>,
+    // rgb: subsurface tint; w: standard deviation of the summed J − 1.
+    subsurface: vec4<f32>,
+    // xy: unit wind (x, z); zw: sub-grid slope variance along and across the wind (the
+    // finest cascade's `subgrid_slope_variance`).
+    wind: vec4<f32>,
+    // x: cell of the tiling breaker's pattern (m); y: distance (m) within which the water is
+    // exactly the simulated one; z: number of cascades; w: the engine's own (the viewer's
+    // number of rings, Bevy's ring half-width in cells).
+    tiling: vec4<f32>,
+    // x: first wave number of `slope_table` (rad/m); y: 1/ln of the ratio between entries;
+    // z: number of entries; w: unused.
+    table: vec4<f32>,
+    // Cascade c: x = L (m), y = L/N (m), z = N, w = mip levels.
+    cascades: array<vec4<f32>, 8>,
+    // Cascade c: xy = the corner of the tile under the eye (a multiple of L, m), which uv is
+    // measured from.
+    origins: array<vec4<f32>, 8>,
+    // Entry i: x = wave number k_i (rad/m, k_i = table.x · ratio^i); y, z = slope variance
+    // along and across the wind of the simulated waves with wave numbers above k_i.
+    slope_table: array<vec4<f32>, 32>,
+}
+
+// The light of the uniforms, with the sun an engine gives (its own light, or the uniforms'
+// `sun.xyz` and `sun_colour.rgb`).
+fn ocean_light(u: OceanUniforms, sun_direction: vec3<f32>, sun_colour: vec3<f32>) -> OceanLight {
+    var l: OceanLight;
+    l.sun_direction = sun_direction;
+    l.overcast = u.sun.w;
+    l.sun_colour = sun_colour;
+    l.haze_distance = u.zenith.w;
+    l.zenith = u.zenith.rgb;
+    l.horizon = u.horizon.rgb;
+    l.deep = u.deep.rgb;
+    l.subsurface = u.subsurface.rgb;
+    return l;
+}
+
+fn ocean_cascade_count(u: OceanUniforms) -> u32 {
+    return min(u32(u.tiling.z), 8u);
+}
+
+// A clipmap grid point `cell` (in cells from its ring's centre, M = `half_cells` from centre
+// to edge, M even) moved for CDLOD-style morphing (Strugar 2009): in the outer fifth of a
+// ring the odd grid points slide onto their even neighbours, so that the ring's border has
+// the vertices of the next, twice coarser ring and the two meet without cracks. Returns the
+// morphed cell (xy) and the morph factor in [0, 1] (z): the vertex spacing grows from s to
+// 2s across that band, s·(1 + z).
+fn ocean_morph(cell: vec2<f32>, half_cells: f32) -> vec3<f32> {
+    let border = max(abs(cell.x), abs(cell.y)) / half_cells;
+    let morph = clamp((border - 0.75) / 0.2, 0.0, 1.0);
+    // 1 for odd cells (M is even, so the parity from the centre is that from the corner).
+    let odd = cell - 2.0 * floor(cell * 0.5);
+    return vec3<f32>(cell - odd * morph, morph);
+}
+
+// The summed displacement (D_x, η, D_z; m) of the water whose undisplaced point is `xz`, for
+// vertices `spacing` m apart and an eye above `eye_xz`: every cascade read at the level of
+// detail the spacing asks for (explicit LOD, with a sampler without anisotropy), the tiling
+// breaker's second look-up far away. Where the surface folds (J < 0) a mesh turns inside out
+// into spikes, so below J = 0.5 the horizontal displacement is drawn in, to 30 % at
+// J ≤ −0.2 (the height is kept).
+fn ocean_displacement(
+    displacement_foam: texture_2d_array<f32>,
+    slope_jacobian_foam: texture_2d_array<f32>,
+    vertex_sampler: sampler,
+    u: OceanUniforms,
+    xz: vec2<f32>,
+    spacing: f32,
+    eye_xz: vec2<f32>,
+) -> vec3<f32> {
+    let weights = ocean_tiling_weights(xz, length(xz - eye_xz), u.horizon.w, u.tiling.x, u.tiling.y);
+    var displacement = vec3<f32>(0.0);
+    var jacobian = 1.0;
+    for (var c = 0u; c < ocean_cascade_count(u); c++) {
+        let cascade = u.cascades[c];
+        let lod = min(ocean_vertex_lod(spacing, cascade.y), cascade.w - 1.0);
+        let uv = ocean_uv(xz, u.origins[c].xy, cascade.x, cascade.z);
+        var d = textureSampleLevel(displacement_foam, vertex_sampler, uv, c, lod).xyz * weights.x;
+        var j = (textureSampleLevel(slope_jacobian_foam, vertex_sampler, uv, c, lod).z - 1.0) * weights.x;
+        if (weights.y > 0.0) {
+            let shifted = uv + ocean_tiling_offset(c);
+            d += textureSampleLevel(displacement_foam, vertex_sampler, shifted, c, lod).xyz * weights.y;
+            j += (textureSampleLevel(slope_jacobian_foam, vertex_sampler, shifted, c, lod).z - 1.0) * weights.y;
+        }
+        displacement += d;
+        jacobian += j;
+    }
+    let unfold = mix(0.3, 1.0, smoothstep(-0.2, 0.5, jacobian));
+    return vec3<f32>(displacement.x * unfold, displacement.y, displacement.z * unfold);
+}
+
+// Slope variance (along, across the wind) of the simulated waves with wave numbers above
+// `k` (rad/m), interpolated in ln k in the uniforms' table.
+fn ocean_unresolved_variance(u: OceanUniforms, k: f32) -> vec2<f32> {
+    let entries = u32(u.table.z);
+    if (entries < 2u) {
+        return vec2<f32>(0.0);
+    }
+    let position = log(max(k, 1e-6) / u.table.x) * u.table.y;
+    if (position <= 0.0) {
+        return u.slope_table[0].yz;
+    }
+    if (position >= f32(entries - 1u)) {
+        return u.slope_table[entries - 1u].yz;
+    }
+    let i = u32(floor(position));
+    let f = position - f32(i);
+    return mix(u.slope_table[i].yz, u.slope_table[i + 1u].yz, f);
+}
+
+// The surface a fragment shows: the water displaced to `world` (m) from the undisplaced
+// point `xz` (m), summed height `height` (m), seen from an eye above `eye_xz`. Call it in
+// uniform control flow (it takes screen-space derivatives). The texture look-ups use
+// explicit gradients, the same for every look-up (the tiling breaker's second one is skipped
+// near the eye): where the surface is squeezed or folds, the undisplaced point races across a
+// triangle far faster than the water drawn, so the gradients are limited to 3 times the
+// water's own and such a triangle is not filtered (and foamed) flat as a whole. The mipmaps
+// average away the slopes of waves shorter than about twice the pixel's footprint on the
+// water; their variance goes into the glitter's slope distribution with the sub-grid σ², so
+// the sea's total slope variance (and the width of the glitter path) does not depend on the
+// distance.
+fn ocean_water_surface(
+    slope_jacobian_foam: texture_2d_array<f32>,
+    ocean_sampler: sampler,
+    u: OceanUniforms,
+    world: vec3<f32>,
+    xz: vec2<f32>,
+    height: f32,
+    eye_xz: vec2<f32>,
+) -> OceanSurface {
+    let wx = dpdx(world);
+    let wy = dpdy(world);
+    let limit = 3.0 * max(length(wx), length(wy)) + 1e-4;
+    let gx = dpdx(xz) * min(1.0, limit / max(length(dpdx(xz)), 1e-6));
+    let gy = dpdy(xz) * min(1.0, limit / max(length(dpdy(xz)), 1e-6));
+    let weights = ocean_tiling_weights(xz, length(xz - eye_xz), u.horizon.w, u.tiling.x, u.tiling.y);
+
+    var slope = vec2<f32>(0.0);
+    var jacobian = 1.0;
+    var foam = 0.0;
+    for (var c = 0u; c < ocean_cascade_count(u); c++) {
+        let cascade = u.cascades[c];
+        let uv = ocean_uv(xz, u.origins[c].xy, cascade.x, cascade.z);
+        let ux = gx / cascade.x;
+        let uy = gy / cascade.x;
+        let a = textureSampleGrad(slope_jacobian_foam, ocean_sampler, uv, c, ux, uy);
+        slope += a.xy * weights.x;
+        jacobian += (a.z - 1.0) * weights.x;
+        foam += a.w * weights.x * weights.x;
+        if (weights.y > 0.0) {
+            let b = textureSampleGrad(slope_jacobian_foam, ocean_sampler, uv + ocean_tiling_offset(c), c, ux, uy);
+            slope += b.xy * weights.y;
+            jacobian += (b.z - 1.0) * weights.y;
+            foam += b.w * weights.y * weights.y;
+        }
+    }
+
+    // The pixel's footprint on the water: geometric mean of its two axes in the undisplaced
+    // plane, m.
+    let footprint = max(sqrt(length(gx) * length(gy)), 1e-4);
+    var surface: OceanSurface;
+    surface.normal = ocean_normal(slope);
+    surface.height = height;
+    surface.height_sd = u.deep.w;
+    surface.wind = u.wind.xy;
+    surface.variance = u.wind.zw + ocean_unresolved_variance(u, OCEAN_PI / footprint);
+    surface.foam = ocean_foam(foam, jacobian, u.subsurface.w, xz, u.wind.xy, footprint);
+    return surface;
+}

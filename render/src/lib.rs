@@ -17,6 +17,8 @@
 pub mod clipmap;
 mod info;
 mod sea;
+#[cfg(test)]
+mod shader_tests;
 mod texels;
 mod thread;
 mod uniforms;

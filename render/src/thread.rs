@@ -16,7 +16,7 @@ use std::time::Instant;
 use ocean_fft::{Error, OceanState, SurfaceSample};
 
 use crate::info::{OceanInfo, SlopeTable};
-use crate::sea::{apply, build, Plan, SeaSettings, PRE_ROLL, PRE_ROLL_DT};
+use crate::sea::{apply, build, Plan, SeaSettings, PRE_ROLL_DT};
 use crate::texels::Texels;
 
 /// Timings of the simulation's share of a frame, ms.

@@ -6,8 +6,8 @@ use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
-use crate::light::Light;
-use crate::sim::{Frame, OceanInfo, MAX_CASCADES, SLOPE_TABLE};
+use ocean_fft_render::clipmap::{grid_indices, rings, Ring, HOLES, MAX_RINGS};
+use ocean_fft_render::{Frame, Light, OceanInfo, OceanUniforms, Tiling};
 
 /// The reference shader: the shading functions, then the viewer's bindings and entry points.
 pub const SHADER: &str = concat!(
@@ -16,17 +16,8 @@ pub const SHADER: &str = concat!(
     include_str!("../../shaders/ocean.wgsl")
 );
 
-/// Most rings of the clipmap (the size of `Globals::levels`).
-pub const MAX_RINGS: usize = 16;
-/// Vertex spacing of the finest ring, m.
-pub const FINEST_SPACING: f32 = 0.25;
-/// The mesh reaches this far from the eye, m (the horizon from 500 m up is 80 km away).
-pub const MESH_REACH: f32 = 120_000.0;
 /// Depth format (reversed depth: 1 near, 0 at infinity).
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// Distance within which the water is exactly the simulated one (no tiling breaker), m.
-pub const EXACT_WITHIN: f32 = 400.0;
-
 /// The shader's `Globals` (ocean.wgsl), field for field; its size is checked against
 /// naga's layout of the WGSL struct in the tests.
 #[repr(C)]
@@ -34,20 +25,13 @@ pub const EXACT_WITHIN: f32 = 400.0;
 pub struct Globals {
     pub view_proj: [[f32; 4]; 4],
     pub inverse_view_proj: [[f32; 4]; 4],
+    /// xyz: the eye (m); w: the sea's time (s).
     pub eye: [f32; 4],
-    pub sun: [f32; 4],
-    pub sun_colour: [f32; 4],
-    pub zenith: [f32; 4],
-    pub horizon: [f32; 4],
-    pub deep: [f32; 4],
-    pub subsurface: [f32; 4],
-    pub wind: [f32; 4],
-    pub tiling: [f32; 4],
-    pub table: [f32; 4],
-    pub cascades: [[f32; 4]; MAX_CASCADES],
-    pub origins: [[f32; 4]; MAX_CASCADES],
-    pub slope_table: [[f32; 4]; SLOPE_TABLE],
+    /// Ring r: centre x, z (m), vertex spacing (m), half-width M in cells.
     pub levels: [[f32; 4]; MAX_RINGS],
+    /// The shading functions' inputs: `sun_colour.w` the exposure, `tiling.w` the number of
+    /// rings.
+    pub ocean: OceanUniforms,
 }
 
 /// One floating body's instance: model matrix columns and colour.
@@ -87,9 +71,10 @@ pub struct RenderSettings {
 
 impl Default for RenderSettings {
     fn default() -> Self {
+        let tiling = Tiling::default();
         RenderSettings {
-            tiling: 1.0,
-            tiling_scale: 0.61,
+            tiling: tiling.strength,
+            tiling_scale: tiling.scale,
         }
     }
 }
@@ -142,6 +127,8 @@ pub struct Renderer {
     targets: Option<Targets>,
     /// The rings of the last frame (for the HUD): count, vertices.
     pub rings_drawn: (usize, usize),
+    /// The mesh of each ring of the last frame's uniforms (`None`: the full square).
+    ring_meshes: [Option<usize>; MAX_RINGS],
 }
 
 /// Most body instances.
@@ -326,8 +313,7 @@ impl Renderer {
         };
         let m = half_cells.max(4) & !1;
         let full = index_buffer("clipmap full", &grid_indices(m, None));
-        let rings = [(0, 0), (1, 0), (0, 1), (1, 1)]
-            .map(|offset| index_buffer("clipmap ring", &grid_indices(m, Some(offset))));
+        let rings = HOLES.map(|hole| index_buffer("clipmap ring", &grid_indices(m, Some(hole))));
         let vertex_buffer = |label: &str, vertices: &[BodyVertex]| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some(label),
@@ -369,59 +355,50 @@ impl Renderer {
             instances,
             targets: None,
             rings_drawn: (0, 0),
+            ring_meshes: [None; MAX_RINGS],
         }
     }
 
     /// Uploads a frame's texels (creating the textures when the ocean's size changed).
     pub fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, frame: &Frame) {
-        let info = &frame.info;
+        let texels = &frame.texels;
+        let mips = texels.level_offsets.len();
         let fits = self.textures.as_ref().is_some_and(|t| {
-            t.size == info.size
-                && t.cascades == info.cascades
-                && t.mips == frame.level_offsets.len()
+            t.size == texels.size && t.cascades == texels.cascades && t.mips == mips
         });
         if !fits {
-            self.textures = Some(self.create_textures(
-                device,
-                info.size,
-                info.cascades,
-                frame.level_offsets.len(),
-            ));
+            self.textures = Some(self.create_textures(device, texels.size, texels.cascades, mips));
         }
         let textures = self.textures.as_ref().expect("created above");
-        for (texture, texels) in [
-            (&textures.displacement, &frame.displacement),
-            (&textures.slope, &frame.slope),
+        for (texture, data) in [
+            (&textures.displacement, &texels.displacement),
+            (&textures.slope, &texels.slope),
         ] {
-            for c in 0..info.cascades {
-                let layer = &texels[c * frame.layer_len..(c + 1) * frame.layer_len];
-                for (m, &offset) in frame.level_offsets.iter().enumerate() {
-                    let side = (info.size >> m) as u32;
-                    let count = (side * side) as usize;
-                    queue.write_texture(
-                        wgpu::TexelCopyTextureInfo {
-                            texture,
-                            mip_level: m as u32,
-                            origin: wgpu::Origin3d {
-                                x: 0,
-                                y: 0,
-                                z: c as u32,
-                            },
-                            aspect: wgpu::TextureAspect::All,
+            for level in texels.levels(data) {
+                let side = level.side as u32;
+                queue.write_texture(
+                    wgpu::TexelCopyTextureInfo {
+                        texture,
+                        mip_level: level.level as u32,
+                        origin: wgpu::Origin3d {
+                            x: 0,
+                            y: 0,
+                            z: level.layer as u32,
                         },
-                        bytemuck::cast_slice(&layer[offset..offset + count]),
-                        wgpu::TexelCopyBufferLayout {
-                            offset: 0,
-                            bytes_per_row: Some(side * 8),
-                            rows_per_image: Some(side),
-                        },
-                        wgpu::Extent3d {
-                            width: side,
-                            height: side,
-                            depth_or_array_layers: 1,
-                        },
-                    );
-                }
+                        aspect: wgpu::TextureAspect::All,
+                    },
+                    bytemuck::cast_slice(level.texels),
+                    wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(side * 8),
+                        rows_per_image: Some(side),
+                    },
+                    wgpu::Extent3d {
+                        width: side,
+                        height: side,
+                        depth_or_array_layers: 1,
+                    },
+                );
             }
         }
     }
@@ -493,12 +470,12 @@ impl Renderer {
         }
     }
 
-    /// The uniforms of a frame seen from `view` at `size` pixels.
+    /// The uniforms of a frame seen from `view` at `size` pixels, in `light` with `exposure`.
     pub fn globals(
         &mut self,
         info: &OceanInfo,
         view: &View,
-        light: &Light,
+        (light, exposure): (&Light, f32),
         settings: &RenderSettings,
         size: (u32, u32),
     ) -> Globals {
@@ -510,68 +487,30 @@ impl Renderer {
         g.view_proj = view_proj.to_cols_array_2d();
         g.inverse_view_proj = view_proj.inverse().to_cols_array_2d();
         g.eye = [view.eye.x, view.eye.y, view.eye.z, info.time as f32];
-        g.sun = [light.sun.x, light.sun.y, light.sun.z, light.overcast];
-        g.sun_colour = light.sun_colour.extend(light.exposure).to_array();
-        g.zenith = light.zenith.extend(light.haze).to_array();
-        g.horizon = light.horizon.extend(settings.tiling).to_array();
-        g.deep = light.deep.extend(info.height_sd).to_array();
-        g.subsurface = light.subsurface.extend(info.jacobian_sd).to_array();
-        g.wind = [info.wind[0], info.wind[1], info.subgrid[0], info.subgrid[1]];
-        g.tiling = [
-            settings.tiling_scale * info.lengths[0],
-            EXACT_WITHIN,
-            info.cascades as f32,
-            0.0,
-        ];
-        let (k0, k1) = (info.slope_table[0][0], info.slope_table[SLOPE_TABLE - 1][0]);
-        g.table = [
-            k0,
-            (SLOPE_TABLE - 1) as f32 / (k1 / k0).ln().max(1e-6),
-            SLOPE_TABLE as f32,
-            0.0,
-        ];
-        for c in 0..info.cascades {
-            let l = info.lengths[c];
-            g.cascades[c] = [
-                l,
-                l / info.size as f32,
-                info.size as f32,
-                info.mip_levels as f32,
-            ];
-            let corner = |v: f32| (f64::from(v) / f64::from(l)).floor() * f64::from(l);
-            g.origins[c] = [
-                corner(view.eye.x) as f32,
-                corner(view.eye.z) as f32,
-                0.0,
-                0.0,
+        g.ocean.set_light(light, 1.0, exposure);
+        let tiling = Tiling {
+            strength: settings.tiling,
+            scale: settings.tiling_scale,
+            ..Tiling::default()
+        };
+        g.ocean.set_ocean(info, [view.eye.x, view.eye.z], &tiling);
+        let mut ring_list = [Ring::default(); MAX_RINGS];
+        let count = rings(
+            [view.eye.x, view.eye.z],
+            view.height_above_water,
+            self.half_cells,
+            &mut ring_list,
+        );
+        for (level, ring) in g.levels.iter_mut().zip(&ring_list[..count]) {
+            *level = [
+                ring.centre[0],
+                ring.centre[1],
+                ring.spacing,
+                self.half_cells as f32,
             ];
         }
-        for (entry, t) in g.slope_table.iter_mut().zip(&info.slope_table) {
-            *entry = [t[0], t[1], t[2], 0.0];
-        }
-        // The rings: spacing FINEST_SPACING·2^l from l_min, which grows with the height so
-        // that the finest ring's cells stay about the size of a pixel's footprint below.
-        let first = ((view.height_above_water.max(1.0) / 8.0)
-            .log2()
-            .floor()
-            .max(0.0) as usize)
-            .min(6);
-        let half = self.half_cells as f32;
-        let mut count = 0;
-        for l in first..first + MAX_RINGS {
-            let spacing = FINEST_SPACING * (1u32 << l) as f32;
-            let snap = 2.0 * spacing;
-            let centre = [
-                (view.eye.x / snap).floor() * snap,
-                (view.eye.z / snap).floor() * snap,
-            ];
-            g.levels[count] = [centre[0], centre[1], spacing, half];
-            count += 1;
-            if half * spacing >= MESH_REACH {
-                break;
-            }
-        }
-        g.tiling[3] = count as f32;
+        self.ring_meshes = ring_list.map(|r| r.hole);
+        g.ocean.tiling[3] = count as f32;
         let side = (2 * self.half_cells + 1) as usize;
         self.rings_drawn = (count, count * side * side);
         g
@@ -676,17 +615,11 @@ impl Renderer {
         pass.draw(0..3, 0..1);
 
         pass.set_pipeline(&self.ocean_pipeline);
-        let count = globals.tiling[3] as usize;
+        let count = globals.ocean.tiling[3] as usize;
         for ring in 0..count {
-            let (buffer, indices) = if ring == 0 {
-                &self.full
-            } else {
-                // Offset of the finer ring's square in this ring's cells: 0 or 1 on each axis.
-                let finer = globals.levels[ring - 1];
-                let this = globals.levels[ring];
-                let dx = ((finer[0] - this[0]) / this[2]).round() as usize;
-                let dz = ((finer[1] - this[1]) / this[2]).round() as usize;
-                &self.rings[dx.min(1) + 2 * dz.min(1)]
+            let (buffer, indices) = match self.ring_meshes[ring] {
+                None => &self.full,
+                Some(hole) => &self.rings[hole],
             };
             pass.set_index_buffer(buffer.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..*indices, 0, ring as u32..ring as u32 + 1);
@@ -708,34 +641,6 @@ impl Renderer {
     }
 }
 
-/// Triangle indices of the clipmap grid of (2m + 1)² vertices (index j·(2m + 1) + i): every
-/// cell, or for a ring every cell outside the m × m square of the next finer ring (whose
-/// lower corner lies at cell (m/2 + dx, m/2 + dz)) but its outermost cells: the ring overlaps
-/// the finer ring's border by one of its cells, where the finer ring is fully morphed into
-/// this ring's grid, so the two draw the same surface there. (Meeting edge to edge, they left
-/// hairline cracks in the rasterised picture.) Each cell is split along the diagonal from
-/// (i + 1, j) to (i, j + 1), as the crate's `triangle_indices`, so that a morphed 2×2 block
-/// of a finer ring has the triangles of the coarser cell.
-fn grid_indices(m: u32, hole: Option<(u32, u32)>) -> Vec<u32> {
-    let side = 2 * m + 1;
-    let mut indices = Vec::with_capacity((6 * 4 * m * m) as usize);
-    for j in 0..2 * m {
-        for i in 0..2 * m {
-            if let Some((dx, dz)) = hole {
-                let inside = |c: u32, d: u32| c > m / 2 + d && c + 1 < 3 * m / 2 + d;
-                if inside(i, dx) && inside(j, dz) {
-                    continue;
-                }
-            }
-            let a = j * side + i;
-            let (b, c, d) = (a + 1, a + side, a + side + 1);
-            indices.extend_from_slice(&[a, c, b, b, c, d]);
-        }
-    }
-    indices
-}
-
-/// A closed mesh from quads (counter-clockwise seen from outside).
 fn push_quad(vertices: &mut Vec<BodyVertex>, indices: &mut Vec<u32>, corners: [Vec3; 4]) {
     let normal = (corners[1] - corners[0])
         .cross(corners[2] - corners[0])
@@ -888,32 +793,4 @@ fn boat() -> (Vec<BodyVertex>, Vec<u32>) {
         Vec3::new(0.5, 2.6, 1.1),
     );
     (vertices, indices)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A ring leaves out the inside of the finer ring's square (m × m of its cells) less a
-    /// border of one cell, for each hole offset: the cells it draws, counted one by one, are
-    /// those outside the (m − 2)² square whose lower corner is at (m/2 + 1 + dx, m/2 + 1 + dz).
-    #[test]
-    fn rings_leave_out_the_finer_square_less_its_border() {
-        let m = 8;
-        let side = 2 * m + 1;
-        let full = grid_indices(m, None).len() / 6;
-        assert_eq!(full, (4 * m * m) as usize);
-        for (dx, dz) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-            let indices = grid_indices(m, Some((dx, dz)));
-            assert_eq!(indices.len() / 6 + ((m - 2) * (m - 2)) as usize, full);
-            for cell in indices.chunks(6) {
-                let (i, j) = (cell[0] % side, cell[0] / side);
-                let hole = |c: u32, d: u32| (m / 2 + 1 + d..m / 2 + m - 1 + d).contains(&c);
-                assert!(
-                    !(hole(i, dx) && hole(j, dz)),
-                    "cell ({i}, {j}) drawn in the hole"
-                );
-            }
-        }
-    }
 }

@@ -20,7 +20,6 @@ mod light;
 mod sea;
 #[cfg(test)]
 mod shader_tests;
-mod sim;
 mod ui;
 
 use std::sync::Arc;
@@ -37,7 +36,7 @@ use args::Options;
 use bodies::Fleet;
 use camera::Camera;
 use gpu::{Bodies, Renderer, View};
-use sim::{SeaChange, Simulation};
+use ocean_fft_render::{OceanInfo, SeaSettings, Simulation};
 use ui::{Controls, Hud};
 
 fn main() {
@@ -90,7 +89,7 @@ struct State {
     egui_renderer: egui_wgpu::Renderer,
     sim: Simulation,
     /// The frame on screen (its info and query results), kept for the panels.
-    info: sim::OceanInfo,
+    info: OceanInfo,
     camera: Camera,
     fleet: Fleet,
     queries: Vec<[f64; 2]>,
@@ -295,8 +294,11 @@ impl State {
         let fleet = Fleet::new(options.camera, options.heading, options.bodies);
         let queries = fleet.queries(options.camera);
         let sim = Simulation::start(
-            spectrum,
-            sea.config(),
+            SeaSettings {
+                spectrum,
+                config: sea.config(),
+                transition_seconds: 10.0,
+            },
             options.time,
             options.pre_roll,
             options.threads,
@@ -331,7 +333,7 @@ impl State {
             egui,
             egui_renderer,
             sim,
-            info: sim::OceanInfo::default(),
+            info: OceanInfo::default(),
             camera,
             fleet,
             queries,
@@ -351,8 +353,9 @@ impl State {
         })
     }
 
-    /// The change of sea the panels ask for, if any (once no slider is being dragged).
-    fn sea_change(&mut self) -> Option<SeaChange> {
+    /// The sea the panels ask for, if it changed (once no slider is being dragged): the
+    /// simulation takes it live or builds a new ocean (`SeaSettings::plan`).
+    fn sea_change(&mut self) -> Option<SeaSettings> {
         let edited = &self.controls.sea;
         if *edited == self.applied || self.egui.egui_ctx().egui_is_using_pointer() {
             return None;
@@ -365,39 +368,12 @@ impl State {
             }
         };
         self.controls.error = None;
-        // What the ocean changes live goes through it (weather over the transition time, the
-        // choppiness, the foam settings, one at a time as the panels edit them); new grids
-        // take the rebuild path, and so does a new depth (`change_sea` falls back to it).
-        let mut only_choppiness = self.applied.clone();
-        only_choppiness.choppiness = edited.choppiness;
-        let mut only_foam = self.applied.clone();
-        only_foam.foam_coverage = edited.foam_coverage;
-        only_foam.foam_wind = edited.foam_wind;
-        let change = if self.applied.config_differs(edited)
-            || self.applied.foam_differs(edited) && only_foam != *edited
-        {
-            SeaChange::Rebuild {
-                spectrum,
-                config: edited.config(),
-            }
-        } else if only_choppiness == *edited {
-            SeaChange::Choppiness(edited.choppiness)
-        } else if only_foam == *edited {
-            SeaChange::Foam(edited.config().foam)
-        } else if self.applied.choppiness != edited.choppiness {
-            // A spectrum and a choppiness at once (a preset): the config carries both.
-            SeaChange::Rebuild {
-                spectrum,
-                config: edited.config(),
-            }
-        } else {
-            SeaChange::Spectrum {
-                spectrum,
-                duration: f64::from(self.controls.transition),
-            }
-        };
         self.applied = edited.clone();
-        Some(change)
+        Some(SeaSettings {
+            spectrum,
+            config: edited.config(),
+            transition_seconds: f64::from(self.controls.transition),
+        })
     }
 
     /// Draws one frame; whether the headless run is over.
@@ -466,9 +442,13 @@ impl State {
                 ..Default::default()
             });
         let plain_view = surface_texture.texture.create_view(&Default::default());
-        let globals = self
-            .renderer
-            .globals(&self.info, &view, &light, &self.controls.render, size);
+        let globals = self.renderer.globals(
+            &self.info,
+            &view,
+            (&light, self.controls.light.exposure),
+            &self.controls.render,
+            size,
+        );
         let bodies = Bodies {
             buoys: self.fleet.buoys(),
             boats: self.fleet.boats(),

@@ -238,17 +238,6 @@ impl SeaParams {
         config.foam.wind_speed = self.foam_wind;
         config
     }
-
-    /// Whether going from `self` to `other` changes the grids (a rebuild), not only what the
-    /// ocean changes live: the spectrum, the choppiness and the foam settings.
-    pub fn config_differs(&self, other: &SeaParams) -> bool {
-        self.lengths != other.lengths || self.size != other.size || self.seed != other.seed
-    }
-
-    /// Whether going from `self` to `other` changes the foam settings.
-    pub fn foam_differs(&self, other: &SeaParams) -> bool {
-        self.foam_coverage != other.foam_coverage || self.foam_wind != other.foam_wind
-    }
 }
 
 #[cfg(test)]

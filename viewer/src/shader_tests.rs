@@ -1,14 +1,12 @@
-//! The reference shader checked by naga, the WGSL front end and validator wgpu compiles it
-//! with: both files parse and validate, the entry points and bindings are those the viewer
-//! binds, the uniform struct has the Rust struct's layout, and the shading functions an
-//! engine reuses stand alone and translate to GLSL.
+//! The viewer's shader checked by naga, the WGSL front end and validator wgpu compiles it
+//! with: ocean_common.wgsl with ocean.wgsl parse and validate, the entry points and bindings
+//! are those the viewer binds, the uniform struct has the Rust struct's layout, and every
+//! entry point translates to GLSL. (The render layer's tests check ocean_common.wgsl alone.)
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use naga::{AddressSpace, ImageClass, ImageDimension, ScalarKind, ShaderStage, TypeInner};
 
 use crate::gpu::{Globals, SHADER};
-
-const COMMON: &str = include_str!("../../shaders/ocean_common.wgsl");
 
 /// Parses and validates `source` with the capabilities every wgpu adapter has (no optional
 /// feature), failing with naga's own message.
@@ -19,45 +17,6 @@ fn validate(name: &str, source: &str) -> (naga::Module, naga::valid::ModuleInfo)
         .validate(&module)
         .unwrap_or_else(|e| panic!("{name} does not validate:\n{}", e.emit_to_string(source)));
     (module, info)
-}
-
-#[test]
-fn the_shading_functions_stand_alone() {
-    let (module, _) = validate("ocean_common.wgsl", COMMON);
-    assert!(
-        module.entry_points.is_empty(),
-        "the library file has no entry points"
-    );
-    assert!(
-        module.global_variables.is_empty(),
-        "the library file has no bindings"
-    );
-    // The functions docs/guide/shader.md tells an engine to call.
-    let names: Vec<&str> = module
-        .functions
-        .iter()
-        .filter_map(|(_, f)| f.name.as_deref())
-        .collect();
-    for wanted in [
-        "ocean_uv",
-        "ocean_vertex_lod",
-        "ocean_tiling_offset",
-        "ocean_tiling_weights",
-        "ocean_normal",
-        "ocean_sky",
-        "ocean_haze_colour",
-        "ocean_sky_irradiance",
-        "ocean_fresnel",
-        "ocean_glitter",
-        "ocean_foam",
-        "ocean_shade",
-        "ocean_tone_map",
-    ] {
-        assert!(
-            names.contains(&wanted),
-            "{wanted} is missing from ocean_common.wgsl"
-        );
-    }
 }
 
 #[test]
@@ -111,19 +70,8 @@ fn the_bindings_and_the_uniform_layout_are_the_viewers() {
                     std::mem::offset_of!(Globals, view_proj),
                     std::mem::offset_of!(Globals, inverse_view_proj),
                     std::mem::offset_of!(Globals, eye),
-                    std::mem::offset_of!(Globals, sun),
-                    std::mem::offset_of!(Globals, sun_colour),
-                    std::mem::offset_of!(Globals, zenith),
-                    std::mem::offset_of!(Globals, horizon),
-                    std::mem::offset_of!(Globals, deep),
-                    std::mem::offset_of!(Globals, subsurface),
-                    std::mem::offset_of!(Globals, wind),
-                    std::mem::offset_of!(Globals, tiling),
-                    std::mem::offset_of!(Globals, table),
-                    std::mem::offset_of!(Globals, cascades),
-                    std::mem::offset_of!(Globals, origins),
-                    std::mem::offset_of!(Globals, slope_table),
                     std::mem::offset_of!(Globals, levels),
+                    std::mem::offset_of!(Globals, ocean),
                 ];
                 assert_eq!(members.len(), rust_offsets.len(), "Globals members");
                 for (member, rust) in members.iter().zip(rust_offsets) {

@@ -5,7 +5,7 @@ use egui::{Slider, Ui};
 use crate::gpu::RenderSettings;
 use crate::light::LightSettings;
 use crate::sea::{Model, SeaParams, SPREADINGS};
-use crate::sim::{OceanInfo, SimTimes};
+use ocean_fft_render::{OceanInfo, SimTimes};
 
 /// Everything the panels change.
 pub struct Controls {
