@@ -43,12 +43,14 @@ use bevy::prelude::*;
 
 pub use buoyancy::{Buoyancy, BuoyancyForce, BuoyancyMotion, BuoyancyPoint, SEA_WATER_DENSITY};
 pub use ocean_fft;
+pub use ocean_fft_render;
+pub use ocean_fft_render::{OceanInfo, SeaSettings, Texels};
 pub use render::{
     OceanAppearance, OceanCamera, OceanMaterial, OceanRender, OceanRing, OceanSky,
-    OceanSkyMaterial, OceanUniforms, SkyUniforms, UploadTime,
+    OceanSkyMaterial, UniformBlock, UploadTime,
 };
 pub use settings::{OceanClock, OceanSettings};
-pub use sim::{OceanInfo, OceanSim, OceanStatus, OceanTexels, Texels};
+pub use sim::{OceanSim, OceanStatus, OceanTexels, PackedFrame};
 pub use water::Water;
 
 /// The plugin's types and the crate's presets, for `use bevy_ocean_fft::prelude::*`.

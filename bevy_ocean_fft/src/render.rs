@@ -26,22 +26,17 @@ use bevy::render::texture::GpuImage;
 use bevy::render::{Extract, ExtractSchedule, Render, RenderApp, RenderSystems};
 use bevy::shader::{Shader, ShaderRef};
 
-use crate::sim::{OceanInfo, OceanTexels, Texels, MAX_CASCADES, SLOPE_TABLE};
+use ocean_fft_render::clipmap::{grid_indices, grid_point, rings, Ring, HOLES, MAX_RINGS};
+use ocean_fft_render::{mip_levels, Light, OceanInfo, OceanUniforms, Tiling};
+
+use crate::sim::{OceanTexels, PackedFrame};
 
 const COMMON_SHADER: Handle<Shader> = uuid_handle!("5b0e3c52-8f0b-4d6e-9a51-0c8f1f5a7e31");
 const WATER_SHADER: Handle<Shader> = uuid_handle!("0b7a2f41-6c3d-4e8a-b1f2-7d9e5c4a3b20");
 const SKY_SHADER: Handle<Shader> = uuid_handle!("c3e91d07-2a4b-4f6c-8e1d-5b7a9f0c2d48");
 
-/// Most rings of the clipmap.
-pub const MAX_RINGS: usize = 16;
-/// Vertex spacing of the finest ring, m.
-pub const FINEST_SPACING: f32 = 0.25;
-/// The mesh reaches this far from the eye, m (the horizon seen from 500 m up is 80 km away).
-pub const MESH_REACH: f32 = 120_000.0;
 /// Radius of the sky dome, m (beyond the mesh's corners).
 pub const SKY_RADIUS: f32 = 400_000.0;
-/// Distance within which the water is exactly the simulated one (no tiling breaker), m.
-pub const EXACT_WITHIN: f32 = 400.0;
 
 /// How the sea and the sky look: the reference shader's palette (linear RGB, in the units
 /// the water is shaded in before Bevy's tone mapping) and its haze. The sun's direction and
@@ -106,32 +101,26 @@ impl OceanAppearance {
     }
 }
 
-/// The water material's uniforms (`OceanUniforms` in src/shaders/water.wgsl).
-#[derive(Debug, Clone, Copy, Default, ShaderType)]
-pub struct OceanUniforms {
-    pub sun: Vec4,
-    pub sun_colour: Vec4,
-    pub zenith: Vec4,
-    pub horizon: Vec4,
-    pub deep: Vec4,
-    pub subsurface: Vec4,
-    pub wind: Vec4,
-    pub tiling: Vec4,
-    pub table: Vec4,
-    pub cascades: [Vec4; MAX_CASCADES],
-    pub origins: [Vec4; MAX_CASCADES],
-    pub slope_table: [Vec4; SLOPE_TABLE],
+/// The reference shader's `OceanUniforms` (shaders/ocean_common.wgsl) as Bevy binds it: the
+/// render layer's block, vec4 by vec4 (its std140 layout is its plain one).
+#[derive(Debug, Clone, Copy, ShaderType)]
+pub struct UniformBlock {
+    pub vec4s: [Vec4; OceanUniforms::VEC4S],
 }
 
-/// The sky material's uniforms (`SkyUniforms` in src/shaders/sky.wgsl).
-#[derive(Debug, Clone, Copy, Default, ShaderType)]
-pub struct SkyUniforms {
-    pub sun: Vec4,
-    pub sun_colour: Vec4,
-    pub zenith: Vec4,
-    pub horizon: Vec4,
-    pub deep: Vec4,
-    pub subsurface: Vec4,
+impl Default for UniformBlock {
+    fn default() -> Self {
+        UniformBlock::from(&bytemuck::Zeroable::zeroed())
+    }
+}
+
+impl From<&OceanUniforms> for UniformBlock {
+    fn from(uniforms: &OceanUniforms) -> Self {
+        let vec4s: &[[f32; 4]; OceanUniforms::VEC4S] = bytemuck::cast_ref(uniforms);
+        UniformBlock {
+            vec4s: vec4s.map(Vec4::from_array),
+        }
+    }
 }
 
 /// The water: the crate's reference shader with Bevy's bindings (src/shaders/water.wgsl),
@@ -150,7 +139,7 @@ pub struct OceanMaterial {
     #[sampler(3)]
     pub slope: Handle<Image>,
     #[uniform(4)]
-    pub uniforms: OceanUniforms,
+    pub uniforms: UniformBlock,
 }
 
 impl Material for OceanMaterial {
@@ -187,7 +176,7 @@ impl Material for OceanMaterial {
 #[derive(Asset, AsBindGroup, TypePath, Debug, Clone)]
 pub struct OceanSkyMaterial {
     #[uniform(0)]
-    pub uniforms: SkyUniforms,
+    pub uniforms: UniformBlock,
 }
 
 impl Material for OceanSkyMaterial {
@@ -247,6 +236,8 @@ pub struct OceanRender {
     slope: Handle<Image>,
     /// The last texels' information.
     info: OceanInfo,
+    /// The uniforms both materials get.
+    uniforms: OceanUniforms,
 }
 
 /// The render world's last upload of the texels (CPU time of the `write_texture` calls), ms,
@@ -329,39 +320,13 @@ struct RingHalfCells(u32);
 #[derive(Resource)]
 struct Anisotropy(u16);
 
-/// Triangle indices of a (2m + 1)² grid (vertex j·(2m + 1) + i): every cell, or for a ring
-/// every cell outside the square of the next finer ring (its lower corner at cell
-/// (m/2 + dx, m/2 + dz)) except that square's outermost cells, where the finer ring, fully
-/// morphed there into this ring's grid, and this ring draw the same surface (meeting edge to
-/// edge they left hairline cracks). Cells split along the diagonal from (i + 1, j) to
-/// (i, j + 1), as the crate's `triangle_indices`, so that a morphed 2×2 block of the finer
-/// ring has this ring's triangles.
-fn grid_indices(m: u32, hole: Option<(u32, u32)>) -> Vec<u32> {
-    let side = 2 * m + 1;
-    let mut indices = Vec::with_capacity((24 * m * m) as usize);
-    for j in 0..2 * m {
-        for i in 0..2 * m {
-            if let Some((dx, dz)) = hole {
-                let inside = |c: u32, d: u32| c > m / 2 + d && c + 1 < 3 * m / 2 + d;
-                if inside(i, dx) && inside(j, dz) {
-                    continue;
-                }
-            }
-            let a = j * side + i;
-            let (b, c, d) = (a + 1, a + side, a + side + 1);
-            indices.extend_from_slice(&[a, c, b, b, c, d]);
-        }
-    }
-    indices
-}
-
 /// A ring's mesh: vertex (i, j) at (i − m, 0, j − m), in cells from the centre.
 fn ring_mesh(m: u32, hole: Option<(u32, u32)>) -> Mesh {
     let side = 2 * m + 1;
     let positions: Vec<[f32; 3]> = (0..side * side)
         .map(|v| {
-            let (i, j) = (v % side, v / side);
-            [i as f32 - m as f32, 0.0, j as f32 - m as f32]
+            let [x, z] = grid_point(m, v);
+            [x, 0.0, z]
         })
         .collect();
     Mesh::new(
@@ -385,7 +350,7 @@ fn cascade_image(n: usize, layers: usize, anisotropy: u16) -> Image {
         TextureFormat::Rgba16Float,
         RenderAssetUsages::RENDER_WORLD,
     );
-    image.texture_descriptor.mip_level_count = crate::sim::mip_levels(n) as u32;
+    image.texture_descriptor.mip_level_count = mip_levels(n) as u32;
     image.texture_descriptor.usage = TextureUsages::TEXTURE_BINDING | TextureUsages::COPY_DST;
     image.texture_view_descriptor = Some(TextureViewDescriptor {
         dimension: Some(TextureViewDimension::D2Array),
@@ -414,17 +379,17 @@ fn setup(
 ) {
     let m = half.0;
     let full = meshes.add(ring_mesh(m, None));
-    let rings = [(0, 0), (1, 0), (0, 1), (1, 1)].map(|hole| meshes.add(ring_mesh(m, Some(hole))));
+    let rings = HOLES.map(|hole| meshes.add(ring_mesh(m, Some(hole))));
     // Placeholders until the first ocean's grid is known.
     let displacement = images.add(cascade_image(2, 1, 1));
     let slope = images.add(cascade_image(2, 1, anisotropy.0));
     let material = materials.add(OceanMaterial {
         displacement: displacement.clone(),
         slope: slope.clone(),
-        uniforms: OceanUniforms::default(),
+        uniforms: UniformBlock::default(),
     });
     let sky = skies.add(OceanSkyMaterial {
-        uniforms: SkyUniforms::default(),
+        uniforms: UniformBlock::default(),
     });
     for ring in 0..MAX_RINGS {
         commands.spawn((
@@ -463,6 +428,7 @@ fn setup(
         displacement,
         slope,
         info: OceanInfo::default(),
+        uniforms: bytemuck::Zeroable::zeroed(),
     });
 }
 
@@ -478,7 +444,7 @@ fn fit_textures(
         return;
     };
     render.info = frame.info;
-    let grid = (frame.info.size, frame.info.cascades);
+    let grid = (frame.texels.size, frame.texels.cascades);
     if render.grid == grid {
         return;
     }
@@ -495,10 +461,10 @@ fn fit_textures(
 /// the ocean.
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 fn follow_camera(
-    render: Option<Res<OceanRender>>,
+    render: Option<ResMut<OceanRender>>,
     appearance: Res<OceanAppearance>,
     cameras: Query<(&GlobalTransform, Has<OceanCamera>), With<Camera3d>>,
-    mut rings: Query<
+    mut rings_query: Query<
         (
             &OceanRing,
             &mut Transform,
@@ -515,7 +481,7 @@ fn follow_camera(
     mut materials: ResMut<Assets<OceanMaterial>>,
     mut skies: ResMut<Assets<OceanSkyMaterial>>,
 ) {
-    let Some(render) = render else {
+    let Some(mut render) = render else {
         return;
     };
     let Some((camera, _)) = cameras
@@ -525,43 +491,26 @@ fn follow_camera(
     else {
         return;
     };
-    let info = &render.info;
-    let ready = info.cascades > 0;
-    let half = render.half_cells as f32;
-
-    // Ring levels: spacing FINEST_SPACING·2^l from a first level that grows with the eye's
-    // height, so that the finest cells stay about a pixel's footprint below the eye.
-    let first = ((camera.y.abs().max(1.0) / 8.0).log2().floor().max(0.0) as usize).min(6);
-    let mut levels = Vec::with_capacity(MAX_RINGS);
-    for l in first..first + MAX_RINGS {
-        let spacing = FINEST_SPACING * (1u32 << l) as f32;
-        let snap = 2.0 * spacing;
-        let centre = Vec2::new(
-            (camera.x / snap).floor() * snap,
-            (camera.z / snap).floor() * snap,
-        );
-        levels.push((centre, spacing));
-        if half * spacing >= MESH_REACH {
-            break;
-        }
-    }
-    for (ring, mut transform, mut global, mut visibility, mut mesh) in &mut rings {
-        let Some(&(centre, spacing)) = levels.get(ring.0).filter(|_| ready) else {
+    let ready = render.info.cascades > 0;
+    let mut levels = [Ring::default(); MAX_RINGS];
+    let count = rings(
+        [camera.x, camera.z],
+        camera.y,
+        render.half_cells,
+        &mut levels,
+    );
+    for (ring, mut transform, mut global, mut visibility, mut mesh) in &mut rings_query {
+        let Some(level) = levels[..count].get(ring.0).filter(|_| ready) else {
             *visibility = Visibility::Hidden;
             continue;
         };
         *visibility = Visibility::Visible;
-        *transform = Transform::from_xyz(centre.x, 0.0, centre.y)
-            .with_scale(Vec3::new(spacing, 1.0, spacing));
+        *transform = Transform::from_xyz(level.centre[0], 0.0, level.centre[1])
+            .with_scale(Vec3::new(level.spacing, 1.0, level.spacing));
         *global = GlobalTransform::from(*transform);
-        let wanted = if ring.0 == 0 {
-            &render.full
-        } else {
-            // Where the finer ring's square sits in this ring's cells: 0 or 1 on each axis.
-            let finer = levels[ring.0 - 1].0;
-            let offset = ((finer - centre) / spacing).round();
-            let (dx, dz) = (offset.x.clamp(0.0, 1.0), offset.y.clamp(0.0, 1.0));
-            &render.rings[dx as usize + 2 * dz as usize]
+        let wanted = match level.hole {
+            None => &render.full,
+            Some(hole) => &render.rings[hole],
         };
         if mesh.0 != *wanted {
             mesh.0 = wanted.clone();
@@ -573,70 +522,31 @@ fn follow_camera(
     }
 
     let a = &*appearance;
-    let light = [
-        a.fallback_sun.normalize_or_zero().extend(a.overcast),
-        a.fallback_sun_colour.extend(a.sun_scale),
-        (a.zenith * a.exposure).extend(a.haze_distance),
-        (a.horizon * a.exposure).extend(a.tiling),
-        (a.deep * a.exposure).extend(info.height_sd),
-        (a.subsurface * a.exposure).extend(info.jacobian_sd),
-    ];
-    if let Some(mut sky) = skies.get_mut(&render.sky) {
-        let u = &mut sky.uniforms;
-        [
-            u.sun,
-            u.sun_colour,
-            u.zenith,
-            u.horizon,
-            u.deep,
-            u.subsurface,
-        ] = light;
-    }
-    let Some(mut material) = materials.get_mut(&render.material) else {
-        return;
+    let light = Light {
+        sun: a.fallback_sun.normalize_or_zero().to_array(),
+        overcast: a.overcast,
+        sun_colour: a.fallback_sun_colour.to_array(),
+        zenith: a.zenith.to_array(),
+        horizon: a.horizon.to_array(),
+        deep: a.deep.to_array(),
+        subsurface: a.subsurface.to_array(),
+        haze_distance: a.haze_distance,
     };
-    let u = &mut material.uniforms;
-    [
-        u.sun,
-        u.sun_colour,
-        u.zenith,
-        u.horizon,
-        u.deep,
-        u.subsurface,
-    ] = light;
-    u.wind = Vec4::new(info.wind[0], info.wind[1], info.subgrid[0], info.subgrid[1]);
-    u.tiling = Vec4::new(
-        0.61 * info.lengths[0],
-        EXACT_WITHIN,
-        info.cascades as f32,
-        half,
-    );
-    let (k0, k1) = (info.slope_table[0][0], info.slope_table[SLOPE_TABLE - 1][0]);
-    u.table = Vec4::new(
-        k0,
-        (SLOPE_TABLE - 1) as f32 / (k1 / k0.max(1e-6)).ln().max(1e-6),
-        SLOPE_TABLE as f32,
-        0.0,
-    );
-    for c in 0..MAX_CASCADES {
-        if c >= info.cascades {
-            u.cascades[c] = Vec4::ZERO;
-            u.origins[c] = Vec4::ZERO;
-            continue;
-        }
-        let l = info.lengths[c];
-        u.cascades[c] = Vec4::new(
-            l,
-            l / info.size as f32,
-            info.size as f32,
-            info.mip_levels as f32,
-        );
-        // The corner of the tile under the eye, in f64 so that it stays a multiple of L.
-        let corner = |v: f32| ((f64::from(v) / f64::from(l)).floor() * f64::from(l)) as f32;
-        u.origins[c] = Vec4::new(corner(camera.x), corner(camera.z), 0.0, 0.0);
+    let tiling = Tiling {
+        strength: a.tiling,
+        ..Tiling::default()
+    };
+    let render = &mut *render;
+    let u = &mut render.uniforms;
+    u.set_light(&light, a.exposure, a.sun_scale);
+    u.set_ocean(&render.info, [camera.x, camera.z], &tiling);
+    u.tiling[3] = render.half_cells as f32;
+    let block = UniformBlock::from(&*u);
+    if let Some(mut sky) = skies.get_mut(&render.sky) {
+        sky.uniforms = block;
     }
-    for (entry, t) in u.slope_table.iter_mut().zip(&info.slope_table) {
-        *entry = Vec4::new(t[0], t[1], t[2], 0.0);
+    if let Some(mut material) = materials.get_mut(&render.material) {
+        material.uniforms = block;
     }
 }
 
@@ -644,7 +554,7 @@ fn follow_camera(
 #[derive(Resource, Default)]
 struct ExtractedTexels {
     generation: u64,
-    texels: Option<Arc<Texels>>,
+    texels: Option<Arc<PackedFrame>>,
     images: Option<(AssetId<Image>, AssetId<Image>)>,
 }
 
@@ -680,13 +590,12 @@ fn upload_texels(
     let (Some(displacement), Some(slope)) = (images.get(displacement), images.get(slope)) else {
         return;
     };
-    let info = &texels.info;
-    let n = info.size;
+    let texels = &texels.texels;
     let fits = |image: &GpuImage| {
         let size = image.texture_descriptor.size;
-        size.width as usize == n
-            && size.depth_or_array_layers as usize == info.cascades
-            && image.texture_descriptor.mip_level_count as usize == info.mip_levels
+        size.width as usize == texels.size
+            && size.depth_or_array_layers as usize == texels.cascades
+            && image.texture_descriptor.mip_level_count as usize == texels.level_offsets.len()
     };
     if !fits(displacement) || !fits(slope) {
         // The images for a new grid are not on the GPU yet.
@@ -694,35 +603,31 @@ fn upload_texels(
     }
     let start = Instant::now();
     for (image, data) in [(displacement, &texels.displacement), (slope, &texels.slope)] {
-        for c in 0..info.cascades {
-            for (m, &offset) in texels.level_offsets.iter().enumerate() {
-                let side = n >> m;
-                let first = c * texels.layer_len + offset;
-                let level = &data[first..first + side * side];
-                queue.write_texture(
-                    TexelCopyTextureInfo {
-                        texture: &image.texture,
-                        mip_level: m as u32,
-                        origin: Origin3d {
-                            x: 0,
-                            y: 0,
-                            z: c as u32,
-                        },
-                        aspect: TextureAspect::All,
+        for level in texels.levels(data) {
+            let side = level.side as u32;
+            queue.write_texture(
+                TexelCopyTextureInfo {
+                    texture: &image.texture,
+                    mip_level: level.level as u32,
+                    origin: Origin3d {
+                        x: 0,
+                        y: 0,
+                        z: level.layer as u32,
                     },
-                    bytemuck::cast_slice(level),
-                    TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(side as u32 * 8),
-                        rows_per_image: Some(side as u32),
-                    },
-                    Extent3d {
-                        width: side as u32,
-                        height: side as u32,
-                        depth_or_array_layers: 1,
-                    },
-                );
-            }
+                    aspect: TextureAspect::All,
+                },
+                bytemuck::cast_slice(level.texels),
+                TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(side * 8),
+                    rows_per_image: Some(side),
+                },
+                Extent3d {
+                    width: side,
+                    height: side,
+                    depth_or_array_layers: 1,
+                },
+            );
         }
     }
     upload.0.store(

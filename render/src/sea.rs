@@ -147,15 +147,15 @@ pub fn apply(ocean: &mut OceanState, change: Change) -> Result<(), Error> {
     }
 }
 
-/// A new ocean of `spectrum` and `config` at sea time `time`, its foam spun up over
-/// [`PRE_ROLL`] seconds (or `time`, if less, but at least one step).
+/// A new ocean of `spectrum` and `config` at sea time `time`, its foam spun up over the
+/// [`PRE_ROLL`] seconds before it (so a new ocean shows the foam of a sea that has run).
 ///
 /// # Errors
 /// The crate's, for a sea or grids it refuses.
 pub fn build(spectrum: Spectrum, config: OceanConfig, time: f64) -> Result<OceanState, Error> {
     let mut ocean = OceanState::new(spectrum, config)?;
     ocean.set_time(time)?;
-    ocean.pre_roll(PRE_ROLL.min(time.max(PRE_ROLL_DT)), PRE_ROLL_DT)?;
+    ocean.pre_roll(PRE_ROLL, PRE_ROLL_DT)?;
     Ok(ocean)
 }
 

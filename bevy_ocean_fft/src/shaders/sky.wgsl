@@ -11,19 +11,10 @@
 #ifdef TONEMAP_IN_SHADER
 #import bevy_core_pipeline::tonemapping::tone_mapping
 #endif
-#import ocean_fft::common::{OceanLight, ocean_sky, ocean_haze_colour}
+#import ocean_fft::common::{OceanLight, OceanUniforms, ocean_light, ocean_sky, ocean_haze_colour}
 
-// The first uniforms of water.wgsl's OceanUniforms (the light and the palette).
-struct SkyUniforms {
-    sun: vec4<f32>,
-    sun_colour: vec4<f32>,
-    zenith: vec4<f32>,
-    horizon: vec4<f32>,
-    deep: vec4<f32>,
-    subsurface: vec4<f32>,
-}
-
-@group(#{MATERIAL_BIND_GROUP}) @binding(0) var<uniform> sky: SkyUniforms;
+// The water's uniforms (the light and the palette are what the sky reads).
+@group(#{MATERIAL_BIND_GROUP}) @binding(0) var<uniform> sky: OceanUniforms;
 
 struct Vertex {
     @builtin(instance_index) instance_index: u32,
@@ -46,21 +37,11 @@ fn vertex(v: Vertex) -> SkyVarying {
 
 @fragment
 fn fragment(in: SkyVarying) -> @location(0) vec4<f32> {
-    var l: OceanLight;
-    l.overcast = sky.sun.w;
+    var l = ocean_light(sky, normalize(sky.sun.xyz), sky.sun_colour.rgb);
     if (lights.n_directional_lights > 0u) {
         let sun = lights.directional_lights[0];
-        l.sun_direction = normalize(sun.direction_to_light);
-        l.sun_colour = sun.color.rgb * view.exposure * sky.sun_colour.w;
-    } else {
-        l.sun_direction = normalize(sky.sun.xyz);
-        l.sun_colour = sky.sun_colour.rgb;
+        l = ocean_light(sky, normalize(sun.direction_to_light), sun.color.rgb * view.exposure * sky.sun_colour.w);
     }
-    l.haze_distance = sky.zenith.w;
-    l.zenith = sky.zenith.rgb;
-    l.horizon = sky.horizon.rgb;
-    l.deep = sky.deep.rgb;
-    l.subsurface = sky.subsurface.rgb;
     let dir = normalize(in.world - view.world_position);
     var colour: vec3<f32>;
     if (dir.y < 0.0) {
