@@ -45,21 +45,12 @@ fn light() -> OceanLight {
 
 // ---- Water ----
 
-struct WaterVarying {
-    @builtin(position) clip: vec4<f32>,
-    // The displaced water point (m).
-    @location(0) world: vec3<f32>,
-    // The undisplaced grid point (x, z) the textures are read at (m).
-    @location(1) undisplaced: vec2<f32>,
-    // Summed height η (m).
-    @location(2) height: f32,
-}
 
 // Grid point `vertex` of ring `ring`: the vertex index is j·(2M + 1) + i over a
 // (2M + 1)² grid centred on the ring's centre, morphed toward the next ring at its border
 // (`ocean_morph`).
 @vertex
-fn vs_ocean(@builtin(vertex_index) vertex: u32, @builtin(instance_index) ring: u32) -> WaterVarying {
+fn vs_ocean(@builtin(vertex_index) vertex: u32, @builtin(instance_index) ring: u32) -> OceanVarying {
     let level = globals.levels[ring];
     let side = 2u * u32(level.w) + 1u;
     let cell = vec2<f32>(f32(vertex % side), f32(vertex / side)) - vec2<f32>(level.w);
@@ -68,16 +59,13 @@ fn vs_ocean(@builtin(vertex_index) vertex: u32, @builtin(instance_index) ring: u
     let spacing = level.z * (1.0 + morphed.z);
     let displacement = ocean_displacement(
         displacement_foam, slope_jacobian_foam, vertex_sampler, globals.ocean, xz, spacing, globals.eye.xz);
-    var out: WaterVarying;
-    out.world = vec3<f32>(xz.x + displacement.x, displacement.y, xz.y + displacement.z);
+    var out = ocean_varying(xz, displacement);
     out.clip = globals.view_proj * vec4<f32>(out.world, 1.0);
-    out.undisplaced = xz;
-    out.height = displacement.y;
     return out;
 }
 
 @fragment
-fn fs_ocean(in: WaterVarying) -> @location(0) vec4<f32> {
+fn fs_ocean(in: OceanVarying) -> @location(0) vec4<f32> {
     let surface = ocean_water_surface(
         slope_jacobian_foam, ocean_sampler, globals.ocean, in.world, in.undisplaced, in.height, globals.eye.xz);
     let to_eye = in.world - globals.eye.xyz;

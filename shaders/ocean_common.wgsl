@@ -446,6 +446,28 @@ fn ocean_displacement(
     return vec3<f32>(displacement.x * unfold, displacement.y, displacement.z * unfold);
 }
 
+// What the water's vertex stage hands its fragment stage.
+struct OceanVarying {
+    @builtin(position) clip: vec4<f32>,
+    // The displaced water point (m).
+    @location(0) world: vec3<f32>,
+    // The undisplaced grid point (x, z) the textures are read at (m).
+    @location(1) undisplaced: vec2<f32>,
+    // Summed height η (m).
+    @location(2) height: f32,
+}
+
+// The varying of the water at undisplaced point `xz` (m) moved by `displacement`
+// (`ocean_displacement`); the caller sets `clip` from `world` with its own projection.
+fn ocean_varying(xz: vec2<f32>, displacement: vec3<f32>) -> OceanVarying {
+    var out: OceanVarying;
+    out.world = vec3<f32>(xz.x + displacement.x, displacement.y, xz.y + displacement.z);
+    out.clip = vec4<f32>(0.0, 0.0, 0.0, 1.0);
+    out.undisplaced = xz;
+    out.height = displacement.y;
+    return out;
+}
+
 // Slope variance (along, across the wind) of the simulated waves with wave numbers above
 // `k` (rad/m), interpolated in ln k in the uniforms' table.
 fn ocean_unresolved_variance(u: OceanUniforms, k: f32) -> vec2<f32> {

@@ -57,6 +57,7 @@ fn the_shading_functions_stand_alone() {
         "ocean_displacement",
         "ocean_unresolved_variance",
         "ocean_water_surface",
+        "ocean_varying",
     ] {
         assert!(
             names.contains(&wanted),

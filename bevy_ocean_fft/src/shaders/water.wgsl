@@ -24,8 +24,8 @@
 #import bevy_core_pipeline::tonemapping::tone_mapping
 #endif
 #import ocean_fft::common::{
-    OceanLight, OceanUniforms, ocean_light, ocean_morph, ocean_displacement,
-    ocean_water_surface, ocean_shade,
+    OceanLight, OceanUniforms, OceanVarying, ocean_light, ocean_morph, ocean_displacement,
+    ocean_varying, ocean_water_surface, ocean_shade,
 }
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(0) var displacement_foam: texture_2d_array<f32>;
@@ -53,20 +53,11 @@ struct Vertex {
     @location(0) position: vec3<f32>,
 }
 
-struct WaterVarying {
-    @builtin(position) clip: vec4<f32>,
-    // The displaced water point (m).
-    @location(0) world: vec3<f32>,
-    // The undisplaced grid point (x, z) the textures are read at (m).
-    @location(1) undisplaced: vec2<f32>,
-    // Summed height η (m).
-    @location(2) height: f32,
-}
 
 // A grid point of a ring: the ring's transform puts its centre at the translation and its
 // cells `scale.x` metres apart; morphed toward the next ring at its border (`ocean_morph`).
 @vertex
-fn vertex(v: Vertex) -> WaterVarying {
+fn vertex(v: Vertex) -> OceanVarying {
     let model = get_world_from_local(v.instance_index);
     let cell_size = length(model[0].xyz);
     let morphed = ocean_morph(v.position.xz, ocean.tiling.w);
@@ -74,16 +65,13 @@ fn vertex(v: Vertex) -> WaterVarying {
     let spacing = cell_size * (1.0 + morphed.z);
     let displacement = ocean_displacement(
         displacement_foam, slope_jacobian_foam, vertex_sampler, ocean, xz, spacing, view.world_position.xz);
-    var out: WaterVarying;
-    out.world = vec3<f32>(xz.x + displacement.x, displacement.y, xz.y + displacement.z);
+    var out = ocean_varying(xz, displacement);
     out.clip = position_world_to_clip(out.world);
-    out.undisplaced = xz;
-    out.height = displacement.y;
     return out;
 }
 
 @fragment
-fn fragment(in: WaterVarying) -> @location(0) vec4<f32> {
+fn fragment(in: OceanVarying) -> @location(0) vec4<f32> {
     let eye = view.world_position;
     let surface = ocean_water_surface(
         slope_jacobian_foam, ocean_sampler, ocean, in.world, in.undisplaced, in.height, eye.xz);
