@@ -104,11 +104,11 @@ pub fn draw(ui: &mut Ui, controls: &mut Controls, hud: &Hud, info: &OceanInfo) {
     egui::Panel::left("controls")
         .default_size(300.0)
         .show(ui, |ui| {
-            egui::ScrollArea::vertical().show(ui, |ui| panels(ui, controls));
+            egui::ScrollArea::vertical().show(ui, |ui| panels(ui, controls, info));
         });
 }
 
-fn panels(ui: &mut Ui, controls: &mut Controls) {
+fn panels(ui: &mut Ui, controls: &mut Controls, info: &OceanInfo) {
     ui.heading("Presets");
     ui.horizontal_wrapped(|ui| {
         for name in SeaParams::preset_names() {
@@ -184,11 +184,20 @@ fn panels(ui: &mut Ui, controls: &mut Controls) {
     slider(ui, &mut sea.choppiness, 0.0..=2.0, "choppiness λ");
     slider(ui, &mut sea.foam_coverage, 0.0..=5.0, "foam ×");
     slider(ui, &mut controls.transition, 0.0..=60.0, "transition [s]");
-    ui.label(format!(
-        "cascades {:?} m, {}²",
-        sea.lengths.iter().map(|l| l.round()).collect::<Vec<_>>(),
-        sea.size
-    ));
+    // The grids the ocean runs: the panel's, or grids fitted to a sea they cannot hold.
+    let running: Vec<f32> = info.lengths[..info.cascades]
+        .iter()
+        .map(|l| l.round())
+        .collect();
+    let asked: Vec<f32> = sea.lengths.iter().map(|l| l.round()).collect();
+    if info.cascades == 0 || running == asked {
+        ui.label(format!("cascades {asked:?} m, {}²", sea.size));
+    } else {
+        ui.label(format!(
+            "cascades {running:?} m, {}² (fitted to the sea; asked {asked:?})",
+            info.size
+        ));
+    }
     let mut size = sea.size;
     egui::ComboBox::from_label("grid N")
         .selected_text(size.to_string())
