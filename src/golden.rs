@@ -18,9 +18,9 @@
 //! The hash is [`BitHash`] (FNV-1a over the little-endian bytes of each value's bit pattern),
 //! because std's `DefaultHasher` does not promise the same hashes across releases.
 
-use crate::determinism::Determinism;
 use crate::inspect::BitHash;
-use crate::simd::Simd;
+use crate::math::determinism::Determinism;
+use crate::math::simd::Simd;
 use crate::{
     Cascade, DepthFactor, Dispersion, Interpolation, OceanConfig, OceanState, QueryConfig,
     Spectrum, Spreading,
@@ -303,7 +303,7 @@ fn cross_platform_mode_gives_the_golden_bits_on_every_level_and_thread_count() {
         // with fewer paths than it claims.
         assert_eq!(levels.len(), 3, "levels {levels:?}");
     }
-    let pools = crate::simd::test_pools();
+    let pools = crate::math::simd::test_pools();
     let mut reference: Option<Vec<(String, String, u64)>> = None;
     for &level in &levels {
         for (threads, pool) in &pools {

@@ -10,8 +10,8 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use std::ops::Bound::{Included, Unbounded};
 
-use crate::dispersion::Dispersion;
 use crate::error::{self, Error};
+use crate::spectrum::dispersion::Dispersion;
 use crate::spectrum::{
     check_inverse_wave_age, check_wind_speed, DepthFactor, Model, Spectrum, Spreading, G,
     PIERSON_MOSKOWITZ_PEAK,

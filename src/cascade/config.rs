@@ -2,9 +2,9 @@
 
 use std::ops::Bound::Included;
 
-use crate::determinism::Determinism;
 use crate::error::{self, Error};
-use crate::grid;
+use crate::math::determinism::Determinism;
+use crate::math::grid;
 
 /// Parameters of one [`Cascade`](crate::Cascade): passive data, validated by [`Cascade::new`](crate::Cascade::new).
 #[derive(Debug, Clone, Copy, PartialEq)]

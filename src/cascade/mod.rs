@@ -18,11 +18,11 @@ use std::ops::Bound::Included;
 
 use num_complex::Complex32;
 
-use crate::determinism::{Determinism, Libm, Math, Std};
 use crate::error::{self, Error};
-use crate::fft2d::{RowFft, TILE};
-use crate::grid::{self, wave_index};
-use crate::simd::Simd;
+use crate::math::determinism::{Determinism, Libm, Math, Std};
+use crate::math::fft2d::{RowFft, TILE};
+use crate::math::grid::{self, wave_index};
+use crate::math::simd::Simd;
 use crate::spectrum::{SlopeVariance, Spectrum};
 
 pub(crate) use config::check_band;
@@ -89,7 +89,7 @@ pub struct Cascade {
     live_pairs: usize,
     /// Pass-1 buffer, layout `[i][transform][j]` (k_x row, k_z column → after the FFT, z).
     spectral: Vec<Complex32>,
-    /// Pass-2 block buffers, one per pass-2 task, each [`ROWS_PER_TASK`](crate::fft2d::ROWS_PER_TASK) rows of layout
+    /// Pass-2 block buffers, one per pass-2 task, each [`ROWS_PER_TASK`](crate::math::fft2d::ROWS_PER_TASK) rows of layout
     /// `[j][transform][i]` (z row, x column) once transformed.
     blocks: Vec<Complex32>,
     /// FFT scratch, one slot per task of the pass running (the passes run one after the

@@ -3,9 +3,9 @@
 use std::ops::Bound::{Excluded, Included};
 
 use crate::cascade::{check_band, CascadeConfig};
-use crate::determinism::Determinism;
 use crate::error::{self, Error};
-use crate::grid;
+use crate::math::determinism::Determinism;
+use crate::math::grid;
 
 use super::foam::FoamConfig;
 

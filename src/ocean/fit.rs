@@ -4,8 +4,8 @@
 
 use std::ops::Bound::Included;
 
-use crate::determinism::{Libm, Math};
 use crate::error::{self, Error};
+use crate::math::determinism::{Libm, Math};
 use crate::spectrum::Spectrum;
 
 use super::{OceanConfig, OceanState};

@@ -11,7 +11,7 @@ use super::spline::{Source, Tiles};
 use super::{Interpolation, Location, OceanConfig, OceanState, QueryConfig, SurfaceSample};
 use crate::cascade::Cascade;
 use crate::error::Error;
-use crate::simd::Simd;
+use crate::math::simd::Simd;
 
 /// One cascade's part of a frame.
 #[derive(Debug, Clone)]
@@ -379,7 +379,7 @@ impl Surface {
 
 #[cfg(test)]
 mod tests {
-    use crate::simd::{test_pools, Simd};
+    use crate::math::simd::{test_pools, Simd};
     use crate::{OceanConfig, OceanState, Spectrum, SurfaceSample};
 
     /// Batch, grid and single queries, the ocean's and a handle's, give the same bits at every

@@ -4,8 +4,8 @@
 use std::ops::Bound::Included;
 
 use crate::cascade::Cascade;
-use crate::determinism::with_math;
 use crate::error::{self, Error};
+use crate::math::determinism::with_math;
 use crate::spectrum::Spectrum;
 
 use super::foam::FoamConfig;

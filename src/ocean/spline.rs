@@ -22,7 +22,7 @@ use std::sync::{Mutex, OnceLock, PoisonError};
 use rayon::prelude::*;
 
 use crate::error::{self, Error};
-use crate::simd::{baseline_lanes, Kernel, Simd};
+use crate::math::simd::{baseline_lanes, Kernel, Simd};
 
 /// The pole √3 − 2 of the cubic B-spline's interpolation filter.
 const POLE: f32 = -0.267_949_2;

@@ -1,6 +1,7 @@
 //! The directional wave spectrum: what a [`Cascade`](crate) turns into waves.
 
 mod density;
+pub(crate) mod dispersion;
 mod elfouhaily;
 mod omega;
 mod setters;
@@ -11,9 +12,9 @@ mod variance;
 use std::f64::consts::PI;
 use std::ops::Bound::{Excluded, Included};
 
-use crate::determinism::{Libm, Math, Std};
-use crate::dispersion::Dispersion;
 use crate::error::{self, Error};
+use crate::math::determinism::{Libm, Math, Std};
+use crate::spectrum::dispersion::Dispersion;
 
 pub use slope::SlopeVariance;
 pub use spreading::Spreading;

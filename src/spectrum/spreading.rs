@@ -3,8 +3,8 @@
 use std::f64::consts::{LN_2, PI};
 use std::ops::Bound::{Excluded, Included};
 
-use crate::determinism::Math;
 use crate::error::{self, Error};
+use crate::math::determinism::Math;
 
 use super::elfouhaily;
 use super::omega::G;
@@ -410,7 +410,7 @@ pub(crate) fn ln_gamma<M: Math>(x: f64) -> f64 {
 #[allow(clippy::disallowed_methods)]
 mod tests {
     use super::*;
-    use crate::determinism::Std;
+    use crate::math::determinism::Std;
 
     #[test]
     fn ln_gamma_matches_factorials_and_half_integers() {

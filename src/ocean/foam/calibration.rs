@@ -18,7 +18,7 @@
 use super::moments::GradientMoments;
 use std::marker::PhantomData;
 
-use crate::determinism::Math;
+use crate::math::determinism::Math;
 
 /// The whitecap fraction of Monahan & O'Muircheartaigh (1980), W = 3.84·10⁻⁶ U10^3.41, for a
 /// wind speed U10 in m/s.

@@ -5,7 +5,7 @@
 #![allow(clippy::needless_range_loop, clippy::disallowed_methods)]
 
 use super::*;
-use crate::determinism::Std;
+use crate::math::determinism::Std;
 use rand::{Rng, SeedableRng};
 use rand_distr::StandardNormal;
 

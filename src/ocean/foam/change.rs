@@ -3,8 +3,8 @@
 //! unresolved gradient, and the transport of residual foam.
 
 use crate::cascade::Cascade;
-use crate::determinism::{with_math, Math};
 use crate::error::Error;
+use crate::math::determinism::{with_math, Math};
 use crate::spectrum::Spectrum;
 
 use super::calibration::{calibrate, Settings};

@@ -5,7 +5,7 @@
 use num_complex::Complex32;
 
 use super::moments::GradientMoments;
-use crate::exp::exp;
+use crate::math::exp::exp;
 
 /// Points of a row the foam's element loops handle at once, through arrays on the stack.
 pub(super) const BLOCK: usize = 64;
@@ -286,7 +286,7 @@ impl Params {
     }
 
     /// The breaking intensity at each point of a row of cascade 0's gradient, into `out`
-    /// (as long). Inlined into its caller's [`Simd::run`](crate::simd::Simd::run), so that its loop is compiled for
+    /// (as long). Inlined into its caller's [`Simd::run`](crate::math::simd::Simd::run), so that its loop is compiled for
     /// the caller's SIMD level; every level gives the same bits (no reduction, no FMA).
     #[inline(always)]
     pub(super) fn intensities(&self, gradient: &[[f32; 3]], out: &mut [f32]) {
@@ -310,7 +310,7 @@ impl Params {
 
     /// The breaking intensity along a row of cascade 0's gradient into `out` (as long), in
     /// blocks of [`BLOCK`] points through an array on the stack, as [`react_row`] does.
-    /// Inlined into its caller's [`Simd::run`](crate::simd::Simd::run).
+    /// Inlined into its caller's [`Simd::run`](crate::math::simd::Simd::run).
     ///
     /// [`react_row`]: Self::react_row
     #[inline(always)]
@@ -328,7 +328,7 @@ impl Params {
     /// residual foam `a`, `r` aged with the intensity going from `s` (replaced by the new one)
     /// to it, and the residual foam copied into the transform's input `w`. In blocks of
     /// [`BLOCK`] points through arrays on the stack (written straight into the five row
-    /// slices, the loop did not vectorise). Inlined into its caller's [`Simd::run`](crate::simd::Simd::run).
+    /// slices, the loop did not vectorise). Inlined into its caller's [`Simd::run`](crate::math::simd::Simd::run).
     #[inline(always)]
     pub(super) fn react_row(
         &self,

@@ -7,7 +7,7 @@ use std::f64::consts::TAU;
 use num_complex::Complex32;
 
 use crate::cascade::Cascade;
-use crate::determinism::Math;
+use crate::math::determinism::Math;
 
 /// Covariances of the displacement gradient (D_xx, D_zz, D_xz) at unit choppiness over space
 /// and time, and of its time derivative, from a cascade's amplitudes: for each field pair
@@ -30,13 +30,13 @@ impl GradientMoments {
         let dk = f64::from(cascade.delta_k());
         let mut moments = GradientMoments::default();
         for j in 0..n {
-            let kz = f64::from(crate::grid::wave_index(j, n)) * dk;
+            let kz = f64::from(crate::math::grid::wave_index(j, n)) * dk;
             for i in 0..n {
                 let weight = 2.0 * f64::from(h0[j * n + i].norm_sqr());
                 if weight == 0.0 {
                     continue;
                 }
-                let kx = f64::from(crate::grid::wave_index(i, n)) * dk;
+                let kx = f64::from(crate::math::grid::wave_index(i, n)) * dk;
                 let k = M::hypot(kx, kz);
                 if k == 0.0 {
                     continue;
@@ -85,8 +85,8 @@ impl GradientMoments {
 #[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
-    use crate::determinism::Std;
     use crate::inspect::Field;
+    use crate::math::determinism::Std;
     use crate::{Cascade, CascadeConfig, Spectrum};
 
     /// The gradient an update writes holds the same numbers as the public, copying `field`: if the

@@ -11,7 +11,7 @@ pub(super) const LANES: usize = 8;
 /// the partial sums are added in order at the end. Written over whole arrays of [`LANES`]
 /// values (one 512-bit register of f64), so that the conversions and additions vectorise at
 /// every SIMD level; the order of the additions is the code's, whatever the level. Inlined
-/// into its caller's [`Simd::run`](crate::simd::Simd::run).
+/// into its caller's [`Simd::run`](crate::math::simd::Simd::run).
 #[inline(always)]
 pub(super) fn total_row(a: &[f32], r: &[f32], f: &mut [f32]) -> [f64; 3] {
     let mut sum_a = [0.0f64; LANES];

@@ -8,11 +8,11 @@ use rayon::prelude::*;
 use std::ops::Bound::Included;
 
 use crate::cascade::Cascade;
-use crate::determinism::{with_math, Determinism, Math};
 use crate::error::{self, Error};
-use crate::exp::exp;
-use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
-use crate::simd::Simd;
+use crate::math::determinism::{with_math, Determinism, Math};
+use crate::math::exp::exp;
+use crate::math::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
+use crate::math::simd::Simd;
 
 use super::change::{FoamChange, FoamSea, Model};
 use super::intensity::Params;
@@ -94,12 +94,12 @@ pub(crate) struct Foam {
 /// it (12 bytes per point, see [`Foam::update_source`]).
 pub(crate) fn memory_bytes(n: usize, determinism: Determinism) -> usize {
     let points = n.saturating_mul(n);
-    let scratch = if n <= crate::grid::MAX_SIZE {
-        crate::fft2d::RowFft::new(n, determinism).scratch_len()
+    let scratch = if n <= crate::math::grid::MAX_SIZE {
+        crate::math::fft2d::RowFft::new(n, determinism).scratch_len()
     } else {
         n
     };
-    let tasks = n.div_ceil(crate::fft2d::ROWS_PER_TASK);
+    let tasks = n.div_ceil(crate::math::fft2d::ROWS_PER_TASK);
     let tables = n.saturating_mul(2 * 8 + 24);
     let half = (n / 2 + 1).saturating_mul(n);
     points
@@ -323,14 +323,14 @@ impl Foam {
                 let shifts = &tables[n..2 * n];
                 for (r, row) in rows.chunks_mut(n).enumerate() {
                     let ix = j0 + r;
-                    let mx = crate::grid::wave_index(ix, n) as f32;
+                    let mx = crate::math::grid::wave_index(ix, n) as f32;
                     let shift_x = tables[ix];
                     let (ax, bx) = (ca * mx * mx, 2.0 * cb * mx);
                     simd.run(
                         #[inline(always)]
                         || {
                             for (iz, (g, shift_z)) in row.iter_mut().zip(shifts).enumerate() {
-                                let mz = crate::grid::wave_index(iz, n) as f32;
+                                let mz = crate::math::grid::wave_index(iz, n) as f32;
                                 let decay = exp(-(ax + mz * (bx + cc * mz)));
                                 *g = g.conj() * (shift_x * shift_z) * decay;
                             }

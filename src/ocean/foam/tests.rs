@@ -6,9 +6,9 @@ use num_complex::Complex32;
 
 use super::state::FLUSH;
 use super::FoamConfig;
-use crate::determinism::{with_math, Determinism, Std};
-use crate::exp::exp;
-use crate::simd::Simd;
+use crate::math::determinism::{with_math, Determinism, Std};
+use crate::math::exp::exp;
+use crate::math::simd::Simd;
 use crate::{OceanConfig, OceanState, Spectrum};
 
 /// An ocean that never breaks (coverage 0) with a Gaussian blob of residual foam, σ₀ = 3
@@ -139,7 +139,7 @@ fn every_simd_level_and_thread_count_gives_the_same_foam() {
     if std::is_x86_feature_detected!("avx512f") && std::is_x86_feature_detected!("avx512bw") {
         assert_eq!(levels.len(), 3, "{levels:?}");
     }
-    let pools = crate::simd::test_pools();
+    let pools = crate::math::simd::test_pools();
     let run = |level: Simd, pool: &rayon::ThreadPool| {
         pool.install(|| {
             let spectrum = Spectrum::jonswap(16.0, 300_000.0).unwrap();
@@ -196,7 +196,7 @@ fn every_simd_level_and_thread_count_gives_the_same_foam() {
 /// widest.
 #[test]
 fn real_data_transport_matches_two_plain_complex_fft2d_transforms() {
-    let pools = crate::simd::test_pools();
+    let pools = crate::math::simd::test_pools();
     for determinism in [Determinism::SameMachine, Determinism::CrossPlatform] {
         for (n, threads) in [(64, 1), (64, 2), (128, 2)] {
             let (_, pool) = &pools[threads - 1];
@@ -233,9 +233,9 @@ fn real_data_transport_matches_two_plain_complex_fft2d_transforms() {
                 // The transform is left transposed: index m_x·N + m_z.
                 let spectrum = fft.process(&mut work).unwrap().to_vec();
                 for ix in 0..n {
-                    let mx = crate::grid::wave_index(ix, n) as f32;
+                    let mx = crate::math::grid::wave_index(ix, n) as f32;
                     for iz in 0..n {
-                        let mz = crate::grid::wave_index(iz, n) as f32;
+                        let mz = crate::math::grid::wave_index(iz, n) as f32;
                         let (ax, bx) = (a * mx * mx, 2.0 * b * mx);
                         let decay = exp(-(ax + mz * (bx + c * mz)));
                         work[ix * n + iz] =

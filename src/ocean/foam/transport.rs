@@ -18,7 +18,7 @@ use std::f64::consts::TAU;
 
 use num_complex::Complex32;
 
-use crate::determinism::Math;
+use crate::math::determinism::Math;
 
 /// Largest exponent dt·K·Δk² of a diffusivity K over a step, per squared grid wave index along
 /// its axis: capped there, every wave vector with a component of 0.01 index or more along that
@@ -90,7 +90,7 @@ impl Transport {
     pub(crate) fn fill_tables<M: Math>(&self, dt: f64, n: usize, tables: &mut [Complex32]) {
         for (axis, table) in tables.chunks_mut(n).take(2).enumerate() {
             for (i, value) in table.iter_mut().enumerate() {
-                let k = self.dk * f64::from(crate::grid::wave_index(i, n));
+                let k = self.dk * f64::from(crate::math::grid::wave_index(i, n));
                 // The phase reduced to whole turns first, so that long steps stay accurate.
                 let turns = (dt * self.drift[axis] * k / TAU).rem_euclid(1.0);
                 let (s, c) = M::sin_cos(TAU * turns);
@@ -127,7 +127,7 @@ impl Transport {
 #[allow(clippy::disallowed_methods)]
 mod tests {
     use super::*;
-    use crate::determinism::Std;
+    use crate::math::determinism::Std;
 
     /// The tensor has the wind as a principal axis with K∥ along it and K⊥ across, and the
     /// drift points downwind, in every direction.

@@ -126,7 +126,7 @@ impl Shuffle for Plain {
 
     #[inline(always)]
     fn add_product(self, sum: F32s, w: F32s, x: F32s) -> F32s {
-        crate::simd::baseline_lanes(self.fused, w, x, sum)
+        crate::math::simd::baseline_lanes(self.fused, w, x, sum)
     }
 
     #[inline(always)]

@@ -14,7 +14,7 @@ use super::frame::{Fields, Grid, Surface};
 use super::spline::Tiles;
 use super::OceanState;
 use crate::error::{self, Error};
-use crate::simd::{Kernel, Simd};
+use crate::math::simd::{Kernel, Simd};
 use inversion::{
     evaluate_group, height_at, locate, located_group, sample, surface_at, surface_sample, GROUP,
 };

@@ -82,12 +82,12 @@ pub enum Determinism {
 macro_rules! with_math {
     ($mode:expr, $m:ident => $body:expr) => {
         match $mode {
-            $crate::determinism::Determinism::SameMachine => {
-                type $m = $crate::determinism::Std;
+            $crate::math::determinism::Determinism::SameMachine => {
+                type $m = $crate::math::determinism::Std;
                 $body
             }
-            $crate::determinism::Determinism::CrossPlatform => {
-                type $m = $crate::determinism::Libm;
+            $crate::math::determinism::Determinism::CrossPlatform => {
+                type $m = $crate::math::determinism::Libm;
                 $body
             }
         }

@@ -23,7 +23,7 @@
 //! at every level ([`baseline_mul_add`] where the CPU has no FMA instruction).
 //! `tests` in src/cascade/mod.rs compare every output bit of every level the machine has.
 
-use crate::determinism::Determinism;
+use crate::math::determinism::Determinism;
 
 /// A SIMD level of the update's element loops, proven available on this CPU.
 #[derive(Clone, Copy)]

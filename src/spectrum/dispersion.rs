@@ -1,8 +1,8 @@
 //! Dispersion relations ω(k) of surface gravity(-capillary) waves, their group-velocity
 //! derivative dω/dk, and the inverse k(ω).
 
-use crate::determinism::{Math, Std};
 use crate::error::{self, saturate, Error};
+use crate::math::determinism::{Math, Std};
 
 /// Gravitational acceleration g, in m/s².
 pub const GRAVITY: f32 = 9.81;

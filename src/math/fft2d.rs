@@ -11,9 +11,9 @@ use num_complex::Complex32;
 use rayon::prelude::*;
 use rustfft::{Fft, FftPlanner, FftPlannerScalar};
 
-use crate::determinism::Determinism;
 use crate::error::{self, Error};
-use crate::grid;
+use crate::math::determinism::Determinism;
+use crate::math::grid;
 
 /// Rows handled by one parallel task of the second pass (the rows a task gathers by a
 /// transpose and transforms). 16 rows of a 512-point complex transform are 64 KiB (256 KiB

@@ -9,9 +9,11 @@
 //! rayon's pool with no reduction, so the bits do not depend on the number of threads and
 //! nothing is allocated inside a pool.
 
+mod engine;
+
 use rayon::prelude::*;
 
-pub use crate::engine::Engine;
+pub use engine::Engine;
 
 use crate::cascade::Cascade;
 use crate::error::{self, Error};

@@ -4,7 +4,7 @@
 
 use rand::RngCore;
 
-use crate::determinism::{Determinism, Math};
+use crate::math::determinism::{Determinism, Math};
 
 /// SplitMix64 finaliser (Steele, Lea & Flood 2014): a bijective 64-bit mixer.
 fn mix(mut z: u64) -> u64 {
@@ -56,8 +56,8 @@ impl RngCore for WaveRng {
 }
 
 /// Two independent standard normal numbers (ξ_r, ξ_i) for the wave vector (`m_x`, `m_z`):
-/// with [`Std`](crate::determinism::Std), `rand_distr`'s ziggurat (whose values a release
-/// of `rand_distr` may change); with [`Libm`](crate::determinism::Libm), the crate's own
+/// with [`Std`](crate::math::determinism::Std), `rand_distr`'s ziggurat (whose values a release
+/// of `rand_distr` may change); with [`Libm`](crate::math::determinism::Libm), the crate's own
 /// [`box_muller`], specified here down to the bit.
 pub(crate) fn gaussian_pair<M: Math>(seed: u64, m_x: i32, m_z: i32) -> (f64, f64) {
     use rand_distr::{Distribution, StandardNormal};
@@ -76,7 +76,7 @@ pub(crate) fn gaussian_pair<M: Math>(seed: u64, m_x: i32, m_z: i32) -> (f64, f64
 /// u₁ = (⌊a/2¹¹⌋ + 1)·2⁻⁵³ in (0, 1] and u₂ = ⌊b/2¹¹⌋·2⁻⁵³ in [0, 1) (both exact in f64),
 /// r = √(−2 ln u₁) and θ = 2π u₂, the pair (r cos θ, r sin θ) is two independent standard
 /// normals. Every step is IEEE arithmetic or a function of `M`, so with
-/// [`Libm`](crate::determinism::Libm) the bits are the same on every target. The largest
+/// [`Libm`](crate::math::determinism::Libm) the bits are the same on every target. The largest
 /// |ξ| it gives is √(2·53 ln 2) ≈ 8.57.
 pub(crate) fn box_muller<M: Math>(a: u64, b: u64) -> (f64, f64) {
     const SCALE: f64 = 1.0 / (1u64 << 53) as f64;
@@ -92,7 +92,7 @@ pub(crate) fn box_muller<M: Math>(a: u64, b: u64) -> (f64, f64) {
 #[allow(clippy::disallowed_methods)]
 mod tests {
     use super::*;
-    use crate::determinism::{Libm, Std};
+    use crate::math::determinism::{Libm, Std};
 
     #[test]
     fn streams_depend_only_on_the_triple() {
