@@ -26,6 +26,8 @@ use crate::math::simd::Simd;
 use crate::spectrum::{SlopeVariance, Spectrum};
 
 pub(crate) use config::check_band;
+#[cfg(feature = "serde")]
+pub(crate) use config::default_memory_limit;
 
 pub use config::CascadeConfig;
 pub use field::Field;

@@ -61,7 +61,7 @@ pub struct OceanConfig {
     #[cfg_attr(
         feature = "serde",
         serde(
-            default = "crate::serde_impls::default_band_split",
+            default = "default_band_split",
             serialize_with = "crate::serde_impls::finite::band_split"
         )
     )]
@@ -89,7 +89,7 @@ pub struct OceanConfig {
     /// [`CascadeConfig::DEFAULT_MEMORY_LIMIT`], 4 GiB).
     #[cfg_attr(
         feature = "serde",
-        serde(default = "crate::serde_impls::default_memory_limit")
+        serde(default = "crate::cascade::default_memory_limit")
     )]
     pub memory_limit: usize,
     /// How far the same config gives the same bits, for every cascade, the foam and the
@@ -111,6 +111,12 @@ pub struct OceanConfig {
     /// with it off.
     #[cfg_attr(feature = "serde", serde(default))]
     pub second_order: bool,
+}
+
+/// The value of a missing `band_split` (with the `serde` feature).
+#[cfg(feature = "serde")]
+fn default_band_split() -> f32 {
+    OceanConfig::DEFAULT_BAND_SPLIT
 }
 
 impl Default for OceanConfig {

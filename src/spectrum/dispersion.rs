@@ -3,6 +3,8 @@
 
 use crate::error::{self, saturate, Error};
 use crate::math::determinism::{Math, Std};
+#[cfg(feature = "serde")]
+use crate::serde_impls::Float;
 
 /// Gravitational acceleration g, in m/s².
 pub const GRAVITY: f32 = 9.81;
@@ -34,8 +36,8 @@ const TENSION: f64 = SURFACE_TENSION as f64 / WATER_DENSITY as f64;
 #[cfg_attr(
     feature = "serde",
     serde(
-        try_from = "crate::serde_impls::DispersionData",
-        into = "crate::serde_impls::DispersionData"
+        try_from = "crate::spectrum::dispersion::DispersionData",
+        into = "crate::spectrum::dispersion::DispersionData"
     )
 )]
 pub enum Dispersion {
@@ -258,6 +260,46 @@ impl Dispersion {
 
 fn valid_depth(depth: f32) -> Option<f64> {
     (depth.is_finite() && depth > 0.0).then_some(f64::from(depth))
+}
+
+/// The serialised form of [`Dispersion`], checked by `TryFrom` on the way in.
+#[cfg(feature = "serde")]
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(rename = "Dispersion")]
+pub(crate) enum DispersionData {
+    Deep,
+    FiniteDepth { depth: Float },
+    Capillary { depth: Float },
+}
+
+#[cfg(feature = "serde")]
+impl From<Dispersion> for DispersionData {
+    fn from(dispersion: Dispersion) -> Self {
+        match dispersion {
+            Dispersion::Deep => DispersionData::Deep,
+            Dispersion::FiniteDepth { depth } => DispersionData::FiniteDepth {
+                depth: depth.into(),
+            },
+            Dispersion::Capillary { depth } => DispersionData::Capillary {
+                depth: depth.into(),
+            },
+        }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl TryFrom<DispersionData> for Dispersion {
+    type Error = Error;
+
+    fn try_from(data: DispersionData) -> Result<Self, Error> {
+        let dispersion = match data {
+            DispersionData::Deep => Dispersion::Deep,
+            DispersionData::FiniteDepth { depth } => Dispersion::FiniteDepth { depth: depth.0 },
+            DispersionData::Capillary { depth } => Dispersion::Capillary { depth: depth.0 },
+        };
+        dispersion.validate()?;
+        Ok(dispersion)
+    }
 }
 
 #[cfg(test)]

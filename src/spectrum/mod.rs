@@ -4,6 +4,8 @@ mod density;
 pub(crate) mod dispersion;
 mod elfouhaily;
 mod omega;
+#[cfg(feature = "serde")]
+mod serde_data;
 mod setters;
 mod slope;
 mod spreading;
@@ -85,8 +87,8 @@ pub(crate) enum Model {
 #[cfg_attr(
     feature = "serde",
     serde(
-        try_from = "crate::serde_impls::SpectrumData",
-        into = "crate::serde_impls::SpectrumData"
+        try_from = "crate::spectrum::serde_data::SpectrumData",
+        into = "crate::spectrum::serde_data::SpectrumData"
     )
 )]
 pub struct Spectrum {
