@@ -7,5 +7,6 @@ pub(crate) mod determinism;
 pub(crate) mod exp;
 pub(crate) mod fft2d;
 pub(crate) mod grid;
+pub(crate) mod periodic;
 pub(crate) mod rng;
 pub(crate) mod simd;

@@ -6,11 +6,12 @@
 use std::sync::Arc;
 
 use super::foam::Foam;
-use super::query::{self, HeightAt, Locate, Period, Sample, SurfaceAt};
+use super::query::{self, HeightAt, Locate, Sample, SurfaceAt};
 use super::spline::{Source, Tiles};
 use super::{Interpolation, Location, OceanConfig, OceanState, QueryConfig, SurfaceSample};
 use crate::cascade::Cascade;
 use crate::error::Error;
+use crate::math::periodic::{periodic_bilinear, Period};
 use crate::math::simd::Simd;
 
 /// One cascade's part of a frame.
@@ -166,9 +167,7 @@ impl Fields<'_> {
     #[allow(clippy::manual_clamp)]
     pub(crate) fn foam_at(&self, x: f64, z: f64) -> f32 {
         let (values, n, length) = self.foam_grid();
-        super::query::periodic_bilinear(values, n, length, x, z)
-            .max(0.0)
-            .min(1.0)
+        periodic_bilinear(values, n, length, x, z).max(0.0).min(1.0)
     }
 
     /// The foam field [`Fields::foam_at`] interpolates: its values on an N×N grid, N, and

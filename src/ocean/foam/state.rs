@@ -534,7 +534,7 @@ impl Foam {
     #[inline(always)]
     fn interpolate(&self, values: &[f32], x: f64, z: f64) -> f32 {
         let length = f64::from(self.length);
-        crate::ocean::query::periodic_bilinear(values, self.n, length, x, z).max(0.0)
+        crate::math::periodic::periodic_bilinear(values, self.n, length, x, z).max(0.0)
     }
 
     /// Active foam a at undisplaced world (x, z), in [0, 1].

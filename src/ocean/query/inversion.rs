@@ -7,7 +7,8 @@ use glam::Vec2;
 use super::super::frame::Fields;
 use super::super::spline::{self, Source, TileData, Weights};
 use super::super::QueryConfig;
-use super::{cell_in, normal_from_slope, Location, Stencil, SurfaceSample};
+use super::{cell_in, normal_from_slope, Location, SurfaceSample};
+use crate::math::periodic::Stencil;
 
 /// What a query sums over the cascades at one undisplaced point (what it did not ask for is
 /// zero).

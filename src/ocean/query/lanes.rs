@@ -15,7 +15,8 @@
 use super::super::frame::Fields;
 use super::super::spline::{self, Lanes, TileData, STRIDE};
 use super::inversion::{self, guessing, MIN_DETERMINANT};
-use super::{normal_from_slope, wrap, Location, Period, SurfaceSample, FAR_PERIODS};
+use super::{normal_from_slope, Location, SurfaceSample};
+use crate::math::periodic::{wrap, Period, FAR_PERIODS};
 
 /// Points a vector holds.
 pub(super) const LANES: usize = 8;
@@ -40,7 +41,7 @@ fn each<T: Copy + Default>(mut f: impl FnMut(usize) -> T) -> [T; LANES] {
 }
 
 /// The cell and the fraction across it of eight coordinates along one axis of a periodic
-/// grid: [`super::cell_on`]'s wrap and split, lane by lane.
+/// grid: [`cell_on`](crate::math::periodic::cell_on)'s wrap and split, lane by lane.
 #[inline(always)]
 fn cells(v: &F64s, period: &Period) -> ([u32; LANES], F32s) {
     let Period {
