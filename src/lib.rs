@@ -164,6 +164,7 @@
 
 mod cascade;
 mod error;
+mod foam;
 #[cfg(test)]
 mod golden;
 pub mod gpu;
@@ -177,14 +178,15 @@ mod spectrum;
 
 pub use cascade::{Cascade, CascadeConfig};
 pub use error::Error;
+pub use foam::{FoamConfig, FoamCoverage};
 /// The `half` crate (with the `half` feature), whose `f16` the `pack_texels_f16` functions
 /// write: `ocean_fft::half::f16` is the version this crate was built with.
 #[cfg(feature = "half")]
 pub use half;
 pub use math::determinism::Determinism;
 pub use ocean::{
-    FoamConfig, FoamCoverage, Interpolation, Location, OceanConfig, OceanSnapshot, OceanState,
-    QueryConfig, SeaFit, Surface, SurfaceSample,
+    Interpolation, Location, OceanConfig, OceanSnapshot, OceanState, QueryConfig, SeaFit, Surface,
+    SurfaceSample,
 };
 pub use presets::SeaState;
 pub use spectrum::dispersion::{Dispersion, GRAVITY};

@@ -118,6 +118,10 @@ impl std::fmt::Debug for Cascade {
     }
 }
 
+/// Most cascades an ocean sums ([`OceanConfig::MAX_CASCADES`](crate::OceanConfig::MAX_CASCADES)):
+/// the length of the arrays that hold one entry per cascade.
+pub(crate) const MAX_CASCADES: usize = 8;
+
 /// Number of packed complex transforms per update.
 const TRANSFORMS: usize = 4;
 

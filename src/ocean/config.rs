@@ -7,7 +7,7 @@ use crate::error::{self, Error};
 use crate::math::determinism::Determinism;
 use crate::math::grid;
 
-use super::foam::FoamConfig;
+use crate::foam::FoamConfig;
 
 /// Parameters of an [`OceanState`](crate::OceanState): passive data, validated by
 /// [`OceanState::new`](crate::OceanState::new).
@@ -219,7 +219,7 @@ impl QueryConfig {
 
 impl OceanConfig {
     /// Most cascades.
-    pub const MAX_CASCADES: usize = 8;
+    pub const MAX_CASCADES: usize = crate::cascade::MAX_CASCADES;
 
     /// Default [`band_split`](Self::band_split).
     pub const DEFAULT_BAND_SPLIT: f32 = 0.5;
@@ -327,7 +327,7 @@ impl OceanConfig {
     /// answer, even one [`validate`](Self::validate) refuses.
     pub fn memory_bytes(&self) -> usize {
         let cascade = crate::cascade::memory_bytes(self.size, self.determinism);
-        let foam = super::foam::memory_bytes(self.size, self.determinism);
+        let foam = crate::foam::memory_bytes(self.size, self.determinism);
         let spline = match self.query.interpolation {
             Interpolation::CubicBSpline => super::spline::Tiles::memory_bytes(self.size),
             Interpolation::Bilinear => 0,

@@ -5,12 +5,12 @@
 
 use std::sync::Arc;
 
-use super::foam::Foam;
 use super::query::{self, HeightAt, Locate, Sample, SurfaceAt};
 use super::spline::{Source, Tiles};
 use super::{Interpolation, Location, OceanConfig, OceanState, QueryConfig, SurfaceSample};
 use crate::cascade::Cascade;
 use crate::error::Error;
+use crate::foam::Foam;
 use crate::math::periodic::{periodic_bilinear, Period};
 use crate::math::simd::Simd;
 

@@ -3,7 +3,7 @@
 
 mod config;
 mod fit;
-mod foam;
+mod foam_api;
 mod frame;
 mod live;
 mod query;
@@ -13,11 +13,11 @@ mod time;
 
 use crate::cascade::{Cascade, LoopError};
 use crate::error::{self, Error};
+use crate::foam::Foam;
 use crate::spectrum::{SlopeVariance, Spectrum};
 
 pub use config::{Interpolation, OceanConfig, QueryConfig};
 pub use fit::SeaFit;
-pub use foam::{FoamCalibration, FoamConfig, FoamCoverage};
 pub use frame::Surface;
 pub use query::{Location, SurfaceSample};
 pub use snapshot::OceanSnapshot;
@@ -43,7 +43,7 @@ pub struct OceanState {
     pub(crate) spectrum: Spectrum,
     pub(crate) config: OceanConfig,
     pub(crate) cascades: Vec<Cascade>,
-    pub(crate) foam: foam::Foam,
+    pub(crate) foam: Foam,
     /// What the world queries read about the current frame (the cubic B-spline
     /// coefficients, computed tile by tile by the queries that read them), and the frame
     /// before it while a [`Surface`] handle may hold it.
@@ -91,7 +91,7 @@ impl OceanState {
                 first.enable_second_order()?;
             }
         }
-        let foam = foam::Foam::new(&mut cascades, &config.foam, &spectrum)?;
+        let foam = Foam::new(&mut cascades, &config.foam, &spectrum)?;
         let frames = frame::Frames::new(frame::Frame::new(&config, &cascades, &foam, 0.0)?);
         Ok(OceanState {
             spectrum,

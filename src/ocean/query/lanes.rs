@@ -16,6 +16,7 @@ use super::super::frame::Fields;
 use super::super::spline::{self, Lanes, TileData, STRIDE};
 use super::inversion::{self, guessing, MIN_DETERMINANT};
 use super::{normal_from_slope, Location, SurfaceSample};
+use crate::cascade::MAX_CASCADES;
 use crate::math::periodic::{wrap, Period, FAR_PERIODS};
 
 /// Points a vector holds.
@@ -400,9 +401,6 @@ fn pair_row<'a>(
     let start = 2 * r * STRIDE + 4 * half;
     std::array::from_fn(|l| windows[l][start..start + 4].try_into().expect("two pairs"))
 }
-
-/// Most cascades an ocean has.
-const MAX_CASCADES: usize = crate::OceanConfig::MAX_CASCADES;
 
 /// One cascade's part of an evaluation, before its taps are read: each lane's tile, its
 /// first tap's index there and its fractions across the cell, and the cascade's cells per

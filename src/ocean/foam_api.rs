@@ -2,9 +2,9 @@
 //! breaking intensity at a point.
 
 use crate::error::Error;
-use crate::ocean::OceanState;
+use crate::foam::{FoamCalibration, FoamCoverage};
 
-use super::{FoamCalibration, FoamCoverage};
+use super::OceanState;
 
 impl OceanState {
     /// The foam of the whole ocean in [0, 1] — active whitecaps and residual foam together,

@@ -3,11 +3,11 @@
 //! fraction of Monahan & O'Muircheartaigh 1980), aging from active whitecaps into residual
 //! foam, drifting downwind and spreading into streaks (docs/theory.md, §15).
 
-mod api;
 mod calibration;
 mod change;
 mod config;
 mod intensity;
+mod model;
 mod moments;
 mod rows;
 mod state;

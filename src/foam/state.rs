@@ -14,8 +14,8 @@ use crate::math::exp::exp;
 use crate::math::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
 use crate::math::simd::Simd;
 
-use super::change::{FoamChange, FoamSea, Model};
 use super::intensity::Params;
+use super::model::{FoamChange, FoamSea, Model};
 use super::rows::{pack_rows, repack_halves, total_row, unpack_halves};
 use super::transport::Transport;
 use super::{FoamCalibration, FoamConfig, FoamCoverage};
