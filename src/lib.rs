@@ -172,6 +172,7 @@ pub mod inspect;
 mod math;
 mod ocean;
 mod presets;
+mod query;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod spectrum;
@@ -184,11 +185,9 @@ pub use foam::{FoamConfig, FoamCoverage};
 #[cfg(feature = "half")]
 pub use half;
 pub use math::determinism::Determinism;
-pub use ocean::{
-    Interpolation, Location, OceanConfig, OceanSnapshot, OceanState, QueryConfig, SeaFit, Surface,
-    SurfaceSample,
-};
+pub use ocean::{OceanConfig, OceanSnapshot, OceanState, SeaFit};
 pub use presets::SeaState;
+pub use query::{Interpolation, Location, QueryConfig, Surface, SurfaceSample};
 pub use spectrum::dispersion::{Dispersion, GRAVITY};
 pub use spectrum::{DepthFactor, Spectrum, Spreading};
 

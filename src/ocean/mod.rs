@@ -4,22 +4,19 @@
 mod config;
 mod fit;
 mod foam_api;
-mod frame;
 mod live;
-mod query;
+mod query_api;
 mod snapshot;
-mod spline;
 mod time;
 
 use crate::cascade::{Cascade, LoopError};
 use crate::error::{self, Error};
 use crate::foam::Foam;
+use crate::query::frame::{Frame, Frames};
 use crate::spectrum::{SlopeVariance, Spectrum};
 
-pub use config::{Interpolation, OceanConfig, QueryConfig};
+pub use config::OceanConfig;
 pub use fit::SeaFit;
-pub use frame::Surface;
-pub use query::{Location, SurfaceSample};
 pub use snapshot::OceanSnapshot;
 
 /// An ocean: cascades of one spectrum over disjoint wave-number bands, the time, and foam.
@@ -47,7 +44,7 @@ pub struct OceanState {
     /// What the world queries read about the current frame (the cubic B-spline
     /// coefficients, computed tile by tile by the queries that read them), and the frame
     /// before it while a [`Surface`] handle may hold it.
-    pub(crate) frames: frame::Frames,
+    pub(crate) frames: Frames,
     pub(crate) time: f64,
     /// The choppiness the cascades' buffers were last computed with (a new choppiness takes
     /// effect at the next update).
@@ -92,7 +89,8 @@ impl OceanState {
             }
         }
         let foam = Foam::new(&mut cascades, &config.foam, &spectrum)?;
-        let frames = frame::Frames::new(frame::Frame::new(&config, &cascades, &foam, 0.0)?);
+        let frame = Frame::new(config.query, config.determinism, &cascades, &foam, 0.0)?;
+        let frames = Frames::new(frame);
         Ok(OceanState {
             spectrum,
             applied_choppiness: config.choppiness,

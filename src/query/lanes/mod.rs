@@ -12,10 +12,10 @@
 // Lanes are the same index into several arrays at once; an iterator over one of them hides
 // that.
 #![allow(clippy::needless_range_loop)]
-use super::super::frame::Fields;
-use super::super::spline::{self, Lanes, TileData, STRIDE};
+use super::frame::Fields;
 use super::inversion::{self, guessing, MIN_DETERMINANT};
-use super::{normal_from_slope, Location, SurfaceSample};
+use super::results::{normal_from_slope, Location, SurfaceSample};
+use super::spline::{self, Lanes, TileData, STRIDE};
 use crate::cascade::MAX_CASCADES;
 use crate::math::periodic::{wrap, Period, FAR_PERIODS};
 

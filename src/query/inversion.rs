@@ -4,10 +4,10 @@
 
 use glam::Vec2;
 
-use super::super::frame::Fields;
-use super::super::spline::{self, Source, TileData, Weights};
-use super::super::QueryConfig;
-use super::{cell_in, normal_from_slope, Location, SurfaceSample};
+use super::config::QueryConfig;
+use super::frame::{cell_in, Fields};
+use super::results::{normal_from_slope, Location, SurfaceSample};
+use super::spline::{self, Source, TileData, Weights};
 use crate::math::periodic::Stencil;
 
 /// What a query sums over the cascades at one undisplaced point (what it did not ask for is
@@ -53,7 +53,7 @@ fn taps<'a, const GRADIENT: bool>(fields: &'a Fields<'a>, c: usize, x: f64, z: f
 /// height with `HEIGHT`, the slope with `SLOPE`. A field's value does not depend on what
 /// else is asked: the same operations in the same order. Summing the cascades in order
 /// from [`Summed::default`] gives the queries' values, whether one point is summed at a
-/// time or several in turn (see [`PointQuery::group`](super::PointQuery::group)).
+/// time or several in turn (see [`PointQuery::group`](super::point::PointQuery::group)).
 #[inline(always)]
 fn accumulate<
     const DISPLACEMENT: bool,
@@ -348,7 +348,7 @@ pub(super) fn locate(fields: &Fields<'_>, x: f64, z: f64) -> (Location, [f32; 2]
     (search.best, search.displacement)
 }
 
-/// Points whose queries [`PointQuery::group`](super::PointQuery::group) interleaves: enough independent work for the
+/// Points whose queries [`PointQuery::group`](super::point::PointQuery::group) interleaves: enough independent work for the
 /// CPU to overlap one point's memory reads with the others' arithmetic.
 pub(super) const GROUP: usize = 8;
 
