@@ -68,3 +68,20 @@ pub struct Location {
 pub(crate) fn normal_from_slope(slope: Vec2) -> Vec3 {
     Vec3::new(-slope.x, 1.0, -slope.y).normalize_or(Vec3::Y)
 }
+
+/// The [`SurfaceSample`] of summed fields and foam `foam` (as the single queries build it).
+#[inline(always)]
+pub(crate) fn surface(
+    height: f32,
+    displacement: [f32; 2],
+    slope: [f32; 2],
+    foam: f32,
+) -> SurfaceSample {
+    SurfaceSample {
+        height,
+        displacement,
+        slope,
+        normal: normal_from_slope(Vec2::from_array(slope)).to_array(),
+        foam,
+    }
+}
