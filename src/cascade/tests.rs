@@ -4,7 +4,7 @@
 use super::{Cascade, CascadeConfig};
 use crate::inspect::Field;
 use crate::math::simd::Simd;
-use crate::{Spectrum, Spreading};
+use crate::spectrum::{Spectrum, Spreading};
 
 /// The bit patterns of every buffer a cascade exposes after updates at `times`.
 fn fingerprint(cascade: &mut Cascade, times: &[f64]) -> Vec<Vec<u32>> {

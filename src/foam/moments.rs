@@ -85,9 +85,10 @@ impl GradientMoments {
 #[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
+    use crate::cascade::{Cascade, CascadeConfig};
     use crate::inspect::Field;
     use crate::math::determinism::Std;
-    use crate::{Cascade, CascadeConfig, Spectrum};
+    use crate::spectrum::Spectrum;
 
     /// The gradient an update writes holds the same numbers as the public, copying `field`: if the
     /// packing of the transforms ever changes, this fails rather than the foam silently

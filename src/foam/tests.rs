@@ -9,7 +9,8 @@ use super::FoamConfig;
 use crate::math::determinism::{with_math, Determinism, Std};
 use crate::math::exp::exp;
 use crate::math::simd::Simd;
-use crate::{OceanConfig, OceanState, Spectrum};
+use crate::ocean::{OceanConfig, OceanState};
+use crate::spectrum::Spectrum;
 
 /// An ocean that never breaks (coverage 0) with a Gaussian blob of residual foam, σ₀ = 3
 /// grid points, in the middle of its 64² foam grid.
