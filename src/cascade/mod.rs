@@ -1,5 +1,7 @@
-//! One N×N patch of ocean: h0(k) made once, h̃(k, t) evolved and turned into eight real
-//! fields by four packed complex inverse FFTs on every [`Cascade::update`].
+//! The second stage of the data flow, from a spectrum to waves: one N×N patch of ocean, h0(k)
+//! made once, h̃(k, t) evolved and turned into eight real fields by four packed complex inverse
+//! FFTs on every [`Cascade::update`]. The foam, the world queries and the GPU upload read those
+//! fields.
 
 mod config;
 mod evolve;
@@ -91,8 +93,9 @@ pub struct Cascade {
     live_pairs: usize,
     /// Pass-1 buffer, layout `[i][transform][j]` (k_x row, k_z column → after the FFT, z).
     spectral: Vec<Complex32>,
-    /// Pass-2 block buffers, one per pass-2 task, each [`ROWS_PER_TASK`](crate::math::fft2d::ROWS_PER_TASK) rows of layout
-    /// `[j][transform][i]` (z row, x column) once transformed.
+    /// Pass-2 block buffers, one per pass-2 task, each
+    /// [`ROWS_PER_TASK`](crate::math::fft2d::ROWS_PER_TASK) rows of layout `[j][transform][i]` (z
+    /// row, x column) once transformed.
     blocks: Vec<Complex32>,
     /// FFT scratch, one slot per task of the pass running (the passes run one after the
     /// other and share it).

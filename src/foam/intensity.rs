@@ -285,9 +285,10 @@ impl Params {
         }
     }
 
-    /// The breaking intensity at each point of a row of cascade 0's gradient, into `out`
-    /// (as long). Inlined into its caller's [`Simd::run`](crate::math::simd::Simd::run), so that its loop is compiled for
-    /// the caller's SIMD level; every level gives the same bits (no reduction, no FMA).
+    /// The breaking intensity at each point of a row of cascade 0's gradient, into `out` (as long).
+    /// Inlined into its caller's [`Simd::run`](crate::math::simd::Simd::run), so that its loop is
+    /// compiled for the caller's SIMD level; every level gives the same bits (no reduction, no
+    /// FMA).
     #[inline(always)]
     pub(super) fn intensities(&self, gradient: &[[f32; 3]], out: &mut [f32]) {
         if self.threshold == f32::NEG_INFINITY {
@@ -324,11 +325,11 @@ impl Params {
         }
     }
 
-    /// One row of the step: the new intensity from cascade 0's `gradient`, the active and
-    /// residual foam `a`, `r` aged with the intensity going from `s` (replaced by the new one)
-    /// to it, and the residual foam copied into the transform's input `w`. In blocks of
-    /// [`BLOCK`] points through arrays on the stack (written straight into the five row
-    /// slices, the loop did not vectorise). Inlined into its caller's [`Simd::run`](crate::math::simd::Simd::run).
+    /// One row of the step: the new intensity from cascade 0's `gradient`, the active and residual
+    /// foam `a`, `r` aged with the intensity going from `s` (replaced by the new one) to it, and
+    /// the residual foam copied into the transform's input `w`. In blocks of [`BLOCK`] points
+    /// through arrays on the stack (written straight into the five row slices, the loop did not
+    /// vectorise). Inlined into its caller's [`Simd::run`](crate::math::simd::Simd::run).
     #[inline(always)]
     pub(super) fn react_row(
         &self,

@@ -1,6 +1,7 @@
-//! Foam: one field for the whole ocean on the largest cascade's grid, injected where the
-//! summed surface breaks (its Jacobian below a threshold calibrated against the whitecap
-//! fraction of Monahan & O'Muircheartaigh 1980), aging from active whitecaps into residual
+//! The stage after the cascades, beside the world queries: the foam, which reads the cascades'
+//! surface and which the ocean steps. One field for the whole ocean on the largest cascade's grid,
+//! injected where the summed surface breaks (its Jacobian below a threshold calibrated against the
+//! whitecap fraction of Monahan & O'Muircheartaigh 1980), aging from active whitecaps into residual
 //! foam, drifting downwind and spreading into streaks (docs/theory.md, §15).
 
 mod calibration;

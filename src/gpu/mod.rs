@@ -1,8 +1,8 @@
-//! What a renderer needs: the layouts of the RGBA texels that [`Cascade::pack_texels`] and
-//! [`OceanState::pack_texels`] interleave a cascade's buffers into (f32, and f16 with the
-//! `half` feature), the [`Vertex`] of a cascade mesh with its triangle indices, the green
-//! channel of tangent-space normal maps ([`NormalMapGreen`]), and each engine's axes and
-//! units ([`Engine`]).
+//! The end of the data flow, what a renderer needs: the layouts of the RGBA texels that
+//! [`Cascade::pack_texels`] and [`OceanState::pack_texels`] interleave a cascade's buffers into
+//! (f32, and f16 with the `half` feature), the [`Vertex`] of a cascade mesh with its triangle
+//! indices, the green channel of tangent-space normal maps ([`NormalMapGreen`]), and each engine's
+//! axes and units ([`Engine`]).
 //!
 //! Everything here writes into caller-owned buffers of N² elements in the grids' order
 //! (texel, vertex or pixel (i, j) at index `j * N + i`, z the row), row blocks in parallel on

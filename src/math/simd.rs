@@ -21,7 +21,7 @@
 //! Where the queries do fuse (their spline sums), they say so: [`Simd::mul_add`] in the
 //! single queries and the lanes' `add_product` in the batches give IEEE 754's fused result
 //! at every level ([`baseline_mul_add`] where the CPU has no FMA instruction).
-//! `tests` in src/cascade/mod.rs compare every output bit of every level the machine has.
+//! `tests` in src/cascade/tests.rs compare every output bit of every level the machine has.
 
 use crate::math::determinism::Determinism;
 

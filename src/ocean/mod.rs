@@ -1,5 +1,7 @@
-//! What a game holds: several cascades of one spectrum on disjoint wave-number bands, the
-//! time, and the foam.
+//! The hub at the end of the data flow, what a game holds ([`OceanState`]): several cascades of
+//! one spectrum on disjoint wave-number bands, the time, and the foam, stepped together and
+//! queried through the world queries; its config, its fit to a sea, its changes of weather and
+//! its snapshots.
 
 mod config;
 mod fit;
@@ -43,7 +45,7 @@ pub struct OceanState {
     pub(crate) foam: Foam,
     /// What the world queries read about the current frame (the cubic B-spline
     /// coefficients, computed tile by tile by the queries that read them), and the frame
-    /// before it while a [`Surface`] handle may hold it.
+    /// before it while a [`Surface`](crate::Surface) handle may hold it.
     pub(crate) frames: Frames,
     pub(crate) time: f64,
     /// The choppiness the cascades' buffers were last computed with (a new choppiness takes

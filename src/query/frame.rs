@@ -1,6 +1,6 @@
-//! What the world queries read about one frame (the spline coefficients, computed tile by
-//! tile on first use, and, once a [`Surface`](super::surface::Surface) handle was taken, copies of the fields), and
-//! the double buffer of frames that lets handles keep answering about time t while the
+//! What the world queries read about one frame (the spline coefficients, computed tile by tile on
+//! first use, and, once a [`Surface`](super::surface::Surface) handle was taken, copies of the
+//! fields), and the double buffer of frames that lets handles keep answering about time t while the
 //! ocean steps on.
 
 use std::sync::Arc;
@@ -24,7 +24,8 @@ pub(crate) struct Grid {
     pub(crate) per_metre: f32,
     /// Spline coefficients (none with bilinear queries).
     pub(crate) tiles: Option<Tiles>,
-    /// Copies of the cascade's buffers for [`Surface`](super::surface::Surface) handles (empty until one is taken).
+    /// Copies of the cascade's buffers for [`Surface`](super::surface::Surface) handles (empty
+    /// until one is taken).
     height: Vec<f32>,
     displacement: Vec<[f32; 2]>,
     slope: Vec<[f32; 2]>,
@@ -41,7 +42,8 @@ pub(crate) struct Frame {
     pub(crate) grids: Vec<Grid>,
     /// Whether the copies (the grids' and the foam's) hold this frame's fields.
     pub(super) detached: bool,
-    /// Copy of the ocean's foam field for [`Surface`](super::surface::Surface) handles: its grid and side (metres).
+    /// Copy of the ocean's foam field for [`Surface`](super::surface::Surface) handles: its grid
+    /// and side (metres).
     foam: Vec<f32>,
     foam_n: usize,
     foam_length: f32,
@@ -193,8 +195,8 @@ pub(super) fn cell_in(grid: &Grid, x: f64, z: f64) -> (usize, f32, usize, f32) {
     cell_on(x, z, &grid.period)
 }
 
-/// The frames of an ocean: the current one, and the one before it while a [`Surface`](super::surface::Surface)
-/// handle may still read it.
+/// The frames of an ocean: the current one, and the one before it while a
+/// [`Surface`](super::surface::Surface) handle may still read it.
 #[derive(Debug)]
 pub(crate) struct Frames {
     pub(crate) current: Arc<Frame>,

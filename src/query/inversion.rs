@@ -348,8 +348,8 @@ pub(super) fn locate(fields: &Fields<'_>, x: f64, z: f64) -> (Location, [f32; 2]
     (search.best, search.displacement)
 }
 
-/// Points whose queries [`PointQuery::group`](super::point::PointQuery::group) interleaves: enough independent work for the
-/// CPU to overlap one point's memory reads with the others' arithmetic.
+/// Points whose queries [`PointQuery::group`](super::point::PointQuery::group) interleaves: enough
+/// independent work for the CPU to overlap one point's memory reads with the others' arithmetic.
 pub(super) const GROUP: usize = 8;
 
 /// [`locate`] of each of `points` (at most [`GROUP`]) into `searches`, the points' Newton

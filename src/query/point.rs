@@ -20,9 +20,9 @@ pub(crate) fn check_point(x: f64, z: f64) -> Result<(), Error> {
     Ok(())
 }
 
-/// A query at one world point, for [`run`] and [`for_each_point`](super::batch::for_each_point): plain functions of the
-/// fields rather than closures, so that each is compiled at the frame's SIMD level (see
-/// [`Kernel`]).
+/// A query at one world point, for [`run`] and [`for_each_point`](super::batch::for_each_point):
+/// plain functions of the fields rather than closures, so that each is compiled at the frame's SIMD
+/// level (see [`Kernel`]).
 pub(crate) trait PointQuery: Sync {
     type Output: Send;
     fn at(&self, fields: &Fields<'_>, x: f64, z: f64) -> Self::Output;

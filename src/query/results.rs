@@ -23,10 +23,11 @@ pub struct SurfaceSample {
     pub slope: [f32; 2],
     /// Unit normal `[x, y, z]` of the displaced surface (y up), from the summed slope.
     pub normal: [f32; 3],
-    /// Foam coverage in [0, 1]: the ocean's one foam field ([`OceanState::foam`](crate::OceanState::foam), on
-    /// cascade 0's grid) interpolated bilinearly; 0 from a range of cascades without
-    /// cascade 0
-    /// ([`OceanState::sample_cascades`](crate::OceanState::sample_cascades)), as cascade 0's textures carry the foam.
+    /// Foam coverage in [0, 1]: the ocean's one foam field
+    /// ([`OceanState::foam`](crate::OceanState::foam), on cascade 0's grid) interpolated
+    /// bilinearly; 0 from a range of cascades without cascade 0
+    /// ([`OceanState::sample_cascades`](crate::OceanState::sample_cascades)), as cascade 0's
+    /// textures carry the foam.
     pub foam: f32,
 }
 

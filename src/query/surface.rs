@@ -12,9 +12,9 @@ use crate::error::Error;
 use crate::foam::Foam;
 
 /// A handle on the water of one frame: the ocean's fields at the time
-/// [`OceanState::surface`] was called, answering the same world queries as the ocean
-/// ([`Surface::height_at`], [`Surface::heights_at`], …) with the same bits, from any thread
-/// and while the ocean steps on.
+/// [`OceanState::surface`](crate::OceanState::surface) was called, answering the same world queries
+/// as the ocean ([`Surface::height_at`], [`Surface::heights_at`], …) with the same bits, from any
+/// thread and while the ocean steps on.
 ///
 /// `Send + Sync + Clone` (an [`Arc`]: cloning costs an atomic increment). The ocean keeps
 /// two frames: a step writes the one no handle reads and makes it current, so taking a
@@ -53,7 +53,7 @@ impl Surface {
         self.0.time
     }
 
-    /// As [`OceanState::sample`], for this frame.
+    /// As [`OceanState::sample`](crate::OceanState::sample), for this frame.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
@@ -67,7 +67,7 @@ impl Surface {
         ))
     }
 
-    /// As [`OceanState::locate`], for this frame.
+    /// As [`OceanState::locate`](crate::OceanState::locate), for this frame.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
@@ -76,7 +76,7 @@ impl Surface {
         Ok(run(&Fields::Frame(&self.0), Locate, x, z))
     }
 
-    /// As [`OceanState::surface_at`], for this frame.
+    /// As [`OceanState::surface_at`](crate::OceanState::surface_at), for this frame.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
@@ -86,7 +86,7 @@ impl Surface {
     }
 
     /// Water height y in metres at world point (`x`, `z`) after horizontal displacement, as
-    /// [`OceanState::height_at`], for this frame.
+    /// [`OceanState::height_at`](crate::OceanState::height_at), for this frame.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
@@ -95,8 +95,8 @@ impl Surface {
         Ok(run(&Fields::Frame(&self.0), HeightAt, x, z))
     }
 
-    /// As [`OceanState::heights_at`], for this frame: water heights in metres at world
-    /// points (x, z), into `out`.
+    /// As [`OceanState::heights_at`](crate::OceanState::heights_at), for this frame: water heights
+    /// in metres at world points (x, z), into `out`.
     ///
     /// # Errors
     /// [`Error::LengthMismatch`] unless `out` is as long as `points`; [`Error::NonFinite`]
@@ -107,7 +107,7 @@ impl Surface {
         Ok(())
     }
 
-    /// As [`OceanState::surfaces_at`], for this frame.
+    /// As [`OceanState::surfaces_at`](crate::OceanState::surfaces_at), for this frame.
     ///
     /// # Errors
     /// As [`Surface::heights_at`].
@@ -117,7 +117,7 @@ impl Surface {
         Ok(())
     }
 
-    /// As [`OceanState::sample_many`], for this frame.
+    /// As [`OceanState::sample_many`](crate::OceanState::sample_many), for this frame.
     ///
     /// # Errors
     /// As [`Surface::heights_at`].

@@ -1,4 +1,6 @@
-//! The directional wave spectrum: what a [`Cascade`](crate) turns into waves.
+//! The first stage of the data flow: the directional wave spectrum S(k) built from the wind,
+//! fetch and depth, with its dispersion relation ω(k) ([`dispersion`]): what a
+//! [`Cascade`](crate::cascade::Cascade) turns into waves.
 
 mod density;
 pub(crate) mod dispersion;

@@ -175,7 +175,7 @@ fn heights<S: Shuffle>(
 }
 
 /// The fields of cascades `range` at the undisplaced world points `[x, z]` of eight lanes,
-/// summed in order as [`super::inversion`]'s `evaluate` sums them: the displacement with
+/// summed in order as [`inversion`]'s `evaluate` sums them: the displacement with
 /// `DISPLACEMENT`, its Jacobian with `JACOBIAN`, the height with `HEIGHT`, the slope with
 /// `SLOPE`. Every cascade in `range` must have spline tiles.
 #[inline(always)]

@@ -3,11 +3,11 @@
 //! vector operation (written as loops over `[_; 8]`, which the compiler turns into vector
 //! instructions at each SIMD level), and only the tile lookup is done point by point.
 //!
-//! Every lane runs the scalar code's operations in the scalar code's order
-//! ([`super::inversion`] and [`spline`](super::spline): the same wrap and cell, the same weight formulas,
-//! a pair field's taps summed columns first and the taps added (0 + 2) + (1 + 3), the same
-//! Newton step), so each point's result has the bits of its single query. How the lanes take
-//! their points depends on what the query reads (see [`locate`]).
+//! Every lane runs the scalar code's operations in the scalar code's order ([`super::inversion`]
+//! and [`spline`](super::spline): the same wrap and cell, the same weight formulas, a pair field's
+//! taps summed columns first and the taps added (0 + 2) + (1 + 3), the same Newton step), so each
+//! point's result has the bits of its single query. How the lanes take their points depends on what
+//! the query reads (see [`locate`]).
 //!
 //! `shuffle.rs` holds each SIMD level's transposes and products, `evaluate.rs` the fields at
 //! eight points, `search.rs` eight Newton searches, and `schedule.rs` which points the lanes

@@ -98,8 +98,9 @@ impl Guesses {
     }
 }
 
-/// The Newton searches of up to [`LANES`] points, one a lane (see [`super::inversion`]'s
-/// `Search`, whose update each lane runs), and the fields at each one's best iterate.
+/// The Newton searches of up to [`LANES`] points, one a lane (see
+/// [`inversion`](crate::query::inversion)'s `Search`, whose update each lane runs), and the fields
+/// at each one's best iterate.
 pub(super) struct Searches {
     /// The point each lane searches for (an index into the batch), or `None`.
     pub(super) point: [Option<usize>; LANES],

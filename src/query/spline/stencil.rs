@@ -150,7 +150,7 @@ fn pair_rows(tile: &TileData, start: usize, lx: usize, lz: usize) -> [[f32; 8]; 
 /// and the z derivative Σ_t w_x,t Z_t, each added (tap 0 + tap 2) + (tap 1 + tap 3). With
 /// AVX2 the rows are written with pulp's 8-lane operations (the vectoriser, left to itself,
 /// paired the lanes badly); the same operations in the same order as the plain code, so the
-/// same bits, and the batch queries' lanes (`query/lanes.rs`) run them too.
+/// same bits, and the batch queries' lanes (`query/lanes/`) run them too.
 #[inline(always)]
 fn pairs<const GRADIENT: bool>(
     simd: Simd,
