@@ -18,13 +18,14 @@
 //! The hash is [`BitHash`] (FNV-1a over the little-endian bytes of each value's bit pattern),
 //! because std's `DefaultHasher` does not promise the same hashes across releases.
 
-use crate::determinism::Determinism;
+use crate::cascade::Cascade;
 use crate::inspect::BitHash;
-use crate::simd::Simd;
-use crate::{
-    Cascade, DepthFactor, Dispersion, Interpolation, OceanConfig, OceanState, QueryConfig,
-    Spectrum, Spreading,
-};
+use crate::math::determinism::Determinism;
+use crate::math::simd::Simd;
+use crate::ocean::{OceanConfig, OceanState};
+use crate::query::{Interpolation, QueryConfig};
+use crate::spectrum::dispersion::Dispersion;
+use crate::spectrum::{DepthFactor, Spectrum, Spreading};
 
 /// One hash per buffer of a cascade: h0, height, displacement, slope, normal, Jacobian, and
 /// the scalars computed once (expected variance, sub-grid slope variance, mean level).
@@ -303,7 +304,7 @@ fn cross_platform_mode_gives_the_golden_bits_on_every_level_and_thread_count() {
         // with fewer paths than it claims.
         assert_eq!(levels.len(), 3, "levels {levels:?}");
     }
-    let pools = crate::simd::test_pools();
+    let pools = crate::math::simd::test_pools();
     let mut reference: Option<Vec<(String, String, u64)>> = None;
     for &level in &levels {
         for (threads, pool) in &pools {

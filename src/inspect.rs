@@ -31,9 +31,9 @@
 //! ```
 
 pub use crate::cascade::{Field, LoopError};
-pub use crate::dispersion::{SURFACE_TENSION, WATER_DENSITY};
-pub use crate::fft2d::Fft2d;
-pub use crate::ocean::FoamCalibration;
+pub use crate::foam::FoamCalibration;
+pub use crate::math::fft2d::Fft2d;
+pub use crate::spectrum::dispersion::{SURFACE_TENSION, WATER_DENSITY};
 pub use crate::spectrum::SlopeVariance;
 pub use num_complex::Complex32;
 

@@ -163,38 +163,32 @@
 #![warn(clippy::missing_errors_doc)]
 
 mod cascade;
-mod determinism;
-mod dispersion;
-mod engine;
 mod error;
-mod exp;
-mod fft2d;
+mod foam;
 #[cfg(test)]
 mod golden;
 pub mod gpu;
-mod grid;
 pub mod inspect;
+mod math;
 mod ocean;
 mod presets;
-mod rng;
+mod query;
 #[cfg(feature = "serde")]
 mod serde_impls;
-mod simd;
 mod spectrum;
 
 pub use cascade::{Cascade, CascadeConfig};
-pub use determinism::Determinism;
-pub use dispersion::{Dispersion, GRAVITY};
 pub use error::Error;
+pub use foam::{FoamConfig, FoamCoverage};
 /// The `half` crate (with the `half` feature), whose `f16` the `pack_texels_f16` functions
 /// write: `ocean_fft::half::f16` is the version this crate was built with.
 #[cfg(feature = "half")]
 pub use half;
-pub use ocean::{
-    FoamConfig, FoamCoverage, Interpolation, Location, OceanConfig, OceanSnapshot, OceanState,
-    QueryConfig, SeaFit, Surface, SurfaceSample,
-};
+pub use math::determinism::Determinism;
+pub use ocean::{OceanConfig, OceanSnapshot, OceanState, SeaFit};
 pub use presets::SeaState;
+pub use query::{Interpolation, Location, QueryConfig, Surface, SurfaceSample};
+pub use spectrum::dispersion::{Dispersion, GRAVITY};
 pub use spectrum::{DepthFactor, Spectrum, Spreading};
 
 // The Rust blocks of the guide's chapters (docs/guide/) are doc-tests when every optional

@@ -2,9 +2,9 @@
 
 use std::ops::Bound::Included;
 
-use crate::determinism::Determinism;
 use crate::error::{self, Error};
-use crate::grid;
+use crate::math::determinism::Determinism;
+use crate::math::grid;
 
 /// Parameters of one [`Cascade`](crate::Cascade): passive data, validated by [`Cascade::new`](crate::Cascade::new).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,10 +60,7 @@ pub struct CascadeConfig {
     /// Most bytes the cascade may hold; [`Cascade::new`](crate::Cascade::new) refuses a
     /// config whose [`memory_bytes`](Self::memory_bytes) exceed it (default:
     /// [`DEFAULT_MEMORY_LIMIT`](Self::DEFAULT_MEMORY_LIMIT), 4 GiB).
-    #[cfg_attr(
-        feature = "serde",
-        serde(default = "crate::serde_impls::default_memory_limit")
-    )]
+    #[cfg_attr(feature = "serde", serde(default = "default_memory_limit"))]
     pub memory_limit: usize,
     /// How far the same config gives the same bits: [`Determinism::SameMachine`] (the
     /// default, fastest) or [`Determinism::CrossPlatform`] (the same bits on every CPU and
@@ -71,6 +68,12 @@ pub struct CascadeConfig {
     /// Configs saved without it read back with the default.
     #[cfg_attr(feature = "serde", serde(default))]
     pub determinism: Determinism,
+}
+
+/// The value of a missing `memory_limit` (with the `serde` feature).
+#[cfg(feature = "serde")]
+pub(crate) fn default_memory_limit() -> usize {
+    CascadeConfig::DEFAULT_MEMORY_LIMIT
 }
 
 impl Default for CascadeConfig {

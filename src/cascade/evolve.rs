@@ -155,7 +155,7 @@ impl EvolveBuffers {
 /// Fills spectral rows i (`upper`, k_x > 0) and N − i (`lower`, its Hermitian partner), each
 /// four packed transforms of N, from table row i: (i, j) pairs with (N − i, N − j). Blocks
 /// whose bit is set in `zero` (see [`zero_blocks`]) are written as zeros without evolving.
-/// Inlined into its caller's [`Simd::run`](crate::simd::Simd::run), so that its loops are
+/// Inlined into its caller's [`Simd::run`](crate::math::simd::Simd::run), so that its loops are
 /// compiled for the level the cascade runs at.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]

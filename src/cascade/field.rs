@@ -2,8 +2,8 @@
 
 use num_complex::Complex32;
 
-use crate::determinism::{Math, Std};
 use crate::error;
+use crate::math::determinism::{Math, Std};
 
 /// The eight real fields a cascade synthesises, for [`inspect::field`](crate::inspect::field). Each is the inverse
 /// DFT of h̃(k, t) times the multiplier named (k = |k|); the displacement fields are per unit

@@ -8,9 +8,9 @@ use num_complex::Complex32;
 
 use super::tables::Evolution;
 use super::{check_time, row_stride, Cascade, Field, TRANSFORMS};
-use crate::determinism::{with_math, Math};
 use crate::error::{self, Error};
-use crate::fft2d::transpose_into;
+use crate::math::determinism::{with_math, Math};
+use crate::math::fft2d::transpose_into;
 
 impl Cascade {
     /// The evolved spectrum h̃(k, t) = h0(k)e^{−iωt} + conj(h0(−k))e^{iωt} in m, in the grid's

@@ -10,8 +10,8 @@ use rayon::prelude::*;
 use super::tables::{self, check_amplitude, LoopError};
 use super::update::RowPruning;
 use super::{mean_level_per_choppiness, row_stride, Cascade};
-use crate::determinism::{with_math, Math};
 use crate::error::{self, Error};
+use crate::math::determinism::{with_math, Math};
 use crate::spectrum::{SlopeVariance, Spectrum};
 
 /// What one entry of the radial table costs to compute, in wave vectors drawn with it (the

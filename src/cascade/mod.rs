@@ -1,5 +1,7 @@
-//! One N×N patch of ocean: h0(k) made once, h̃(k, t) evolved and turned into eight real
-//! fields by four packed complex inverse FFTs on every [`Cascade::update`].
+//! The second stage of the data flow, from a spectrum to waves: one N×N patch of ocean, h0(k)
+//! made once, h̃(k, t) evolved and turned into eight real fields by four packed complex inverse
+//! FFTs on every [`Cascade::update`]. The foam, the world queries and the GPU upload read those
+//! fields.
 
 mod config;
 mod evolve;
@@ -18,14 +20,16 @@ use std::ops::Bound::Included;
 
 use num_complex::Complex32;
 
-use crate::determinism::{Determinism, Libm, Math, Std};
 use crate::error::{self, Error};
-use crate::fft2d::{RowFft, TILE};
-use crate::grid::{self, wave_index};
-use crate::simd::Simd;
+use crate::math::determinism::{Determinism, Libm, Math, Std};
+use crate::math::fft2d::{RowFft, TILE};
+use crate::math::grid::{self, wave_index};
+use crate::math::simd::Simd;
 use crate::spectrum::{SlopeVariance, Spectrum};
 
 pub(crate) use config::check_band;
+#[cfg(feature = "serde")]
+pub(crate) use config::default_memory_limit;
 
 pub use config::CascadeConfig;
 pub use field::Field;
@@ -89,8 +93,9 @@ pub struct Cascade {
     live_pairs: usize,
     /// Pass-1 buffer, layout `[i][transform][j]` (k_x row, k_z column → after the FFT, z).
     spectral: Vec<Complex32>,
-    /// Pass-2 block buffers, one per pass-2 task, each [`ROWS_PER_TASK`](crate::fft2d::ROWS_PER_TASK) rows of layout
-    /// `[j][transform][i]` (z row, x column) once transformed.
+    /// Pass-2 block buffers, one per pass-2 task, each
+    /// [`ROWS_PER_TASK`](crate::math::fft2d::ROWS_PER_TASK) rows of layout `[j][transform][i]` (z
+    /// row, x column) once transformed.
     blocks: Vec<Complex32>,
     /// FFT scratch, one slot per task of the pass running (the passes run one after the
     /// other and share it).
@@ -115,6 +120,10 @@ impl std::fmt::Debug for Cascade {
             .finish_non_exhaustive()
     }
 }
+
+/// Most cascades an ocean sums ([`OceanConfig::MAX_CASCADES`](crate::OceanConfig::MAX_CASCADES)):
+/// the length of the arrays that hold one entry per cascade.
+pub(crate) const MAX_CASCADES: usize = 8;
 
 /// Number of packed complex transforms per update.
 const TRANSFORMS: usize = 4;

@@ -31,7 +31,7 @@ const OUTPUT_BLOCK: usize = 128;
 
 /// Output buffers of one grid row from its four packed, transformed rows; `offset` (m) is
 /// added to every height (the mean-level correction, see `Cascade::mean_level_offset`).
-/// Inlined into its caller's [`Simd::run`](crate::simd::Simd::run), so that its loops are
+/// Inlined into its caller's [`Simd::run`](crate::math::simd::Simd::run), so that its loops are
 /// compiled for the level the cascade runs at.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]

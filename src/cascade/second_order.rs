@@ -21,10 +21,10 @@ use rayon::prelude::*;
 use super::evolve::{fract_turns, sin_cos_turns};
 use super::tables::EvolutionTable;
 use super::Cascade;
-use crate::determinism::{with_math, Determinism, Math};
 use crate::error::{self, Error};
-use crate::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
-use crate::grid::wave_index;
+use crate::math::determinism::{with_math, Determinism, Math};
+use crate::math::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
+use crate::math::grid::wave_index;
 
 /// Rows of the product grid one parallel task transforms at a time.
 const ROWS: usize = ROWS_PER_TASK;

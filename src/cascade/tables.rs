@@ -7,11 +7,11 @@ use num_complex::Complex32;
 use rayon::prelude::*;
 
 use super::CascadeConfig;
-use crate::determinism::Math;
-use crate::dispersion::Dispersion;
 use crate::error::{self, Error};
-use crate::grid::wave_index;
-use crate::rng;
+use crate::math::determinism::Math;
+use crate::math::grid::wave_index;
+use crate::math::rng;
+use crate::spectrum::dispersion::Dispersion;
 use crate::spectrum::{Radial, Spectrum};
 
 /// Largest accepted bound on the outputs' magnitude (see [`Cascade::new`](crate::Cascade::new)): far enough below

@@ -3,8 +3,8 @@
 
 use super::{Cascade, CascadeConfig};
 use crate::inspect::Field;
-use crate::simd::Simd;
-use crate::{Spectrum, Spreading};
+use crate::math::simd::Simd;
+use crate::spectrum::{Spectrum, Spreading};
 
 /// The bit patterns of every buffer a cascade exposes after updates at `times`.
 fn fingerprint(cascade: &mut Cascade, times: &[f64]) -> Vec<Vec<u32>> {
@@ -103,7 +103,7 @@ fn every_simd_level_and_thread_count_gives_the_same_bits() {
         assert_eq!(levels.len(), expected, "levels {levels:?}");
     }
     println!("SIMD levels: {levels:?}");
-    let pools = crate::simd::test_pools();
+    let pools = crate::math::simd::test_pools();
     let times = [0.0, 7.25, 1000.5];
     for (spectrum, config) in configs() {
         let mut reference = Cascade::new(&spectrum, config).unwrap();

@@ -12,9 +12,9 @@ use super::second_order::{self, SecondOrder};
 use super::tables::EvolutionTable;
 use super::{check_time, row_stride, Cascade, TRANSFORMS};
 use crate::error::Error;
-use crate::fft2d::{transpose_into, ROWS_PER_TASK, TILE};
+use crate::math::fft2d::{transpose_into, ROWS_PER_TASK, TILE};
 #[cfg(test)]
-use crate::simd::Simd;
+use crate::math::simd::Simd;
 
 /// Most parallel tasks of each pass. Every task owns an FFT scratch slot (and in pass 2 a
 /// block buffer of [`ROWS_PER_TASK`] rows, which it works through its z rows with), so this

@@ -3,11 +3,11 @@
 use std::ops::Bound::{Excluded, Included};
 
 use crate::cascade::{check_band, CascadeConfig};
-use crate::determinism::Determinism;
 use crate::error::{self, Error};
-use crate::grid;
-
-use super::foam::FoamConfig;
+use crate::foam::FoamConfig;
+use crate::math::determinism::Determinism;
+use crate::math::grid;
+use crate::query::config::{Interpolation, QueryConfig};
 
 /// Parameters of an [`OceanState`](crate::OceanState): passive data, validated by
 /// [`OceanState::new`](crate::OceanState::new).
@@ -61,7 +61,7 @@ pub struct OceanConfig {
     #[cfg_attr(
         feature = "serde",
         serde(
-            default = "crate::serde_impls::default_band_split",
+            default = "default_band_split",
             serialize_with = "crate::serde_impls::finite::band_split"
         )
     )]
@@ -89,7 +89,7 @@ pub struct OceanConfig {
     /// [`CascadeConfig::DEFAULT_MEMORY_LIMIT`], 4 GiB).
     #[cfg_attr(
         feature = "serde",
-        serde(default = "crate::serde_impls::default_memory_limit")
+        serde(default = "crate::cascade::default_memory_limit")
     )]
     pub memory_limit: usize,
     /// How far the same config gives the same bits, for every cascade, the foam and the
@@ -113,6 +113,12 @@ pub struct OceanConfig {
     pub second_order: bool,
 }
 
+/// The value of a missing `band_split` (with the `serde` feature).
+#[cfg(feature = "serde")]
+fn default_band_split() -> f32 {
+    OceanConfig::DEFAULT_BAND_SPLIT
+}
+
 impl Default for OceanConfig {
     fn default() -> Self {
         OceanConfig {
@@ -134,86 +140,9 @@ impl Default for OceanConfig {
     }
 }
 
-/// How the world queries ([`OceanState::sample`](crate::OceanState::sample) and everything
-/// built on it) interpolate each cascade's grid between its points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-#[non_exhaustive]
-pub enum Interpolation {
-    /// Cubic B-spline through the grid values (Unser, Aldroubi & Eden 1991): exact at the
-    /// grid points, C² between them, and its statistics hardly depend on where a point lies
-    /// in a cell: averaged over positions it keeps 97 % of the variance of a wave with 4
-    /// grid points per wavelength (bilinear keeps 67 %). 16 taps per cascade and field, and
-    /// a prefilter of the height, displacement and slope buffers, computed by the first
-    /// query after each update, so that a step that is never queried does not pay for it
-    /// (its cost is measured in `docs/performance.md`). The default.
-    #[default]
-    CubicBSpline,
-    /// Bilinear between the four surrounding grid points: the cheapest query and no work on
-    /// update, but between grid points it loses variance (a wave with 4 points per
-    /// wavelength keeps (2 + cos(π/2))/3 = 67 % along its axis, averaged over positions), so
-    /// heave and slope statistics depend on the position in a cell.
-    Bilinear,
-}
-
-/// How the world queries interpolate the cascades and find the undisplaced point whose
-/// water lands on a query point (the fixed-point iteration x₀ ← p − D(x₀)).
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct QueryConfig {
-    /// Most fixed-point iterations, 1 to [`MAX_ITERATIONS`](Self::MAX_ITERATIONS)
-    /// (default: `16`).
-    pub max_iterations: usize,
-    /// Stop once the displaced point lands this close to the query point, in metres, > 0
-    /// (default: `1e-4`).
-    #[cfg_attr(
-        feature = "serde",
-        serde(serialize_with = "crate::serde_impls::finite::tolerance")
-    )]
-    pub tolerance: f32,
-    /// How each cascade is interpolated between its grid points (default:
-    /// [`Interpolation::CubicBSpline`]; configs saved without it read back with the
-    /// default).
-    #[cfg_attr(feature = "serde", serde(default))]
-    pub interpolation: Interpolation,
-}
-
-impl Default for QueryConfig {
-    fn default() -> Self {
-        QueryConfig {
-            max_iterations: 16,
-            tolerance: 1e-4,
-            interpolation: Interpolation::default(),
-        }
-    }
-}
-
-impl QueryConfig {
-    /// Largest accepted `max_iterations`.
-    pub const MAX_ITERATIONS: usize = 1000;
-
-    /// Checks both fields.
-    ///
-    /// # Errors
-    /// [`Error::CountOutOfRange`] for `max_iterations`; [`Error::NonFinite`] or
-    /// [`Error::OutOfRange`] unless `tolerance` is finite and > 0.
-    pub fn validate(&self) -> Result<(), Error> {
-        if !(1..=Self::MAX_ITERATIONS).contains(&self.max_iterations) {
-            return Err(Error::CountOutOfRange {
-                name: "query.max_iterations",
-                count: self.max_iterations,
-                min: 1,
-                max: Self::MAX_ITERATIONS,
-            });
-        }
-        error::positive("query.tolerance", self.tolerance)?;
-        Ok(())
-    }
-}
-
 impl OceanConfig {
     /// Most cascades.
-    pub const MAX_CASCADES: usize = 8;
+    pub const MAX_CASCADES: usize = crate::cascade::MAX_CASCADES;
 
     /// Default [`band_split`](Self::band_split).
     pub const DEFAULT_BAND_SPLIT: f32 = 0.5;
@@ -321,9 +250,9 @@ impl OceanConfig {
     /// answer, even one [`validate`](Self::validate) refuses.
     pub fn memory_bytes(&self) -> usize {
         let cascade = crate::cascade::memory_bytes(self.size, self.determinism);
-        let foam = super::foam::memory_bytes(self.size, self.determinism);
+        let foam = crate::foam::memory_bytes(self.size, self.determinism);
         let spline = match self.query.interpolation {
-            Interpolation::CubicBSpline => super::spline::Tiles::memory_bytes(self.size),
+            Interpolation::CubicBSpline => crate::query::spline::Tiles::memory_bytes(self.size),
             Interpolation::Bilinear => 0,
         };
         let second = if self.second_order {

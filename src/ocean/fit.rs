@@ -4,8 +4,9 @@
 
 use std::ops::Bound::Included;
 
-use crate::determinism::{Libm, Math};
+use crate::cascade::CascadeConfig;
 use crate::error::{self, Error};
+use crate::math::determinism::{Libm, Math};
 use crate::spectrum::Spectrum;
 
 use super::{OceanConfig, OceanState};
@@ -123,8 +124,8 @@ impl OceanConfig {
     /// # Errors
     /// Those of [`OceanConfig::validate`] for the other fields; [`Error::SeaDoesNotFit`]
     /// naming `spectrum` if no such lengths within
-    /// [`CascadeConfig::MIN_LENGTH`](crate::CascadeConfig::MIN_LENGTH) ..
-    /// [`CascadeConfig::MAX_LENGTH`](crate::CascadeConfig::MAX_LENGTH) hold the share at
+    /// [`CascadeConfig::MIN_LENGTH`](CascadeConfig::MIN_LENGTH) ..
+    /// [`CascadeConfig::MAX_LENGTH`](CascadeConfig::MAX_LENGTH) hold the share at
     /// this size.
     pub fn with_fitted_lengths(self, spectrum: &Spectrum) -> Result<OceanConfig, Error> {
         // Libm: the same lengths on every machine, for `Determinism::CrossPlatform`.
@@ -143,11 +144,11 @@ impl OceanConfig {
                 return Ok(config);
             }
             last = Some(fit);
-            let max = f64::from(crate::CascadeConfig::MAX_LENGTH);
+            let max = f64::from(CascadeConfig::MAX_LENGTH);
             if fit.too_long >= fit.too_short && largest < max {
                 largest = (largest * 1.25).min(max);
             } else if count < Self::MAX_CASCADES
-                && config.lengths[count - 1] * 0.23 >= crate::CascadeConfig::MIN_LENGTH
+                && config.lengths[count - 1] * 0.23 >= CascadeConfig::MIN_LENGTH
             {
                 count += 1;
             } else {
@@ -163,8 +164,8 @@ impl OceanConfig {
 /// default's 1 : 0.23 : 0.051), each to three significant digits.
 fn fitted_lengths(largest: f64, count: usize) -> Vec<f32> {
     let largest = largest.clamp(
-        f64::from(crate::CascadeConfig::MIN_LENGTH),
-        f64::from(crate::CascadeConfig::MAX_LENGTH),
+        f64::from(CascadeConfig::MIN_LENGTH),
+        f64::from(CascadeConfig::MAX_LENGTH),
     );
     let ratios = [1.0, 0.23, 0.051];
     let mut lengths: Vec<f32> = (0..count)

@@ -4,12 +4,12 @@
 use std::ops::Bound::Included;
 
 use crate::cascade::Cascade;
-use crate::determinism::with_math;
 use crate::error::{self, Error};
+use crate::math::determinism::with_math;
 use crate::spectrum::Spectrum;
 
-use super::foam::FoamConfig;
 use super::OceanState;
+use crate::foam::FoamConfig;
 
 /// Wave vectors of the band whose new amplitudes one piece of a change's preparation draws:
 /// a fixed amount (so that the pieces are the same on every machine), about a third of a

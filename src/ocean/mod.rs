@@ -1,25 +1,24 @@
-//! What a game holds: several cascades of one spectrum on disjoint wave-number bands, the
-//! time, and the foam.
+//! The hub at the end of the data flow, what a game holds ([`OceanState`]): several cascades of
+//! one spectrum on disjoint wave-number bands, the time, and the foam, stepped together and
+//! queried through the world queries; its config, its fit to a sea, its changes of weather and
+//! its snapshots.
 
 mod config;
 mod fit;
-mod foam;
-mod frame;
+mod foam_api;
 mod live;
-mod query;
+mod query_api;
 mod snapshot;
-mod spline;
 mod time;
 
 use crate::cascade::{Cascade, LoopError};
 use crate::error::{self, Error};
+use crate::foam::Foam;
+use crate::query::frame::{Frame, Frames};
 use crate::spectrum::{SlopeVariance, Spectrum};
 
-pub use config::{Interpolation, OceanConfig, QueryConfig};
+pub use config::OceanConfig;
 pub use fit::SeaFit;
-pub use foam::{FoamCalibration, FoamConfig, FoamCoverage};
-pub use frame::Surface;
-pub use query::{Location, SurfaceSample};
 pub use snapshot::OceanSnapshot;
 
 /// An ocean: cascades of one spectrum over disjoint wave-number bands, the time, and foam.
@@ -43,11 +42,11 @@ pub struct OceanState {
     pub(crate) spectrum: Spectrum,
     pub(crate) config: OceanConfig,
     pub(crate) cascades: Vec<Cascade>,
-    pub(crate) foam: foam::Foam,
+    pub(crate) foam: Foam,
     /// What the world queries read about the current frame (the cubic B-spline
     /// coefficients, computed tile by tile by the queries that read them), and the frame
-    /// before it while a [`Surface`] handle may hold it.
-    pub(crate) frames: frame::Frames,
+    /// before it while a [`Surface`](crate::Surface) handle may hold it.
+    pub(crate) frames: Frames,
     pub(crate) time: f64,
     /// The choppiness the cascades' buffers were last computed with (a new choppiness takes
     /// effect at the next update).
@@ -91,8 +90,9 @@ impl OceanState {
                 first.enable_second_order()?;
             }
         }
-        let foam = foam::Foam::new(&mut cascades, &config.foam, &spectrum)?;
-        let frames = frame::Frames::new(frame::Frame::new(&config, &cascades, &foam, 0.0)?);
+        let foam = Foam::new(&mut cascades, &config.foam, &spectrum)?;
+        let frame = Frame::new(config.query, config.determinism, &cascades, &foam, 0.0)?;
+        let frames = Frames::new(frame);
         Ok(OceanState {
             spectrum,
             applied_choppiness: config.choppiness,

@@ -5,9 +5,9 @@ use super::omega;
 use super::spreading::Shape;
 use super::spreading::SpreadingParams;
 use super::{wrap_angle, DepthFactor, Model, Spectrum};
-use crate::determinism::{Math, Std};
-use crate::dispersion::Dispersion;
 use crate::error::saturate;
+use crate::math::determinism::{Math, Std};
+use crate::spectrum::dispersion::Dispersion;
 
 impl Spectrum {
     /// Non-directional spectrum S(ω) in m²·s/rad at angular frequency `omega` in rad/s,

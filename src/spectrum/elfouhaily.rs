@@ -26,7 +26,7 @@
 //! the peak (without it k⁻³ B_h ∝ k^−2.5 would not be integrable at k → 0).
 
 use super::omega::G;
-use crate::determinism::Math;
+use crate::math::determinism::Math;
 
 /// Wave number of the gravity–capillary phase-speed minimum, rad/m.
 pub(crate) const K_M: f64 = 370.0;
@@ -132,7 +132,7 @@ pub(crate) fn delta<M: Math>(k: f64, k_p: f64, wind_speed: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::determinism::Std;
+    use crate::math::determinism::Std;
 
     #[test]
     fn wave_number_inverts_the_dispersion() {

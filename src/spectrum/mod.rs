@@ -1,8 +1,13 @@
-//! The directional wave spectrum: what a [`Cascade`](crate) turns into waves.
+//! The first stage of the data flow: the directional wave spectrum S(k) built from the wind,
+//! fetch and depth, with its dispersion relation ω(k) ([`dispersion`]): what a
+//! [`Cascade`](crate::cascade::Cascade) turns into waves.
 
 mod density;
+pub(crate) mod dispersion;
 mod elfouhaily;
 mod omega;
+#[cfg(feature = "serde")]
+mod serde_data;
 mod setters;
 mod slope;
 mod spreading;
@@ -11,9 +16,9 @@ mod variance;
 use std::f64::consts::PI;
 use std::ops::Bound::{Excluded, Included};
 
-use crate::determinism::{Libm, Math, Std};
-use crate::dispersion::Dispersion;
 use crate::error::{self, Error};
+use crate::math::determinism::{Libm, Math, Std};
+use crate::spectrum::dispersion::Dispersion;
 
 pub use slope::SlopeVariance;
 pub use spreading::Spreading;
@@ -84,8 +89,8 @@ pub(crate) enum Model {
 #[cfg_attr(
     feature = "serde",
     serde(
-        try_from = "crate::serde_impls::SpectrumData",
-        into = "crate::serde_impls::SpectrumData"
+        try_from = "crate::spectrum::serde_data::SpectrumData",
+        into = "crate::spectrum::serde_data::SpectrumData"
     )
 )]
 pub struct Spectrum {

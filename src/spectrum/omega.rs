@@ -3,11 +3,11 @@
 //! Every function here is pure, takes SI units and returns 0 where its formula is undefined
 //! (ω ≤ 0), so callers never see NaN.
 
-use crate::determinism::Math;
-use crate::dispersion::Dispersion;
+use crate::math::determinism::Math;
+use crate::spectrum::dispersion::Dispersion;
 
 /// g in f64, m/s².
-pub(crate) const G: f64 = crate::dispersion::GRAVITY as f64;
+pub(crate) const G: f64 = crate::spectrum::dispersion::GRAVITY as f64;
 
 /// Phillips constant of the Pierson–Moskowitz spectrum (Pierson & Moskowitz 1964).
 pub(crate) const PIERSON_MOSKOWITZ_ALPHA: f64 = 0.0081;
@@ -135,7 +135,7 @@ pub(crate) fn phillips_omni<M: Math>(k: f64, amplitude: f64, wind_length: f64) -
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::determinism::Std;
+    use crate::math::determinism::Std;
 
     #[test]
     fn jonswap_is_zero_and_finite_at_the_ends() {

@@ -2,8 +2,8 @@
 //! stays valid from construction on.
 
 use super::{wrap_angle, DepthFactor, Model, Spectrum, Spreading};
-use crate::dispersion::Dispersion;
 use crate::error::{self, Error};
+use crate::spectrum::dispersion::Dispersion;
 
 impl Spectrum {
     /// Sets the JONSWAP peak enhancement γ (dimensionless, > 0; 1 gives Pierson–Moskowitz).

@@ -2,8 +2,8 @@
 //! wind, by quadrature.
 
 use super::Spectrum;
-use crate::determinism::{Math, Std};
 use crate::error::saturate;
+use crate::math::determinism::{Math, Std};
 
 /// Variance of the surface slope along and across the wind, dimensionless: ⟨(∂η/∂x')²⟩ and
 /// ⟨(∂η/∂z')²⟩ in a frame whose x' axis points where the wind blows. Their sum is the

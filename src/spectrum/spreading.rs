@@ -3,8 +3,10 @@
 use std::f64::consts::{LN_2, PI};
 use std::ops::Bound::{Excluded, Included};
 
-use crate::determinism::Math;
 use crate::error::{self, Error};
+use crate::math::determinism::Math;
+#[cfg(feature = "serde")]
+use crate::serde_impls::Float;
 
 use super::elfouhaily;
 use super::omega::G;
@@ -21,8 +23,8 @@ use super::omega::G;
 #[cfg_attr(
     feature = "serde",
     serde(
-        try_from = "crate::serde_impls::SpreadingData",
-        into = "crate::serde_impls::SpreadingData"
+        try_from = "crate::spectrum::spreading::SpreadingData",
+        into = "crate::spectrum::spreading::SpreadingData"
     )
 )]
 #[non_exhaustive]
@@ -405,12 +407,68 @@ pub(crate) fn ln_gamma<M: Math>(x: f64) -> f64 {
     0.5 * M::ln(2.0 * PI) + (x + 0.5) * M::ln(t) - t + M::ln(sum)
 }
 
+/// The serialised form of [`Spreading`], checked by `TryFrom` on the way in.
+#[cfg(feature = "serde")]
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(rename = "Spreading")]
+pub(crate) enum SpreadingData {
+    Mitsuyasu,
+    Hasselmann,
+    Cos2s { s: Float },
+    DonelanBanner,
+    Flat,
+    Cos2,
+    Cosine { exponent: Float, upwind: Float },
+    Elfouhaily,
+}
+
+#[cfg(feature = "serde")]
+impl From<Spreading> for SpreadingData {
+    fn from(spreading: Spreading) -> Self {
+        match spreading {
+            Spreading::Mitsuyasu => SpreadingData::Mitsuyasu,
+            Spreading::Hasselmann => SpreadingData::Hasselmann,
+            Spreading::Cos2s { s } => SpreadingData::Cos2s { s: s.into() },
+            Spreading::DonelanBanner => SpreadingData::DonelanBanner,
+            Spreading::Flat => SpreadingData::Flat,
+            Spreading::Elfouhaily => SpreadingData::Elfouhaily,
+            Spreading::Cos2 => SpreadingData::Cos2,
+            Spreading::Cosine { exponent, upwind } => SpreadingData::Cosine {
+                exponent: exponent.into(),
+                upwind: upwind.into(),
+            },
+        }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl TryFrom<SpreadingData> for Spreading {
+    type Error = Error;
+
+    fn try_from(data: SpreadingData) -> Result<Self, Error> {
+        match data {
+            SpreadingData::Mitsuyasu => Spreading::Mitsuyasu,
+            SpreadingData::Hasselmann => Spreading::Hasselmann,
+            SpreadingData::Cos2s { s } => Spreading::Cos2s { s: s.0 },
+            SpreadingData::DonelanBanner => Spreading::DonelanBanner,
+            SpreadingData::Flat => Spreading::Flat,
+            SpreadingData::Elfouhaily => Spreading::Elfouhaily,
+            SpreadingData::Cos2 => Spreading::Cos2,
+            SpreadingData::Cosine { exponent, upwind } => Spreading::Cosine {
+                exponent: exponent.0,
+                upwind: upwind.0,
+            },
+        }
+        .validate()
+    }
+}
+
 #[cfg(test)]
 // References in the standard library\'s maths: tests are not simulation code.
 #[allow(clippy::disallowed_methods)]
 mod tests {
     use super::*;
-    use crate::determinism::Std;
+    use crate::math::determinism::Std;
 
     #[test]
     fn ln_gamma_matches_factorials_and_half_integers() {

@@ -1,8 +1,8 @@
 //! The variance a [`Spectrum`] carries over a band of wave numbers, and H_s, by quadrature.
 
 use super::Spectrum;
-use crate::determinism::{Math, Std};
 use crate::error::saturate;
+use crate::math::determinism::{Math, Std};
 
 impl Spectrum {
     /// Variance of the surface elevation carried by the wave vectors with
