@@ -23,12 +23,13 @@ mod common;
 
 use std::io::Write;
 
+use clap::Parser;
 use ocean_fft::{OceanConfig, OceanState, Spectrum};
 
 use plotters::prelude::*;
 
 use common::plot::{draw_legend, draw_png, line_swatch, FONT, SERIES};
-use common::{out_dir, Args, Result};
+use common::{out_dir, Result};
 
 const LENGTH: f64 = 4.0;
 const WIDTH: f64 = 2.0;
@@ -43,9 +44,18 @@ struct Frame {
     roll_deg: f32,
 }
 
+/// A 4 m × 2 m box riding the default ocean for 60 s: out/buoyancy.csv and out/buoyancy.png.
+#[derive(Parser)]
+#[command(name = "buoyancy", max_term_width = 100, args_override_self = true)]
+struct Options {
+    /// Write the plot as an indexed PNG of at most 256 colours, as the README's gallery does.
+    #[arg(long)]
+    palette: bool,
+}
+
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
-    let args = Args::parse(&["palette"])?;
+    let options = Options::parse();
     let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
     let hs = spectrum.significant_wave_height();
     let config = OceanConfig {
@@ -102,7 +112,7 @@ fn main() -> Result<()> {
     );
 
     let path = dir.join("buoyancy.png");
-    plot(&path, &frames, hs, args.flag("palette"))?;
+    plot(&path, &frames, hs, options.palette)?;
     println!(
         "wrote {} (top: heave y [m]; bottom: pitch and roll [degrees]; 0 to {DURATION} s)",
         path.display()

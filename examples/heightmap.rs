@@ -24,20 +24,42 @@
 //! points (all cascades summed, via `sample_many`) beside the spectrum's 4√m0 and the
 //! expected 4√(Σ S(k)Δk²) of the grids.
 //!
-//! Options: `--window METRES` (side of the window, default 400), `--pixels N` (default 512).
+//! Options (`--help` lists them): `--window METRES` (side of the window, default 400),
+//! `--pixels N` (16 to 4096, default 512).
 //!
 //! Run with `cargo run --release -p ocean-fft-examples --example heightmap` from the repository
 //! root.
 
 mod common;
 
+use clap::Parser;
 use ocean_fft::{OceanConfig, OceanState, Spectrum, SurfaceSample};
 use plotters::prelude::*;
 
 use common::plot::{draw_on, metres, scale_bar};
-use common::{
-    out_dir, sample_window, save_gray16, save_gray8, save_rgb8, to_u16, to_u8, Args, Result,
-};
+use common::{out_dir, sample_window, save_gray16, save_gray8, save_rgb8, to_u16, to_u8, Result};
+
+/// The default ocean's height, normal and foam maps, written to out/.
+#[derive(Parser)]
+#[command(name = "heightmap", max_term_width = 100, args_override_self = true)]
+struct Options {
+    /// Side of the square world-space window in metres (above 0).
+    #[arg(
+        long,
+        value_name = "METRES",
+        default_value_t = 400.0,
+        value_parser = common::positive::<f64>
+    )]
+    window: f64,
+    /// Side of the maps in pixels, 16 to 4096.
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 512,
+        value_parser = common::within(16usize, 4096)
+    )]
+    pixels: usize,
+}
 
 /// Samples per pixel along each axis (averaged).
 const SUPER: usize = 3;
@@ -46,14 +68,7 @@ const FOOTER: usize = 32;
 
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
-    let args = Args::parse(&["window", "pixels"])?;
-    let window: f64 = args.get("window", 400.0)?;
-    let pixels: usize = args.get("pixels", 512)?;
-    if !(window > 0.0 && window.is_finite() && (16..=4096).contains(&pixels)) {
-        return Err(
-            "--window must be a positive length in metres, --pixels from 16 to 4096".into(),
-        );
-    }
+    let Options { window, pixels } = Options::parse();
     let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
     let hs_spectrum = spectrum.significant_wave_height();
     let mut ocean = OceanState::new(spectrum, OceanConfig::default())?;

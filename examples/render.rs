@@ -6,7 +6,7 @@
 //! cargo run --release -p ocean-fft-examples --example render -- --preset calm --camera 0,3,0 --heading 20 --pitch -8
 //! ```
 //!
-//! Options (all optional):
+//! Options (all optional; `--help` lists them):
 //!
 //! - `--preset NAME`: `default` (`Spectrum::jonswap(10.0, 100_000.0)` with
 //!   `OceanConfig::default()`) or a `SeaState` name: `calm`, `moderate_breeze`,
@@ -58,11 +58,12 @@
 
 mod common;
 
+use clap::Parser;
 use glam::Vec3;
 use ocean_fft::{OceanConfig, OceanState, SeaState, Spectrum, SurfaceSample};
 use rayon::prelude::*;
 
-use common::{out_dir, save_indexed, save_rgb8, Args, Result};
+use common::{out_dir, save_indexed, save_rgb8, Result};
 
 /// Rays that have not hit the water this far out (m) end in the haze.
 const FAR: f32 = 8000.0;
@@ -224,13 +225,100 @@ impl Scene {
     }
 }
 
+/// The names `--preset` takes: `default` and the `SeaState` names.
+fn preset_names() -> Vec<&'static str> {
+    let mut names = vec!["default"];
+    names.extend(SeaState::ALL.iter().map(|s| s.name()));
+    names
+}
+
+/// A ray-marched picture of the displaced ocean surface to the horizon: out/render.png.
+#[derive(Parser)]
+#[command(
+    name = "render",
+    max_term_width = 100,
+    args_override_self = true,
+    allow_negative_numbers = true
+)]
+struct Options {
+    /// Sea state: `default` is JONSWAP at U10 = 10 m/s over a 100 km fetch.
+    #[arg(
+        long,
+        value_name = "NAME",
+        default_value = "default",
+        value_parser = clap::builder::PossibleValuesParser::new(preset_names())
+    )]
+    preset: String,
+    /// The eye in metres, y up [default: 0, 2 m + 1.5 Hs (at most 10 m), 0; storm: x 150, z -400].
+    #[arg(
+        long,
+        value_name = "X,Y,Z",
+        allow_hyphen_values = true,
+        value_parser = common::numbers::<3>
+    )]
+    camera: Option<[f32; 3]>,
+    /// View direction in degrees from the wind direction (+x) toward +z [default: 20; storm 165].
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_hyphen_values = true,
+        value_parser = common::finite::<f32>
+    )]
+    heading: Option<f32>,
+    /// Pitch in degrees, up (+) or down (-) from the horizontal [default: -3.5; storm -3].
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_hyphen_values = true,
+        value_parser = common::finite::<f32>
+    )]
+    pitch: Option<f32>,
+    /// Horizontal field of view in degrees, 1 to 170 [default: 70; storm 55].
+    #[arg(long, value_name = "DEG", value_parser = common::within(1.0f32, 170.0))]
+    fov: Option<f32>,
+    /// Width of the picture in pixels, 1 to 8192.
+    #[arg(
+        long,
+        value_name = "PIXELS",
+        default_value_t = 960,
+        value_parser = common::within(1usize, 8192)
+    )]
+    width: usize,
+    /// Height of the picture in pixels, 1 to 8192.
+    #[arg(
+        long,
+        value_name = "PIXELS",
+        default_value_t = 540,
+        value_parser = common::within(1usize, 8192)
+    )]
+    height: usize,
+    /// Rays per pixel along each axis (N × N a pixel), 1 to 8.
+    #[arg(long, value_name = "N", default_value_t = 2, value_parser = common::within(1usize, 8))]
+    samples: usize,
+    /// Time of the sea in seconds (stepped over the 4 s before it so that foam builds up).
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        default_value_t = 30.0,
+        allow_hyphen_values = true,
+        value_parser = common::finite::<f64>
+    )]
+    time: f64,
+    /// Exposure before the tone curve (a factor above 0).
+    #[arg(long, value_name = "X", default_value_t = 0.8, value_parser = common::positive::<f32>)]
+    exposure: f32,
+    /// The picture's file [default: out/render.png].
+    #[arg(long, value_name = "FILE")]
+    out: Option<std::path::PathBuf>,
+    /// Write an indexed PNG of at most 256 colours (median cut), as the README's gallery does.
+    #[arg(long)]
+    palette: bool,
+}
+
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
-    let args = Args::parse(&[
-        "preset", "camera", "heading", "pitch", "fov", "width", "height", "samples", "time",
-        "exposure", "out", "palette",
-    ])?;
-    let preset = args.value("preset").unwrap_or("default").to_string();
+    let options = Options::parse();
+    let preset = options.preset;
     let (spectrum, config, state) = if preset == "default" {
         (
             Spectrum::jonswap(10.0, 100_000.0)?,
@@ -241,13 +329,7 @@ fn main() -> Result<()> {
         let state = SeaState::ALL
             .into_iter()
             .find(|s| s.name() == preset)
-            .ok_or_else(|| {
-                let names: Vec<&str> = SeaState::ALL.iter().map(|s| s.name()).collect();
-                format!(
-                    "--preset: unknown {preset:?} (default, {})",
-                    names.join(", ")
-                )
-            })?;
+            .ok_or_else(|| format!("--preset: unknown {preset:?}"))?;
         let (spectrum, config) = state.build();
         (spectrum, config, Some(state))
     };
@@ -261,27 +343,12 @@ fn main() -> Result<()> {
     let eye_height = (2.0 + 1.5 * hs).min(10.0);
     // The storm's camera stands where its foam field shows a breaking crest and streaks.
     let origin = if storm { [150.0, -400.0] } else { [0.0, 0.0] };
-    let camera: [f32; 3] = args.list("camera", [origin[0], eye_height, origin[1]])?;
-    let heading = args.get::<f32>("heading", default_heading)?.to_radians() + wind_direction;
-    let pitch = args.get::<f32>("pitch", default_pitch)?.to_radians();
-    let fov = args.get::<f32>("fov", if storm { 55.0 } else { 70.0 })?;
-    let width: usize = args.get("width", 960)?;
-    let height: usize = args.get("height", 540)?;
-    let samples: usize = args.get("samples", 2)?;
-    let time: f64 = args.get("time", 30.0)?;
-    let exposure: f32 = args.get("exposure", 0.8)?;
-    if !(1..=8192).contains(&width) || !(1..=8192).contains(&height) {
-        return Err("--width and --height must be from 1 to 8192 pixels".into());
-    }
-    if !(1..=8).contains(&samples) {
-        return Err("--samples must be from 1 to 8 (rays per pixel along each axis)".into());
-    }
-    if !(1.0..=170.0).contains(&fov) {
-        return Err("--fov must be from 1 to 170 degrees".into());
-    }
-    if !(camera.iter().all(|c| c.is_finite()) && exposure > 0.0 && exposure.is_finite()) {
-        return Err("--camera must be finite and --exposure positive".into());
-    }
+    let camera = options.camera.unwrap_or([origin[0], eye_height, origin[1]]);
+    let heading = options.heading.unwrap_or(default_heading).to_radians() + wind_direction;
+    let pitch = options.pitch.unwrap_or(default_pitch).to_radians();
+    let fov = options.fov.unwrap_or(if storm { 55.0 } else { 70.0 });
+    let (width, height, samples) = (options.width, options.height, options.samples);
+    let (time, exposure) = (options.time, options.exposure);
 
     let mut ocean = OceanState::new(spectrum, config)?;
     ocean.set_time((time - 4.0).max(0.0))?;
@@ -392,11 +459,11 @@ fn main() -> Result<()> {
             }
         });
 
-    let path = match args.value("out") {
-        Some(file) => std::path::PathBuf::from(file),
+    let path = match options.out {
+        Some(file) => file,
         None => out_dir("")?.join("render.png"),
     };
-    if args.flag("palette") {
+    if options.palette {
         save_indexed(&path, width, height, &pixels)?;
     } else {
         save_rgb8(&path, width, height, &pixels)?;

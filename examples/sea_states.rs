@@ -31,19 +31,38 @@
 //! each point, `OceanState::foam_at`, interpolated from the largest cascade's grid). Each preset is built at size 256 (its default) and shown at t = 24 s,
 //! its foam pre-rolled over the 15 s before (`OceanState::pre_roll`).
 //!
-//! Options: `--tile PIXELS` (side of each tile, default 240); `--palette`: write an indexed
+//! Options (`--help` lists them): `--tile PIXELS` (side of each tile, 32 to 2048, default
+//! 240); `--palette`: write an indexed
 //! PNG of 256 colours (median cut), about a third of the size, as the README's gallery does.
 //!
 //! Run with `cargo run --release -p ocean-fft-examples --example sea_states`.
 
 mod common;
 
+use clap::Parser;
 use glam::Vec3;
 use ocean_fft::{Error, OceanState, SeaState, SurfaceSample};
 use plotters::prelude::*;
 
 use common::plot::{draw_on, metres, scale_bar, FONT};
-use common::{out_dir, sample_window, save_indexed, save_rgb8, shade, to_srgb, Args, Result};
+use common::{out_dir, sample_window, save_indexed, save_rgb8, shade, to_srgb, Result};
+
+/// Every preset from above, side by side with its H_s, T_p and window, in out/sea_states.png.
+#[derive(Parser)]
+#[command(name = "sea_states", max_term_width = 100, args_override_self = true)]
+struct Options {
+    /// Side of each tile in pixels, 32 to 2048.
+    #[arg(
+        long,
+        value_name = "PIXELS",
+        default_value_t = 240,
+        value_parser = common::within(32usize, 2048)
+    )]
+    tile: usize,
+    /// Write an indexed PNG of at most 256 colours (median cut), as the README's gallery does.
+    #[arg(long)]
+    palette: bool,
+}
 
 /// Samples per pixel along each axis (averaged).
 const SUPER: usize = 2;
@@ -56,11 +75,10 @@ const MAX_FRACTION: f64 = 0.9;
 
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
-    let args = Args::parse(&["tile", "palette"])?;
-    let tile_px: usize = args.get("tile", 240)?;
-    if !(32..=2048).contains(&tile_px) {
-        return Err("--tile must be from 32 to 2048 pixels".into());
-    }
+    let Options {
+        tile: tile_px,
+        palette,
+    } = Options::parse();
     let big = (tile_px as f64 / 12.0).clamp(14.0, 19.0);
     let small = (tile_px as f64 / 15.0).clamp(12.0, 14.0);
     // Three lines of labels above each tile: name, H_s and T_p, window.
@@ -197,7 +215,7 @@ fn main() -> Result<()> {
     })?;
 
     let path = out_dir("")?.join("sea_states.png");
-    if args.flag("palette") {
+    if palette {
         save_indexed(&path, width, height, &sheet)?;
     } else {
         save_rgb8(&path, width, height, &sheet)?;

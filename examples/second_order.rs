@@ -24,19 +24,29 @@ mod common;
 
 use std::f64::consts::TAU;
 
+use clap::Parser;
 use ocean_fft::{OceanConfig, OceanState, Spectrum, Spreading};
 
 use plotters::prelude::*;
 
 use common::plot::{draw_legend, draw_png, line_swatch, FONT, SERIES};
-use common::{out_dir, Args, Result};
+use common::{out_dir, Result};
 
 /// Points along the transect.
 const POINTS: usize = 1600;
 
+/// Second-order waves of a long-crested swell along a transect: out/second_order.png.
+#[derive(Parser)]
+#[command(name = "second_order", max_term_width = 100, args_override_self = true)]
+struct Options {
+    /// Write the plot as an indexed PNG of at most 256 colours, as the README's gallery does.
+    #[arg(long)]
+    palette: bool,
+}
+
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
-    let args = Args::parse(&["palette"])?;
+    let options = Options::parse();
     let peak_omega = (TAU / 10.0) as f32;
     let spectrum = Spectrum::jonswap_from_parameters(0.008, peak_omega, 5.0)?
         .with_spreading(Spreading::Cos2s { s: 60.0 })?;
@@ -85,7 +95,7 @@ fn main() -> Result<()> {
 
     let path = out_dir("")?.join("second_order.png");
     let a = 0.5 * hs;
-    draw_png(&path, 1100, 640, args.flag("palette"), |root| {
+    draw_png(&path, 1100, 640, options.palette, |root| {
         let text = 15.0;
         let root = root.titled(
             &format!(

@@ -9,7 +9,8 @@
 //!   `Spectrum::jonswap(10.0, 100_000.0)` for each spreading function, against the angle θ from
 //!   the wind direction in degrees (each integrates to 1 over the circle).
 //!
-//! Options: `--width PIXELS` and `--height PIXELS` of both plots (default 900 × 560);
+//! Options (`--help` lists them): `--width PIXELS` and `--height PIXELS` of both plots (1 to
+//! 8192, default 900 × 560);
 //! `--palette`: indexed PNGs of 256 colours (smaller, for the README's gallery).
 //!
 //! Run with `cargo run --release -p ocean-fft-examples --example spectrum`.
@@ -18,17 +19,44 @@ mod common;
 
 use std::f32::consts::PI;
 
+use clap::Parser;
 use ocean_fft::{SeaState, Spectrum, Spreading};
 use plotters::prelude::*;
 
 use common::plot::{draw_legend, draw_png, line_swatch, FONT, SERIES};
-use common::{out_dir, Args, Result};
+use common::{out_dir, Result};
+
+/// The presets' frequency spectra and the spreading functions: out/spectrum.png, out/spreading.png.
+#[derive(Parser)]
+#[command(name = "spectrum", max_term_width = 100, args_override_self = true)]
+struct Options {
+    /// Width of both plots in pixels, 1 to 8192.
+    #[arg(
+        long,
+        value_name = "PIXELS",
+        default_value_t = 900,
+        value_parser = common::within(1u32, 8192)
+    )]
+    width: u32,
+    /// Height of both plots in pixels, 1 to 8192.
+    #[arg(
+        long,
+        value_name = "PIXELS",
+        default_value_t = 560,
+        value_parser = common::within(1u32, 8192)
+    )]
+    height: u32,
+    /// Write indexed PNGs of at most 256 colours, as the README's gallery does.
+    #[arg(long)]
+    palette: bool,
+}
 
 fn main() -> Result<()> {
-    let args = Args::parse(&["width", "height", "palette"])?;
-    let palette = args.flag("palette");
-    let width: u32 = args.get("width", 900)?;
-    let height: u32 = args.get("height", 560)?;
+    let Options {
+        width,
+        height,
+        palette,
+    } = Options::parse();
     let dir = out_dir("")?;
     let text = (f64::from(height) / 36.0).clamp(11.0, 18.0);
 

@@ -19,12 +19,13 @@
 
 mod common;
 
+use clap::Parser;
 use glam::Vec3;
 use ocean_fft::{OceanConfig, OceanState, Spectrum};
 use plotters::prelude::*;
 
 use common::plot::{draw_legend, draw_on, draw_png, line_swatch, outlined_text, FONT, SERIES};
-use common::{out_dir, sample_window, save_indexed, save_rgb8, shade, to_srgb, Args, Result};
+use common::{out_dir, sample_window, save_indexed, save_rgb8, shade, to_srgb, Result};
 
 /// Steps of the simulation, s.
 const DT: f64 = 1.0 / 20.0;
@@ -49,9 +50,18 @@ struct Row {
     predicted_active: f64,
 }
 
+/// A calm sea built into a storm and calmed again: out/weather.png and out/weather_strip.png.
+#[derive(Parser)]
+#[command(name = "weather", max_term_width = 100, args_override_self = true)]
+struct Options {
+    /// Write both pictures as indexed PNGs of at most 256 colours, as the README's gallery does.
+    #[arg(long)]
+    palette: bool,
+}
+
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
-    let args = Args::parse(&["palette"])?;
+    let options = Options::parse();
     let calm = Spectrum::jonswap(4.0, 20_000.0)?.with_wind_direction(0.3)?;
     let storm = Spectrum::jonswap(20.0, 300_000.0)?.with_wind_direction(0.3 + 0.52)?;
     let mut ocean = OceanState::new(calm.clone(), OceanConfig::default())?;
@@ -98,11 +108,11 @@ fn main() -> Result<()> {
 
     let dir = out_dir("")?;
     let plot = dir.join("weather.png");
-    draw_png(&plot, 900, 600, args.flag("palette"), |root| {
+    draw_png(&plot, 900, 600, options.palette, |root| {
         draw_series(root, &rows)
     })?;
     let strip = dir.join("weather_strip.png");
-    write_strip(&strip, &frames, args.flag("palette"))?;
+    write_strip(&strip, &frames, options.palette)?;
     println!(
         "wrote {} and {} in {:.1} s",
         plot.display(),

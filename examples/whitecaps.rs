@@ -17,11 +17,12 @@
 
 mod common;
 
+use clap::Parser;
 use ocean_fft::{OceanConfig, OceanState, Spectrum};
 use plotters::prelude::*;
 
 use common::plot::{draw_legend, draw_png, line_swatch, FONT, SERIES};
-use common::{out_dir, Args, Result};
+use common::{out_dir, Result};
 
 const WINDS: [f32; 5] = [5.0, 7.5, 10.0, 15.0, 20.0];
 
@@ -29,9 +30,18 @@ fn monahan(wind: f64) -> f64 {
     3.84e-6 * wind.powf(3.41)
 }
 
+/// Whitecap coverage against wind speed, beside Monahan & O'Muircheartaigh: out/whitecaps.png.
+#[derive(Parser)]
+#[command(name = "whitecaps", max_term_width = 100, args_override_self = true)]
+struct Options {
+    /// Write the plot as an indexed PNG of at most 256 colours, as the README's gallery does.
+    #[arg(long)]
+    palette: bool,
+}
+
 fn main() -> Result<()> {
     let start = std::time::Instant::now();
-    let args = Args::parse(&["palette"])?;
+    let options = Options::parse();
     let dt = 1.0 / 20.0;
     let mut rows = Vec::new();
     println!("spectrum  U10 m/s   W (MO80)   active    ratio  residual   J_b");
@@ -65,7 +75,7 @@ fn main() -> Result<()> {
     }
 
     let path = out_dir("")?.join("whitecaps.png");
-    plot(&path, &rows, args.flag("palette"))?;
+    plot(&path, &rows, options.palette)?;
     println!(
         "wrote {}; done in {:.0} s",
         path.display(),

@@ -20,66 +20,45 @@ use bevy::render::view::screenshot::{save_to_disk, Screenshot, ScreenshotCapture
 use bevy::window::WindowResolution;
 use bevy_ocean_fft::prelude::*;
 use bevy_ocean_fft::UploadTime;
+use clap::Parser;
 
-/// The command line: `--frames N`, `--screenshot FILE`.
-#[derive(Resource, Debug, Clone, Default)]
+/// The sea in Bevy: a fresh breeze, four boats, and a panel that changes the weather.
+#[derive(Parser, Resource, Debug, Clone)]
+#[command(
+    name = "sea",
+    max_term_width = 100,
+    args_override_self = true,
+    allow_negative_numbers = true
+)]
 struct Options {
+    /// Render N frames after the first ocean is built, print their mean times, then exit.
+    #[arg(long, value_name = "N", value_parser = frame_count)]
     frames: Option<u64>,
+    /// With --frames: save the last frame as a PNG first.
+    #[arg(long, value_name = "FILE.png", requires = "frames")]
     screenshot: Option<PathBuf>,
+    /// Anisotropic filtering in samples, 1 to 16 (1 for a software rasteriser).
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 16,
+        value_parser = clap::value_parser!(u16).range(1..=16)
+    )]
     anisotropy: u16,
 }
 
-fn parse() -> Result<Options, String> {
-    let mut options = Options {
-        anisotropy: 16,
-        ..Options::default()
-    };
-    let mut args = std::env::args().skip(1);
-    while let Some(arg) = args.next() {
-        match arg.as_str() {
-            "--frames" => {
-                let value = args.next().ok_or("--frames needs a number")?;
-                let n: u64 = value
-                    .parse()
-                    .map_err(|_| format!("--frames: not a number: {value}"))?;
-                if n == 0 {
-                    return Err("--frames must be at least 1".into());
-                }
-                options.frames = Some(n);
-            }
-            "--screenshot" => {
-                options.screenshot = Some(args.next().ok_or("--screenshot needs a file")?.into());
-            }
-            "--anisotropy" => {
-                let value = args.next().ok_or("--anisotropy needs a number")?;
-                options.anisotropy = value
-                    .parse()
-                    .ok()
-                    .filter(|a| (1..=16).contains(a))
-                    .ok_or(format!("--anisotropy: 1 to 16, not {value}"))?;
-            }
-            "--help" | "-h" => {
-                return Err(
-                    "usage: sea [--frames N] [--screenshot FILE.png] [--anisotropy 1..16]".into(),
-                );
-            }
-            other => return Err(format!("unknown argument: {other} (try --help)")),
-        }
+/// `--frames`: a whole number, at least 1.
+fn frame_count(text: &str) -> Result<u64, String> {
+    match text.parse() {
+        Ok(0) => Err("at least 1 frame".into()),
+        Ok(n) => Ok(n),
+        Err(_) => Err("not a whole number".into()),
     }
-    if options.screenshot.is_some() && options.frames.is_none() {
-        return Err("--screenshot needs --frames N (the frame to capture)".into());
-    }
-    Ok(options)
 }
 
 fn main() -> ExitCode {
-    let options = match parse() {
-        Ok(options) => options,
-        Err(message) => {
-            eprintln!("{message}");
-            return ExitCode::from(2);
-        }
-    };
+    // clap's: the help and exit 0 after --help, its error and exit 2 on a bad command line.
+    let options = Options::parse();
     // guide: app
     let exit = App::new()
         .add_plugins(DefaultPlugins.set(WindowPlugin {
@@ -387,5 +366,65 @@ fn frames(
             stats.wait / k,
         );
         exit.write(AppExit::Success);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::error::ErrorKind;
+    use clap::CommandFactory;
+
+    fn parse(args: &[&str]) -> Result<Options, clap::Error> {
+        Options::try_parse_from(std::iter::once("sea").chain(args.iter().copied()))
+    }
+
+    /// clap's checks of the definition (names, `requires`, defaults); they run where clap is
+    /// compiled with debug assertions (the dev and test profiles; in the headless profile add
+    /// `--config 'profile.headless.package.clap_builder.debug-assertions=true'`).
+    #[test]
+    fn the_definition_is_consistent() {
+        Options::command().debug_assert();
+    }
+
+    #[test]
+    fn defaults_and_flags() {
+        let o = parse(&[]).unwrap();
+        assert_eq!((o.frames, o.screenshot, o.anisotropy), (None, None, 16));
+        // CI's command line.
+        let o = parse(&[
+            "--frames",
+            "30",
+            "--anisotropy",
+            "1",
+            "--screenshot",
+            "out/bevy.png",
+        ])
+        .unwrap();
+        assert_eq!(o.frames, Some(30));
+        assert_eq!(o.screenshot, Some(PathBuf::from("out/bevy.png")));
+        assert_eq!(o.anisotropy, 1);
+        assert_eq!(
+            parse(&["--frames", "2", "--frames", "3"]).unwrap().frames,
+            Some(3)
+        );
+    }
+
+    #[test]
+    fn bad_values_are_errors_naming_the_flag() {
+        for (args, flag) in [
+            (&["--frames", "0"][..], "--frames"),
+            (&["--frames", "-1"], "--frames"),
+            (&["--frames", "x"], "--frames"),
+            (&["--anisotropy", "0"], "--anisotropy"),
+            (&["--anisotropy", "17"], "--anisotropy"),
+            (&["--screenshot", "out.png"], "--frames"),
+            (&["--bogus"], "--bogus"),
+        ] {
+            let text = parse(args).expect_err("a bad command line").to_string();
+            assert!(text.contains(flag), "{args:?}: {text}");
+        }
+        let help = parse(&["--help"]).expect_err("help is not a run");
+        assert_eq!(help.kind(), ErrorKind::DisplayHelp);
     }
 }

@@ -1,5 +1,6 @@
-//! Helpers shared by the examples: PNG writing (8- and 16-bit, gray and RGB), a small RGB
-//! canvas with lines and a 3×5 bitmap font, and the `out/` folder.
+//! Helpers shared by the examples: the value parsers of their command lines, PNG writing (8-
+//! and 16-bit, gray and RGB), a small RGB canvas with lines and a 3×5 bitmap font, and the
+//! `out/` folder.
 //!
 //! Each example includes this with `mod common;`; not every example uses every helper.
 #![allow(dead_code)]
@@ -12,75 +13,81 @@ use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
-/// The command-line options of an example: `--name value` pairs (and bare `--flag`s).
-pub struct Args {
-    pairs: Vec<(String, Option<String>)>,
+// The command lines: each example derives its own `Options` with clap (its flags, their
+// defaults and help); the value parsers below check the values, so that a bad one is clap's
+// error naming the flag.
+
+/// The floating-point types of the examples' flags.
+pub trait Real: std::str::FromStr + PartialOrd + std::fmt::Display + Copy + Send + Sync {
+    const ZERO: Self;
+    fn is_finite(self) -> bool;
 }
 
-impl Args {
-    /// Reads the process's arguments; `allowed` lists the option names the example takes
-    /// (without `--`). An unknown option is an error naming it.
-    pub fn parse(allowed: &[&str]) -> Result<Args> {
-        let mut pairs = Vec::new();
-        let mut args = std::env::args().skip(1).peekable();
-        while let Some(arg) = args.next() {
-            let Some(name) = arg.strip_prefix("--") else {
-                return Err(format!("unexpected argument {arg:?} (options start with --)").into());
-            };
-            if !allowed.contains(&name) {
-                return Err(format!(
-                    "unknown option --{name} (options: --{})",
-                    allowed.join(", --")
-                )
-                .into());
-            }
-            let value = match args.peek() {
-                Some(next) if !next.starts_with("--") => args.next(),
-                _ => None,
-            };
-            pairs.push((name.to_string(), value));
+impl Real for f32 {
+    const ZERO: f32 = 0.0;
+    fn is_finite(self) -> bool {
+        f32::is_finite(self)
+    }
+}
+
+impl Real for f64 {
+    const ZERO: f64 = 0.0;
+    fn is_finite(self) -> bool {
+        f64::is_finite(self)
+    }
+}
+
+/// Value parser: a finite number.
+pub fn finite<T: Real>(text: &str) -> std::result::Result<T, String> {
+    text.trim()
+        .parse()
+        .ok()
+        .filter(|v: &T| v.is_finite())
+        .ok_or_else(|| "not a finite number".to_string())
+}
+
+/// Value parser: a finite number above 0.
+pub fn positive<T: Real>(text: &str) -> std::result::Result<T, String> {
+    let value: T = finite(text)?;
+    if value > T::ZERO {
+        Ok(value)
+    } else {
+        Err(format!("{value} is not positive"))
+    }
+}
+
+/// Value parser: a number from `min` to `max` inclusive (NaN is not).
+pub fn within<T>(
+    min: T,
+    max: T,
+) -> impl Fn(&str) -> std::result::Result<T, String> + Clone + Send + Sync + 'static
+where
+    T: std::str::FromStr + PartialOrd + std::fmt::Display + Copy + Send + Sync + 'static,
+{
+    move |text| {
+        let value: T = text
+            .trim()
+            .parse()
+            .map_err(|_| "not a valid number".to_string())?;
+        if value >= min && value <= max {
+            Ok(value)
+        } else {
+            Err(format!("{value} is out of range [{min}, {max}]"))
         }
-        Ok(Args { pairs })
     }
+}
 
-    /// The value of `--name`, if given.
-    pub fn value(&self, name: &str) -> Option<&str> {
-        self.pairs
-            .iter()
-            .rev()
-            .find(|(n, _)| n == name)
-            .and_then(|(_, v)| v.as_deref())
+/// Value parser: `K` finite numbers separated by commas (`--camera 0,6,0`).
+pub fn numbers<const K: usize>(text: &str) -> std::result::Result<[f32; K], String> {
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() != K {
+        return Err(format!("expected {K} numbers separated by commas"));
     }
-
-    /// Whether `--name` was given.
-    pub fn flag(&self, name: &str) -> bool {
-        self.pairs.iter().any(|(n, _)| n == name)
+    let mut out = [0.0; K];
+    for (o, p) in out.iter_mut().zip(parts) {
+        *o = finite(p).map_err(|e| format!("{:?}: {e}", p.trim()))?;
     }
-
-    /// `--name` parsed as a `T`, or `default`; an unparsable value is an error naming it.
-    pub fn get<T: std::str::FromStr>(&self, name: &str, default: T) -> Result<T> {
-        match self.value(name) {
-            None => Ok(default),
-            Some(text) => text
-                .parse()
-                .map_err(|_| format!("--{name}: cannot read {text:?}").into()),
-        }
-    }
-
-    /// `--name` as a comma-separated list of numbers (e.g. `--camera 0,6,0`), or `default`.
-    pub fn list<const K: usize>(&self, name: &str, default: [f32; K]) -> Result<[f32; K]> {
-        let Some(text) = self.value(name) else {
-            return Ok(default);
-        };
-        let values: Vec<f32> = text
-            .split(',')
-            .map(|v| v.trim().parse::<f32>())
-            .collect::<std::result::Result<_, _>>()
-            .map_err(|_| format!("--{name}: cannot read {text:?} as {K} numbers"))?;
-        <[f32; K]>::try_from(values).map_err(|_| {
-            format!("--{name}: expected {K} comma-separated numbers, got {text:?}").into()
-        })
-    }
+    Ok(out)
 }
 
 /// The error type of the examples' `main`: library errors, I/O and PNG errors alike.
@@ -480,4 +487,25 @@ pub fn sample_window(
         &mut samples,
     )?;
     Ok(samples)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn value_parsers_check_their_rules() {
+        assert_eq!(finite::<f32>(" -8 "), Ok(-8.0));
+        assert!(finite::<f64>("inf").is_err() && finite::<f64>("NaN").is_err());
+        assert!(finite::<f32>("x").is_err());
+        assert_eq!(positive::<f64>("400"), Ok(400.0));
+        assert!(positive::<f64>("0").is_err() && positive::<f32>("-1").is_err());
+        assert!(positive::<f64>("inf").is_err());
+        let pixels = within(16usize, 4096);
+        assert_eq!(pixels("512"), Ok(512));
+        assert!(pixels("15").is_err() && pixels("4097").is_err() && pixels("-1").is_err());
+        assert!(within(1.0f32, 170.0)("NaN").is_err());
+        assert_eq!(numbers::<3>("150, 25,-400"), Ok([150.0, 25.0, -400.0]));
+        assert!(numbers::<3>("0,6").is_err() && numbers::<3>("0,inf,0").is_err());
+    }
 }

@@ -1,45 +1,19 @@
-//! The command line.
+//! The command line, parsed by clap: `Cli` is what the user types, [`Options`] what the
+//! viewer runs with (the preset's sea with its overrides, the light, the defaults that depend
+//! on the sea).
 
+use std::fmt;
+use std::path::PathBuf;
+use std::str::FromStr;
+
+use clap::builder::PossibleValuesParser;
+use clap::error::ErrorKind;
+use clap::{CommandFactory, Parser};
 use glam::Vec3;
 
 use crate::gpu::RenderSettings;
 use crate::light::LightSettings;
 use crate::sea::SeaParams;
-
-const HELP: &str = "\
-ocean-fft-viewer: the ocean in real time (winit + wgpu + egui)
-
-USAGE: ocean-fft-viewer [OPTIONS]
-
-  --preset NAME        default (JONSWAP 10 m/s, 100 km), calm, moderate_breeze, fresh_breeze,
-                       storm, swell, shallow_bay                           [default]
-  --choppiness X       choppiness λ instead of the preset's
-  --foam X             foam coverage multiplier instead of the preset's (1)
-  --frames N           render N frames, then exit (headless runs; a fixed 1/30 s of sea time
-                       a frame) and print `frames N, mean frame … ms, step … ms, upload … ms`
-  --screenshot FILE    with --frames: write the last frame as a PNG
-  --width W --height H window (and screenshot) size in pixels              [1280 720]
-  --camera X,Y,Z       the eye in metres                                   [0, 2 m + 1.5 Hs, 0]
-  --heading DEG        view direction, degrees from +x toward +z           [20]
-  --pitch DEG          up (+) or down (−) from the horizontal              [-6]
-  --fov DEG            vertical field of view                              [50]
-  --sun ELEV,AZIM      sun elevation and azimuth in degrees                [14,30]
-  --overcast X         0 clear … 1 heavy overcast          [0; 0.85 for the storm preset]
-  --exposure X         exposure before the tone curve                      [0.8]
-  --haze M             haze distance of a clear day, m                     [6000]
-  --time T             sea time of the first frame, s                      [60]
-  --pre-roll S         seconds of foam spin-up before it                   [20]
-  --time-scale X       sea seconds per real second                         [1]
-  --tiling X           strength of the tiling breaker, 0 … 1               [1]
-  --msaa N             samples per pixel: 1 or 4      [4; 1 on a software rasteriser]
-  --anisotropy N       anisotropic filtering, 1 … 16 [16; 1 on a software rasteriser]
-  --mesh M             clipmap ring half-width in cells (even, 8 … 256)    [64]
-  --threads N          threads of the simulation's pool                    [2]
-  --no-bodies          no buoys or boats
-  --hide-ui            start without the panels (Tab toggles them)
-  --no-vsync           do not wait for the display's refresh
-  --help               this text
-";
 
 /// Everything the command line sets.
 #[derive(Debug, Clone)]
@@ -58,7 +32,7 @@ pub struct Options {
     pub time: f64,
     pub pre_roll: f64,
     pub time_scale: f32,
-    /// `None`: chosen by the adapter (see [`Options::msaa_for`]).
+    /// `None`: chosen by the adapter (see [`Options::quality_for`]).
     pub msaa: Option<u32>,
     pub anisotropy: Option<u16>,
     pub mesh: u32,
@@ -68,21 +42,156 @@ pub struct Options {
     pub vsync: bool,
 }
 
-fn number<T: std::str::FromStr>(name: &str, value: Option<String>) -> Result<T, String> {
-    let value = value.ok_or_else(|| format!("{name} needs a value"))?;
-    value
-        .trim()
-        .parse()
-        .map_err(|_| format!("{name}: {value:?} is not a valid number"))
+/// ocean-fft-viewer: the ocean in real time (winit + wgpu + egui).
+#[derive(Debug, Parser)]
+#[command(
+    name = "ocean-fft-viewer",
+    after_help = "viewer/README.md lists the mouse and keyboard controls.",
+    max_term_width = 100,
+    args_override_self = true,
+    allow_negative_numbers = true
+)]
+struct Cli {
+    /// Sea state: `default` is JONSWAP at U10 = 10 m/s over a 100 km fetch.
+    #[arg(
+        long,
+        value_name = "NAME",
+        default_value = "default",
+        value_parser = PossibleValuesParser::new(SeaParams::preset_names())
+    )]
+    preset: String,
+    /// Choppiness λ (horizontal displacement scale), 0 to 5 [default: the preset's].
+    #[arg(long, value_name = "X", value_parser = within(0.0f32, 5.0))]
+    choppiness: Option<f32>,
+    /// Foam coverage multiplier, 0 to 100 [default: the preset's, 1].
+    #[arg(long, value_name = "X", value_parser = within(0.0f32, 100.0))]
+    foam: Option<f32>,
+    /// Render N frames (1/30 s of sea time each), print their mean times, then exit.
+    #[arg(long, value_name = "N", value_parser = within(1usize, 1_000_000))]
+    frames: Option<usize>,
+    /// With --frames: write the last frame as a PNG.
+    #[arg(long, value_name = "FILE", requires = "frames")]
+    screenshot: Option<PathBuf>,
+    /// Window (and screenshot) width in pixels, 16 to 8192.
+    #[arg(long, value_name = "W", default_value_t = 1280, value_parser = within(16u32, 8192))]
+    width: u32,
+    /// Window (and screenshot) height in pixels, 16 to 8192.
+    #[arg(long, value_name = "H", default_value_t = 720, value_parser = within(16u32, 8192))]
+    height: u32,
+    /// The eye in metres, y up [default: 0, 2 m + 1.5 Hs (at most 12 m), 0].
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = numbers::<3>)]
+    camera: Option<Numbers<3>>,
+    /// View direction in degrees from +x toward +z, -3600 to 3600.
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = 20.0,
+        allow_hyphen_values = true,
+        value_parser = within(-3600.0f32, 3600.0)
+    )]
+    heading: f32,
+    /// Pitch in degrees, up (+) or down (-) from the horizontal, -89 to 89.
+    #[arg(
+        long,
+        value_name = "DEG",
+        default_value_t = -6.0,
+        allow_hyphen_values = true,
+        value_parser = within(-89.0f32, 89.0)
+    )]
+    pitch: f32,
+    /// Vertical field of view in degrees, 5 to 150.
+    #[arg(long, value_name = "DEG", default_value_t = 50.0, value_parser = within(5.0f32, 150.0))]
+    fov: f32,
+    /// Sun elevation (-10 to 90) and azimuth (from +x toward +z), degrees.
+    #[arg(
+        long,
+        value_name = "ELEV,AZIM",
+        allow_hyphen_values = true,
+        value_parser = sun,
+        default_value_t = default_sun()
+    )]
+    sun: Numbers<2>,
+    /// Overcast, 0 clear to 1 heavy overcast [default: 0; 0.85 for the storm preset].
+    #[arg(long, value_name = "X", value_parser = within(0.0f32, 1.0))]
+    overcast: Option<f32>,
+    /// Exposure before the tone curve (a factor), 0.01 to 100.
+    #[arg(
+        long,
+        value_name = "X",
+        default_value_t = LightSettings::default().exposure,
+        value_parser = within(0.01f32, 100.0)
+    )]
+    exposure: f32,
+    /// Haze distance of a clear day in metres, 10 to 1000000.
+    #[arg(
+        long,
+        value_name = "M",
+        default_value_t = LightSettings::default().haze,
+        value_parser = within(10.0f32, 1e6)
+    )]
+    haze: f32,
+    /// Sea time of the first frame in seconds, 0 to 100000000.
+    #[arg(long, value_name = "T", default_value_t = 60.0, value_parser = within(0.0f64, 1e8))]
+    time: f64,
+    /// Seconds of foam spin-up before the first frame, 0 to 600.
+    #[arg(long, value_name = "S", default_value_t = 20.0, value_parser = within(0.0f64, 600.0))]
+    pre_roll: f64,
+    /// Sea seconds per real second, 0 to 100.
+    #[arg(long, value_name = "X", default_value_t = 1.0, value_parser = within(0.0f32, 100.0))]
+    time_scale: f32,
+    /// Strength of the tiling breaker, 0 (off) to 1.
+    #[arg(
+        long,
+        value_name = "X",
+        default_value_t = RenderSettings::default().tiling,
+        value_parser = within(0.0f32, 1.0)
+    )]
+    tiling: f32,
+    /// Samples per pixel, 1 or 4 [default: 4; 1 on a software rasteriser].
+    #[arg(long, value_name = "N", value_parser = msaa)]
+    msaa: Option<u32>,
+    /// Anisotropic filtering in samples, 1 to 16 [default: 16; 1 on a software rasteriser].
+    #[arg(long, value_name = "N", value_parser = within(1u16, 16))]
+    anisotropy: Option<u16>,
+    /// Clipmap ring half-width in cells, even, 8 to 256.
+    #[arg(long, value_name = "M", default_value_t = 64, value_parser = mesh)]
+    mesh: u32,
+    /// Threads of the simulation's pool, 1 to 64.
+    #[arg(long, value_name = "N", default_value_t = 2, value_parser = within(1usize, 64))]
+    threads: usize,
+    /// No buoys or boats.
+    #[arg(long)]
+    no_bodies: bool,
+    /// Start without the panels (Tab toggles them).
+    #[arg(long)]
+    hide_ui: bool,
+    /// Do not wait for the display's refresh.
+    #[arg(long)]
+    no_vsync: bool,
 }
 
-fn list<const K: usize>(name: &str, value: Option<String>) -> Result<[f32; K], String> {
-    let value = value.ok_or_else(|| format!("{name} needs a value"))?;
-    let parts: Vec<&str> = value.split(',').collect();
+/// `K` numbers separated by commas, each finite (`--camera X,Y,Z`, `--sun ELEV,AZIM`); shown
+/// as it is typed (help's defaults).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Numbers<const K: usize>([f32; K]);
+
+impl<const K: usize> fmt::Display for Numbers<K> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, v) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str(",")?;
+            }
+            write!(f, "{v}")?;
+        }
+        Ok(())
+    }
+}
+
+/// The value parser of [`Numbers`].
+fn numbers<const K: usize>(text: &str) -> Result<Numbers<K>, String> {
+    let parts: Vec<&str> = text.split(',').collect();
     if parts.len() != K {
-        return Err(format!(
-            "{name}: expected {K} numbers separated by commas, got {value:?}"
-        ));
+        return Err(format!("expected {K} numbers separated by commas"));
     }
     let mut out = [0.0; K];
     for (o, p) in out.iter_mut().zip(parts) {
@@ -91,21 +200,62 @@ fn list<const K: usize>(name: &str, value: Option<String>) -> Result<[f32; K], S
             .parse()
             .ok()
             .filter(|v: &f32| v.is_finite())
-            .ok_or_else(|| format!("{name}: {p:?} is not a finite number"))?;
+            .ok_or_else(|| format!("{:?} is not a finite number", p.trim()))?;
     }
-    Ok(out)
+    Ok(Numbers(out))
 }
 
-fn check<T: PartialOrd + std::fmt::Display + Copy>(
-    name: &str,
-    value: T,
-    min: T,
-    max: T,
-) -> Result<T, String> {
+/// `value` if it lies from `min` to `max` inclusive (NaN does not).
+fn in_range<T: PartialOrd + fmt::Display>(value: T, min: T, max: T) -> Result<T, String> {
     if value >= min && value <= max {
         Ok(value)
     } else {
-        Err(format!("{name} = {value} is out of range [{min}, {max}]"))
+        Err(format!("{value} is out of range [{min}, {max}]"))
+    }
+}
+
+/// A value parser of numbers from `min` to `max` inclusive.
+fn within<T>(min: T, max: T) -> impl Fn(&str) -> Result<T, String> + Clone + Send + Sync + 'static
+where
+    T: FromStr + PartialOrd + fmt::Display + Copy + Send + Sync + 'static,
+{
+    move |text| {
+        let value: T = text
+            .trim()
+            .parse()
+            .map_err(|_| "not a valid number".to_string())?;
+        in_range(value, min, max)
+    }
+}
+
+/// `--sun`: the elevation from -10 to 90 degrees, any finite azimuth.
+fn sun(text: &str) -> Result<Numbers<2>, String> {
+    let angles = numbers::<2>(text)?;
+    in_range(angles.0[0], -10.0, 90.0).map_err(|e| format!("the elevation {e}"))?;
+    Ok(angles)
+}
+
+/// `--sun`'s default: the light panel's.
+fn default_sun() -> Numbers<2> {
+    let light = LightSettings::default();
+    Numbers([light.elevation, light.azimuth])
+}
+
+/// `--msaa`: the sample counts the renderer supports.
+fn msaa(text: &str) -> Result<u32, String> {
+    match within(1u32, 4)(text)? {
+        samples @ (1 | 4) => Ok(samples),
+        samples => Err(format!("{samples} samples: 1 or 4")),
+    }
+}
+
+/// `--mesh`: an even half-width from 8 to 256 cells.
+fn mesh(text: &str) -> Result<u32, String> {
+    let cells = within(8u32, 256)(text)?;
+    if cells % 2 == 0 {
+        Ok(cells)
+    } else {
+        Err(format!("{cells} is odd: the half-width must be even"))
     }
 }
 
@@ -121,126 +271,355 @@ impl Options {
         )
     }
 
-    /// Parses the arguments; `None` after printing the help.
-    pub fn parse(args: impl Iterator<Item = String>) -> Result<Option<Options>, String> {
-        let mut args = args.peekable();
-        let mut preset = "default".to_string();
-        let (mut choppiness, mut foam) = (None, None);
-        let mut frames = None;
-        let mut screenshot = None;
-        let (mut width, mut height) = (1280u32, 720u32);
-        let mut camera = None;
-        let (mut heading, mut pitch, mut fov) = (20.0f32, -6.0f32, 50.0f32);
-        let mut light = LightSettings::default();
-        let mut overcast = None;
-        let mut render = RenderSettings::default();
-        let (mut time, mut pre_roll, mut time_scale) = (60.0f64, 20.0f64, 1.0f32);
-        let (mut msaa, mut anisotropy, mut mesh, mut threads) = (None, None, 64u32, 2usize);
-        let (mut bodies, mut hide_ui, mut vsync) = (true, false, true);
-        while let Some(arg) = args.next() {
-            let name = arg.as_str();
-            match name {
-                "--help" | "-h" => {
-                    print!("{HELP}");
-                    return Ok(None);
-                }
-                "--preset" => preset = args.next().ok_or("--preset needs a name")?,
-                "--choppiness" => {
-                    choppiness = Some(check(name, number(name, args.next())?, 0.0, 5.0)?)
-                }
-                "--foam" => foam = Some(check(name, number(name, args.next())?, 0.0, 100.0)?),
-                "--frames" => {
-                    frames = Some(check(
-                        name,
-                        number::<usize>(name, args.next())?,
-                        1,
-                        1_000_000,
-                    )?)
-                }
-                "--screenshot" => {
-                    screenshot = Some(args.next().ok_or("--screenshot needs a file")?.into())
-                }
-                "--width" => width = check(name, number(name, args.next())?, 16, 8192)?,
-                "--height" => height = check(name, number(name, args.next())?, 16, 8192)?,
-                "--camera" => camera = Some(Vec3::from_array(list::<3>(name, args.next())?)),
-                "--heading" => heading = check(name, number(name, args.next())?, -3600.0, 3600.0)?,
-                "--pitch" => pitch = check(name, number(name, args.next())?, -89.0, 89.0)?,
-                "--fov" => fov = check(name, number(name, args.next())?, 5.0, 150.0)?,
-                "--sun" => {
-                    let [e, a] = list::<2>(name, args.next())?;
-                    light.elevation = check("--sun elevation", e, -10.0, 90.0)?;
-                    light.azimuth = a;
-                }
-                "--overcast" => overcast = Some(check(name, number(name, args.next())?, 0.0, 1.0)?),
-                "--exposure" => {
-                    light.exposure = check(name, number(name, args.next())?, 0.01, 100.0)?
-                }
-                "--haze" => light.haze = check(name, number(name, args.next())?, 10.0, 1e6)?,
-                "--time" => time = check(name, number(name, args.next())?, 0.0, 1e8)?,
-                "--pre-roll" => pre_roll = check(name, number(name, args.next())?, 0.0, 600.0)?,
-                "--time-scale" => time_scale = check(name, number(name, args.next())?, 0.0, 100.0)?,
-                "--tiling" => render.tiling = check(name, number(name, args.next())?, 0.0, 1.0)?,
-                "--msaa" => {
-                    let samples: u32 = number(name, args.next())?;
-                    if samples != 1 && samples != 4 {
-                        return Err(format!("--msaa = {samples}: 1 or 4"));
-                    }
-                    msaa = Some(samples);
-                }
-                "--anisotropy" => {
-                    anisotropy = Some(check(name, number(name, args.next())?, 1, 16)?)
-                }
-                "--mesh" => {
-                    mesh = check(name, number(name, args.next())?, 8, 256)?;
-                    if mesh % 2 != 0 {
-                        return Err(format!("--mesh = {mesh} must be even"));
-                    }
-                }
-                "--threads" => threads = check(name, number(name, args.next())?, 1, 64)?,
-                "--no-bodies" => bodies = false,
-                "--hide-ui" => hide_ui = true,
-                "--no-vsync" => vsync = false,
-                other => return Err(format!("unknown option {other:?}")),
-            }
-        }
-        if screenshot.is_some() && frames.is_none() {
-            return Err("--screenshot needs --frames N".into());
-        }
-        let mut sea = SeaParams::preset(&preset).ok_or_else(|| {
-            format!(
-                "--preset: unknown {preset:?} ({})",
-                SeaParams::preset_names().join(", ")
+    /// The options of the process's arguments. After `--help` it prints the help and exits
+    /// with code 0; on a bad command line it prints clap's error (which names the flag) and
+    /// exits with code 2.
+    pub fn parse() -> Options {
+        Options::try_parse_from(std::env::args_os()).unwrap_or_else(|e| e.exit())
+    }
+
+    /// The options of `args` (the program's name first), or clap's error: a bad command line,
+    /// or `--help` (`ErrorKind::DisplayHelp`, whose `exit` prints the help).
+    pub fn try_parse_from<I, T>(args: I) -> Result<Options, clap::Error>
+    where
+        I: IntoIterator<Item = T>,
+        T: Into<std::ffi::OsString> + Clone,
+    {
+        Options::from_cli(Cli::try_parse_from(args)?)
+    }
+
+    fn from_cli(cli: Cli) -> Result<Options, clap::Error> {
+        // The value parser admits only these names.
+        let mut sea = SeaParams::preset(&cli.preset).ok_or_else(|| {
+            Cli::command().error(
+                ErrorKind::InvalidValue,
+                format!("--preset: unknown {:?}", cli.preset),
             )
         })?;
-        sea.choppiness = choppiness.unwrap_or(sea.choppiness);
-        sea.foam_coverage = foam.unwrap_or(sea.foam_coverage);
-        light.overcast = overcast.unwrap_or(if preset == "storm" { 0.85 } else { 0.0 });
+        sea.choppiness = cli.choppiness.unwrap_or(sea.choppiness);
+        sea.foam_coverage = cli.foam.unwrap_or(sea.foam_coverage);
         let hs = sea
             .spectrum()
-            .map_err(|e| e.to_string())?
+            .map_err(|e| Cli::command().error(ErrorKind::ValueValidation, e))?
             .significant_wave_height();
-        Ok(Some(Options {
+        let [elevation, azimuth] = cli.sun.0;
+        let light = LightSettings {
+            elevation,
+            azimuth,
+            overcast: cli
+                .overcast
+                .unwrap_or(if cli.preset == "storm" { 0.85 } else { 0.0 }),
+            exposure: cli.exposure,
+            haze: cli.haze,
+        };
+        Ok(Options {
             sea,
-            frames,
-            screenshot,
-            width,
-            height,
-            camera: camera.unwrap_or_else(|| crate::default_eye(hs)),
-            heading,
-            pitch,
-            fov,
+            frames: cli.frames,
+            screenshot: cli.screenshot,
+            width: cli.width,
+            height: cli.height,
+            camera: cli
+                .camera
+                .map(|c| Vec3::from_array(c.0))
+                .unwrap_or_else(|| crate::default_eye(hs)),
+            heading: cli.heading,
+            pitch: cli.pitch,
+            fov: cli.fov,
             light,
-            render,
-            time,
-            pre_roll,
-            time_scale,
-            msaa,
-            anisotropy,
-            mesh,
-            threads,
-            bodies,
-            hide_ui,
-            vsync,
-        }))
+            render: RenderSettings {
+                tiling: cli.tiling,
+                ..RenderSettings::default()
+            },
+            time: cli.time,
+            pre_roll: cli.pre_roll,
+            time_scale: cli.time_scale,
+            msaa: cli.msaa,
+            anisotropy: cli.anisotropy,
+            mesh: cli.mesh,
+            threads: cli.threads,
+            bodies: !cli.no_bodies,
+            hide_ui: cli.hide_ui,
+            vsync: !cli.no_vsync,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(args: &[&str]) -> Result<Options, clap::Error> {
+        Options::try_parse_from(std::iter::once("ocean-fft-viewer").chain(args.iter().copied()))
+    }
+
+    /// The error's text, which must name `flag`.
+    fn error(args: &[&str], flag: &str) -> String {
+        let text = parse(args).expect_err("a bad command line").to_string();
+        assert!(text.contains(flag), "{args:?}: {text}");
+        text
+    }
+
+    /// clap's checks of the definition (names, `requires`, defaults); they run where clap is
+    /// compiled with debug assertions (the dev and test profiles; in the headless profile add
+    /// `--config 'profile.headless.package.clap_builder.debug-assertions=true'`).
+    #[test]
+    fn the_definition_is_consistent() {
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn defaults_are_the_documented_ones() {
+        let o = parse(&[]).unwrap();
+        assert_eq!(o.sea, SeaParams::preset("default").unwrap());
+        assert_eq!((o.frames, o.screenshot), (None, None));
+        assert_eq!((o.width, o.height), (1280, 720));
+        let hs = o.sea.spectrum().unwrap().significant_wave_height();
+        assert_eq!(o.camera, crate::default_eye(hs));
+        assert_eq!((o.heading, o.pitch, o.fov), (20.0, -6.0, 50.0));
+        assert_eq!(o.light, LightSettings::default());
+        assert_eq!(o.render.tiling, RenderSettings::default().tiling);
+        assert_eq!(
+            o.render.tiling_scale,
+            RenderSettings::default().tiling_scale
+        );
+        assert_eq!((o.time, o.pre_roll, o.time_scale), (60.0, 20.0, 1.0));
+        assert_eq!(
+            (o.msaa, o.anisotropy, o.mesh, o.threads),
+            (None, None, 64, 2)
+        );
+        assert!(o.bodies && !o.hide_ui && o.vsync);
+    }
+
+    #[test]
+    fn every_flag_sets_its_field() {
+        let o = parse(&[
+            "--preset",
+            "calm",
+            "--choppiness",
+            "0.5",
+            "--foam",
+            "2",
+            "--frames",
+            "30",
+            "--screenshot",
+            "out/viewer.png",
+            "--width",
+            "640",
+            "--height",
+            "360",
+            "--camera",
+            "1, 2 ,3",
+            "--heading",
+            "45",
+            "--pitch",
+            "10",
+            "--fov",
+            "60",
+            "--sun",
+            "35,160",
+            "--overcast",
+            "0.5",
+            "--exposure",
+            "1.2",
+            "--haze",
+            "3000",
+            "--time",
+            "5",
+            "--pre-roll",
+            "0",
+            "--time-scale",
+            "2",
+            "--tiling",
+            "0.25",
+            "--msaa",
+            "1",
+            "--anisotropy",
+            "8",
+            "--mesh",
+            "32",
+            "--threads",
+            "4",
+            "--no-bodies",
+            "--hide-ui",
+            "--no-vsync",
+        ])
+        .unwrap();
+        let mut calm = SeaParams::preset("calm").unwrap();
+        calm.choppiness = 0.5;
+        calm.foam_coverage = 2.0;
+        assert_eq!(o.sea, calm);
+        assert_eq!(o.frames, Some(30));
+        assert_eq!(o.screenshot, Some(PathBuf::from("out/viewer.png")));
+        assert_eq!((o.width, o.height), (640, 360));
+        assert_eq!(o.camera, Vec3::new(1.0, 2.0, 3.0));
+        assert_eq!((o.heading, o.pitch, o.fov), (45.0, 10.0, 60.0));
+        let light = LightSettings {
+            elevation: 35.0,
+            azimuth: 160.0,
+            overcast: 0.5,
+            exposure: 1.2,
+            haze: 3000.0,
+        };
+        assert_eq!(o.light, light);
+        assert_eq!((o.time, o.pre_roll, o.time_scale), (5.0, 0.0, 2.0));
+        assert_eq!(o.render.tiling, 0.25);
+        assert_eq!(
+            (o.msaa, o.anisotropy, o.mesh, o.threads),
+            (Some(1), Some(8), 32, 4)
+        );
+        assert!(!o.bodies && o.hide_ui && !o.vsync);
+    }
+
+    #[test]
+    fn negative_values_are_values() {
+        let o = parse(&[
+            "--pitch",
+            "-8",
+            "--heading",
+            "-.5",
+            "--camera",
+            "-150,25,-400",
+            "--sun",
+            "-5,-30",
+        ])
+        .unwrap();
+        assert_eq!((o.pitch, o.heading), (-8.0, -0.5));
+        assert_eq!(o.camera, Vec3::new(-150.0, 25.0, -400.0));
+        assert_eq!((o.light.elevation, o.light.azimuth), (-5.0, -30.0));
+        // A negative value where only positive ones are valid is a range error, not an
+        // unknown option.
+        let text = error(&["--choppiness", "-1"], "--choppiness");
+        assert!(text.contains("out of range"), "{text}");
+    }
+
+    #[test]
+    fn the_documented_command_lines_parse() {
+        // .ci/run and CONTRIBUTING.md, viewer/README.md, scripts/viewer_gallery.sh's three.
+        let shot = "--frames 2 --hide-ui --msaa 4 --anisotropy 1 --width 1280 --height 720 \
+                    --screenshot out/viewer_shot.png";
+        for line in [
+            "--frames 30 --screenshot out/viewer.png".to_string(),
+            "--preset storm".to_string(),
+            "--frames 60 --screenshot out/viewer.png".to_string(),
+            format!(
+                "{shot} --preset calm --camera 0,3,0 --heading 25 --pitch -4 --sun 6,30 \
+                 --exposure 0.9"
+            ),
+            format!(
+                "{shot} --preset fresh_breeze --camera 0,9,0 --heading 20 --pitch -7 --sun 35,160"
+            ),
+            format!("{shot} --preset storm --camera 150,25,-400 --heading 100 --pitch -9"),
+        ] {
+            let args: Vec<&str> = line.split_whitespace().collect();
+            if let Err(e) = parse(&args) {
+                panic!("{line}: {e}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_storm_is_overcast_unless_told() {
+        assert_eq!(parse(&["--preset", "storm"]).unwrap().light.overcast, 0.85);
+        let told = parse(&["--preset", "storm", "--overcast", "0.2"]).unwrap();
+        assert_eq!(told.light.overcast, 0.2);
+        assert_eq!(parse(&["--preset", "swell"]).unwrap().light.overcast, 0.0);
+    }
+
+    #[test]
+    fn the_last_of_a_repeated_flag_wins() {
+        let o = parse(&["--width", "800", "--width", "900", "--hide-ui", "--hide-ui"]).unwrap();
+        assert_eq!(o.width, 900);
+        assert!(o.hide_ui);
+    }
+
+    #[test]
+    fn values_out_of_range_are_errors_naming_the_flag() {
+        for (args, flag) in [
+            (&["--choppiness", "6"][..], "--choppiness"),
+            (&["--foam", "NaN"], "--foam"),
+            (&["--frames", "0"], "--frames"),
+            (&["--width", "15"], "--width"),
+            (&["--height", "9000"], "--height"),
+            (&["--camera", "0,inf,0"], "--camera"),
+            (&["--camera", "0,1"], "--camera"),
+            (&["--heading", "4000"], "--heading"),
+            (&["--pitch", "-90"], "--pitch"),
+            (&["--fov", "4"], "--fov"),
+            (&["--sun", "-11,0"], "--sun"),
+            (&["--sun", "14"], "--sun"),
+            (&["--overcast", "1.5"], "--overcast"),
+            (&["--exposure", "0"], "--exposure"),
+            (&["--haze", "inf"], "--haze"),
+            (&["--time", "-1"], "--time"),
+            (&["--pre-roll", "601"], "--pre-roll"),
+            (&["--time-scale", "x"], "--time-scale"),
+            (&["--tiling", "2"], "--tiling"),
+            (&["--msaa", "2"], "--msaa"),
+            (&["--anisotropy", "17"], "--anisotropy"),
+            (&["--mesh", "63"], "--mesh"),
+            (&["--mesh", "6"], "--mesh"),
+            (&["--threads", "0"], "--threads"),
+        ] {
+            let e = parse(args).expect_err("out of range");
+            assert_eq!(e.kind(), ErrorKind::ValueValidation, "{args:?}: {e}");
+            error(args, flag);
+        }
+    }
+
+    #[test]
+    fn bad_command_lines_are_errors() {
+        error(&["--frames"], "--frames");
+        error(&["--bogus"], "--bogus");
+        let text = error(&["--preset", "hurricane"], "--preset");
+        assert!(text.contains("shallow_bay"), "the names are listed: {text}");
+        // The screenshot is of the last of a fixed number of frames.
+        error(&["--screenshot", "out.png"], "--frames");
+        assert!(parse(&["--frames", "1", "--screenshot", "out.png"]).is_ok());
+    }
+
+    #[test]
+    fn help_lists_every_flag_with_its_default() {
+        let e = parse(&["--help"]).expect_err("help is not a run");
+        assert_eq!(e.kind(), ErrorKind::DisplayHelp);
+        assert_eq!(parse(&["-h"]).unwrap_err().kind(), ErrorKind::DisplayHelp);
+        let help = Cli::command().render_help().to_string();
+        for flag in [
+            "--preset",
+            "--choppiness",
+            "--foam",
+            "--frames",
+            "--screenshot",
+            "--width",
+            "--height",
+            "--camera",
+            "--heading",
+            "--pitch",
+            "--fov",
+            "--sun",
+            "--overcast",
+            "--exposure",
+            "--haze",
+            "--time",
+            "--pre-roll",
+            "--time-scale",
+            "--tiling",
+            "--msaa",
+            "--anisotropy",
+            "--mesh",
+            "--threads",
+            "--no-bodies",
+            "--hide-ui",
+            "--no-vsync",
+        ] {
+            assert!(help.contains(flag), "{flag} missing from\n{help}");
+        }
+        for default in [
+            "[default: 14,30]",
+            "[default: 0.8]",
+            "[default: 6000]",
+            "[default: -6]",
+        ] {
+            assert!(help.contains(default), "{default} missing from\n{help}");
+        }
     }
 }

@@ -40,14 +40,8 @@ use ocean_fft_render::{OceanInfo, SeaSettings, Simulation};
 use ui::{Controls, Hud};
 
 fn main() {
-    let options = match Options::parse(std::env::args().skip(1)) {
-        Ok(Some(options)) => options,
-        Ok(None) => return,
-        Err(message) => {
-            eprintln!("ocean-fft-viewer: {message}\n(--help lists the options)");
-            std::process::exit(2);
-        }
-    };
+    // clap's: the help and exit 0 after --help, its error and exit 2 on a bad command line.
+    let options = Options::parse();
     let event_loop = match EventLoop::new() {
         Ok(event_loop) => event_loop,
         Err(e) => {
