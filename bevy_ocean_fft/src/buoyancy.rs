@@ -6,15 +6,17 @@
 //! batch (`OceanState::heights_at`), and each column pushes up with the weight of the water
 //! it displaces, ρ·g·V·(submerged fraction) (Archimedes), at its centre, and resists motion
 //! through the water with a linear drag. Summed over the columns these give a force and a
-//! torque about the body's origin (its centre of mass).
+//! torque about the body's origin (its centre of mass). The model, the push and the step are
+//! the render layer's (`ocean_fft_render::floater`, which the viewer's boats float with);
+//! this module holds the Bevy glue: components, the system, `Vec3`/`Transform` conversions.
 
 use bevy::prelude::*;
-use ocean_fft::GRAVITY;
+use ocean_fft_render::{Body, Column, Motion, Pose, Push, Velocities};
 
 use crate::sim::OceanSim;
 
 /// Density of sea water, kg/m³.
-pub const SEA_WATER_DENSITY: f32 = 1025.0;
+pub use ocean_fft_render::SEA_WATER_DENSITY;
 
 /// A vertical column of a floating body: its share of the body's volume.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,7 +37,9 @@ pub struct BuoyancyPoint {
 /// torque there, for a physics engine to apply (see its docs).
 ///
 /// The entity's `Transform` is its centre of mass, in world space (put floating bodies at
-/// the root of the hierarchy).
+/// the root of the hierarchy); its scale does not apply to the columns, whose offsets,
+/// volumes and heights are in metres. The render layer's `ocean_fft_render::Body` is the same
+/// model (`Body::from(&buoyancy)`, `Buoyancy::from(&body)`).
 #[derive(Component, Debug, Clone, PartialEq)]
 #[require(BuoyancyMotion)]
 pub struct Buoyancy {
@@ -59,36 +63,7 @@ impl Buoyancy {
     /// centred on the origin, of `mass` kg: 4 × 2 columns, the inertia of a uniform box,
     /// and a drag that damps the heave to about a third of critical.
     pub fn boat(length: f32, beam: f32, height: f32, mass: f32) -> Buoyancy {
-        let (along, across) = (4usize, 2usize);
-        let volume = length * beam * height / (along * across) as f32;
-        let mut points = Vec::with_capacity(along * across);
-        for i in 0..along {
-            for j in 0..across {
-                let z = ((i as f32 + 0.5) / along as f32 - 0.5) * length;
-                let x = ((j as f32 + 0.5) / across as f32 - 0.5) * beam;
-                points.push(BuoyancyPoint {
-                    offset: Vec3::new(x, 0.0, z),
-                    volume,
-                    height,
-                });
-            }
-        }
-        let inertia = Vec3::new(
-            height * height + length * length,
-            beam * beam + length * length,
-            beam * beam + height * height,
-        ) * mass
-            / 12.0;
-        // Heave frequency ω = √(ρ g A / m) with the water-plane area A; ζ = damping/(2ω).
-        let area = length * beam;
-        let omega = (SEA_WATER_DENSITY * GRAVITY * area / mass).sqrt();
-        Buoyancy {
-            points,
-            mass,
-            inertia,
-            damping: 0.7 * omega,
-            water_density: SEA_WATER_DENSITY,
-        }
+        Buoyancy::from(&Body::boat(length, beam, height, mass))
     }
 
     /// Depth of the body's origin under the still water line when it floats at rest on a
@@ -96,9 +71,51 @@ impl Buoyancy {
     /// (`Buoyancy::boat`): the draft d with ρ·A·d = m, A the columns' water-plane area,
     /// minus half the columns' height.
     pub fn rest_depth(&self) -> f32 {
-        let area: f32 = self.points.iter().map(|p| p.volume / p.height).sum();
-        let height = self.points.first().map_or(0.0, |p| p.height);
-        self.mass / (self.water_density * area) - 0.5 * height
+        Body::from(self).rest_depth()
+    }
+
+    /// Writes this body into the render layer's `body`, reusing its columns' allocation.
+    fn write(&self, body: &mut Body) {
+        body.columns.clear();
+        body.columns.extend(self.points.iter().map(|p| Column {
+            offset: p.offset.to_array(),
+            volume: p.volume,
+            height: p.height,
+        }));
+        body.mass = self.mass;
+        body.inertia = self.inertia.to_array();
+        body.damping = self.damping;
+        body.water_density = self.water_density;
+    }
+}
+
+impl From<&Buoyancy> for Body {
+    /// The render layer's model of the body.
+    fn from(buoyancy: &Buoyancy) -> Body {
+        let mut body = Body::default();
+        buoyancy.write(&mut body);
+        body
+    }
+}
+
+impl From<&Body> for Buoyancy {
+    /// A body of the render layer's model as a component.
+    fn from(body: &Body) -> Buoyancy {
+        Buoyancy {
+            points: body
+                .columns
+                .iter()
+                .map(|c| BuoyancyPoint {
+                    offset: Vec3::from_array(c.offset),
+                    volume: c.volume,
+                    height: c.height,
+                })
+                .collect(),
+            mass: body.mass,
+            inertia: Vec3::from_array(body.inertia),
+            damping: body.damping,
+            water_density: body.water_density,
+        }
     }
 }
 
@@ -111,7 +128,7 @@ pub struct BuoyancyMotion {
     pub angular_velocity: Vec3,
     /// The columns' world positions at the last fixed update (their velocities in force
     /// mode).
-    previous: Vec<Vec3>,
+    previous: Vec<[f32; 3]>,
 }
 
 /// The water's push on a [`Buoyancy`] body, written every fixed update for a physics engine
@@ -144,27 +161,23 @@ pub struct BuoyancyForce {
     pub submerged_volume: f32,
 }
 
-/// Force and torque of the water on a body at `transform` whose columns are at the world
-/// positions `world` with velocities `velocity`, above which the water stands at `heights`.
-fn water_push(
-    body: &Buoyancy,
-    transform: &Transform,
-    world: &[Vec3],
-    velocity: impl Fn(usize) -> Vec3,
-    heights: &[f32],
-) -> BuoyancyForce {
-    let mut push = BuoyancyForce::default();
-    for (i, point) in body.points.iter().enumerate() {
-        let bottom = world[i].y - 0.5 * point.height;
-        let fraction = ((heights[i] - bottom) / point.height).clamp(0.0, 1.0);
-        let submerged = point.volume * fraction;
-        let mut force = Vec3::Y * (body.water_density * GRAVITY * submerged);
-        force -= velocity(i) * (body.damping * body.water_density * submerged);
-        push.force += force;
-        push.torque += (world[i] - transform.translation).cross(force);
-        push.submerged_volume += submerged;
+impl From<Push> for BuoyancyForce {
+    fn from(push: Push) -> BuoyancyForce {
+        BuoyancyForce {
+            force: Vec3::from_array(push.force),
+            torque: Vec3::from_array(push.torque),
+            submerged_volume: push.submerged_volume,
+        }
     }
-    push
+}
+
+/// A transform's translation and rotation (its scale does not apply to the columns: their
+/// offsets, volumes and heights are in metres).
+fn pose(transform: &Transform) -> Pose {
+    Pose {
+        position: transform.translation.to_array(),
+        rotation: transform.rotation.to_array(),
+    }
 }
 
 /// `FixedUpdate`: the water's push on every floating body, from one batch of height
@@ -179,9 +192,10 @@ pub(crate) fn float_bodies(
         &mut BuoyancyMotion,
         Option<&mut BuoyancyForce>,
     )>,
+    mut models: Local<Vec<Body>>,
     mut points: Local<Vec<[f64; 2]>>,
     mut heights: Local<Vec<f32>>,
-    mut world: Local<Vec<Vec3>>,
+    mut world: Local<Vec<[f32; 3]>>,
 ) {
     let Some(ocean) = sim.ocean() else {
         return;
@@ -192,12 +206,13 @@ pub(crate) fn float_bodies(
     }
     points.clear();
     world.clear();
-    for (body, transform, _, _) in &bodies {
-        for point in &body.points {
-            let p = transform.transform_point(point.offset);
-            world.push(p);
-            points.push([f64::from(p.x), f64::from(p.z)]);
+    for (i, (buoyancy, transform, _, _)) in bodies.iter().enumerate() {
+        if models.len() == i {
+            models.push(Body::default());
         }
+        let body = &mut models[i];
+        buoyancy.write(body);
+        body.columns_at(&pose(transform), &mut world, &mut points);
     }
     heights.clear();
     heights.resize(points.len(), 0.0);
@@ -205,64 +220,36 @@ pub(crate) fn float_bodies(
         return;
     }
     let mut start = 0;
-    for (body, mut transform, mut motion, force) in &mut bodies {
-        let end = start + body.points.len();
+    for ((_, mut transform, mut motion, force), body) in bodies.iter_mut().zip(models.iter()) {
+        let end = start + body.columns.len();
         let (world, heights) = (&world[start..end], &heights[start..end]);
         start = end;
         if motion.previous.len() != world.len() {
             motion.previous = world.to_vec();
         }
+        let mut pose = pose(&transform);
         match force {
             Some(mut out) => {
-                let previous = &motion.previous;
-                *out = water_push(
-                    body,
-                    &transform,
-                    world,
-                    |i| (world[i] - previous[i]) / dt,
-                    heights,
-                );
+                let velocities = Velocities::Previous {
+                    positions: &motion.previous,
+                    dt,
+                };
+                *out = body.push(&pose, world, heights, velocities).into();
             }
             None => {
-                let (v, w, centre) = (
-                    motion.velocity,
-                    motion.angular_velocity,
-                    transform.translation,
-                );
-                let push = water_push(
-                    body,
-                    &transform,
-                    world,
-                    |i| v + w.cross(world[i] - centre),
-                    heights,
-                );
-                integrate(body, &mut transform, &mut motion, &push, dt);
+                let mut state = Motion {
+                    velocity: motion.velocity.to_array(),
+                    angular_velocity: motion.angular_velocity.to_array(),
+                };
+                let push = body.push(&pose, world, heights, Velocities::Motion(&state));
+                body.step(&mut pose, &mut state, &push, dt);
+                transform.translation = Vec3::from_array(pose.position);
+                transform.rotation = Quat::from_array(pose.rotation);
+                motion.velocity = Vec3::from_array(state.velocity);
+                motion.angular_velocity = Vec3::from_array(state.angular_velocity);
             }
         }
         motion.previous.clear();
         motion.previous.extend_from_slice(world);
     }
-}
-
-/// One semi-implicit Euler step of heave, pitch and roll under gravity and `push`.
-fn integrate(
-    body: &Buoyancy,
-    transform: &mut Transform,
-    motion: &mut BuoyancyMotion,
-    push: &BuoyancyForce,
-    dt: f32,
-) {
-    let acceleration = push.force / body.mass - Vec3::Y * GRAVITY;
-    motion.velocity.y += acceleration.y * dt;
-    motion.velocity.x = 0.0;
-    motion.velocity.z = 0.0;
-    // The inverse inertia in the world frame: R · diag(1/I) · Rᵀ.
-    let rotation = transform.rotation;
-    let local_torque = rotation.inverse() * push.torque;
-    let local_alpha = local_torque / body.inertia.max(Vec3::splat(1e-6));
-    motion.angular_velocity += (rotation * local_alpha) * dt;
-    motion.angular_velocity.y = 0.0;
-    transform.translation.y += motion.velocity.y * dt;
-    let turn = Quat::from_scaled_axis(motion.angular_velocity * dt);
-    transform.rotation = (turn * rotation).normalize();
 }

@@ -10,11 +10,15 @@
 //!   into live changes or a new ocean.
 //! - [`Simulation`]: a double-buffered simulation thread that steps, packs and queries while
 //!   the engine draws the previous frame.
+//! - [`floater`]: floating bodies ([`Body`] of vertical columns, [`Pose`], [`Motion`]): the
+//!   water's push on them from a batch of height queries ([`Push`]: Archimedes and drag) and
+//!   the kinematic step of their heave, pitch and roll; [`Floater`] holds one with its state.
 //!
 //! The viewer (viewer/) and the Bevy plugin (bevy_ocean_fft/) draw with it; a port to another
 //! engine adds only that engine's glue (textures, buffers, pipelines, its scheduling).
 
 pub mod clipmap;
+pub mod floater;
 mod info;
 mod sea;
 #[cfg(test)]
@@ -23,6 +27,7 @@ mod texels;
 mod thread;
 mod uniforms;
 
+pub use floater::{Body, Column, Floater, Motion, Pose, Push, Velocities, SEA_WATER_DENSITY};
 pub use info::{OceanInfo, SlopeTable, MAX_CASCADES, SLOPE_TABLE};
 pub use sea::{apply, build, follow_clock, Change, Plan, SeaSettings, PRE_ROLL, PRE_ROLL_DT};
 pub use texels::{mip_levels, Level, Texels};

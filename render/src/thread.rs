@@ -87,8 +87,8 @@ pub struct Simulation {
 impl Simulation {
     /// Builds the ocean of `sea` at sea time `time` with its foam spun up over `pre_roll`
     /// seconds (at most `time`), on a thread of its own with a rayon pool of `threads`
-    /// threads, and starts the first frame. `queries` is the number of world points queried
-    /// every frame.
+    /// threads, and starts the first frame, which answers `queries` (world points x, z, m;
+    /// as many are queried every frame).
     ///
     /// # Errors
     /// The crate's for the sea; a message if a thread cannot start.
@@ -97,14 +97,15 @@ impl Simulation {
         time: f64,
         pre_roll: f64,
         threads: usize,
-        queries: usize,
+        queries: &[[f64; 2]],
     ) -> Result<Simulation, String> {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .thread_name(|i| format!("ocean-sim-{i}"))
             .build()
             .map_err(|e| format!("rayon pool: {e}"))?;
-        let mut first = Box::new(Frame::new(queries));
+        let mut first = Box::new(Frame::new(queries.len()));
+        first.queries.copy_from_slice(queries);
         let mut worker = pool
             .install(|| -> Result<Worker, Error> {
                 let mut ocean = OceanState::new(sea.spectrum.clone(), sea.grids())?;
@@ -139,7 +140,7 @@ impl Simulation {
         Ok(Simulation {
             requests: request_tx,
             results: result_rx,
-            spare: Some(Box::new(Frame::new(queries))),
+            spare: Some(Box::new(Frame::new(queries.len()))),
             thread: Some(thread),
         })
     }
@@ -150,7 +151,7 @@ impl Simulation {
     /// frame back with [`Simulation::give_back`] once uploaded.
     ///
     /// # Errors
-    /// A message if the simulation thread stopped, or `queries` is not as long as the number
+    /// A message if the simulation thread stopped, or `queries` is not as long as the points
     /// given to [`start`](Self::start).
     pub fn next(
         &mut self,
@@ -283,8 +284,8 @@ mod tests {
     fn frames_follow_the_clock_and_the_sea() {
         let mut sea = SeaSettings::preset(SeaState::FreshBreeze);
         sea.config.size = 32;
-        let mut sim = Simulation::start(sea.clone(), 10.0, 0.5, 1, 2).unwrap();
         let queries = [[0.0, 0.0], [3.0, -4.0]];
+        let mut sim = Simulation::start(sea.clone(), 10.0, 0.5, 1, &queries).unwrap();
         let mut times = Vec::new();
         let mut calmer = sea.clone();
         calmer.set_weather(SeaState::ModerateBreeze);

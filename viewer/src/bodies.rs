@@ -1,25 +1,63 @@
 //! Floating bodies moved by the crate's CPU queries every frame: spar buoys that heave and
-//! tilt with the water's normal, and boats that heave, pitch and roll on four points of the
-//! water under them. One batch of `OceanState::surfaces_at` (on the simulation thread, right
-//! after the step of the frame they are drawn in) answers every body and the eye.
+//! tilt with the water's normal, and boats that float, bodies of the render layer's model
+//! (`ocean_fft_render::floater`, the Bevy plugin's too): the water's push on their columns
+//! heaves, pitches and rolls them. One batch of `OceanState::surfaces_at` (on the simulation
+//! thread, right after the step of the frame they are drawn in) answers every body and the
+//! eye.
+//!
+//! The buoys stay kinematic: a spar stands upright by its ballast, deep below its buoyancy,
+//! which the model's vertical columns (righted by their water-plane spread) do not hold, and
+//! following half the water's normal looks right at one query a buoy.
+
+use std::f32::consts::FRAC_PI_2;
 
 use glam::{Mat4, Quat, Vec3};
 use ocean_fft::SurfaceSample;
+use ocean_fft_render::{Body, Floater, Pose, SEA_WATER_DENSITY};
 
 use crate::gpu::BodyInstance;
 
-/// Half the boat's length and beam between its query points, m.
-const BOAT_HALF_LENGTH: f32 = 4.0;
-const BOAT_HALF_BEAM: f32 = 1.4;
+/// The boat's hull as it floats (the box of `gpu::boat`'s mesh, bow wedge included), m.
+const BOAT_LENGTH: f32 = 9.0;
+const BOAT_BEAM: f32 = 3.0;
+/// From the keel (the mesh's y = −0.7) to the deck (0.9), m.
+const BOAT_HEIGHT: f32 = 1.6;
+/// The draft at rest, m: the mesh's waterline (y = 0) is 0.7 m above its keel. The boat's
+/// mass, ρ·L·B·draft = 19.4 t, makes it so.
+const BOAT_DRAFT: f32 = 0.7;
+
+/// A boat: a floating body and the heading it keeps (radians; x and z stay too).
+struct Boat {
+    floater: Floater,
+    heading: f32,
+}
 
 /// The bodies, at fixed (moored) horizontal positions.
 pub struct Fleet {
     /// (x, z) of each buoy.
     buoys: Vec<[f32; 2]>,
-    /// (x, z, heading) of each boat.
-    boats: Vec<[f32; 3]>,
+    boats: Vec<Boat>,
+    /// Whether the boats have been put on the water (at the first answers).
+    afloat: bool,
+    /// The water heights above one boat's columns (scratch).
+    heights: Vec<f32>,
     buoy_instances: Vec<BodyInstance>,
     boat_instances: Vec<BodyInstance>,
+}
+
+/// A boat's body: its hull as a box with the mesh's draft.
+fn boat_body() -> Body {
+    let mass = SEA_WATER_DENSITY * BOAT_LENGTH * BOAT_BEAM * BOAT_DRAFT;
+    Body::boat(BOAT_LENGTH, BOAT_BEAM, BOAT_HEIGHT, mass)
+}
+
+/// From the boat mesh's frame (bow +x, waterline y = 0) to its body's (bow +z, the hull's
+/// box centred on the origin).
+fn boat_mesh_to_body() -> Mat4 {
+    Mat4::from_rotation_translation(
+        Quat::from_rotation_y(-FRAC_PI_2),
+        Vec3::new(0.0, BOAT_DRAFT - 0.5 * BOAT_HEIGHT, 0.0),
+    )
 }
 
 impl Fleet {
@@ -42,16 +80,7 @@ impl Fleet {
                     at(90.0, -25.0),
                     at(160.0, 30.0),
                 ],
-                vec![
-                    {
-                        let p = at(60.0, -14.0);
-                        [p[0], p[1], h + 1.1]
-                    },
-                    {
-                        let p = at(210.0, 40.0);
-                        [p[0], p[1], h - 0.5]
-                    },
-                ],
+                vec![(at(60.0, -14.0), h + 1.1), (at(210.0, 40.0), h - 0.5)],
             )
         } else {
             (Vec::new(), Vec::new())
@@ -60,51 +89,54 @@ impl Fleet {
             model: Mat4::IDENTITY.to_cols_array_2d(),
             colour: [0.0; 4],
         };
+        // At the still water line until the first answers put them on the water.
+        let body = boat_body();
+        let rest = -body.rest_depth();
+        let boats: Vec<Boat> = boats
+            .into_iter()
+            .map(|([x, z], heading)| Boat {
+                floater: Floater::new(body.clone(), Pose::new([x, rest, z], heading)),
+                heading,
+            })
+            .collect();
         Fleet {
             buoy_instances: vec![instance; buoys.len()],
             boat_instances: vec![instance; boats.len()],
             buoys,
             boats,
+            afloat: false,
+            heights: Vec::with_capacity(body.columns.len()),
         }
     }
 
-    /// Points queried every frame: one per buoy, bow, stern, port and starboard per boat,
-    /// and the eye last.
-    pub fn queries(&self, eye: Vec3) -> Vec<[f64; 2]> {
-        let mut points = vec![[0.0; 2]; self.buoys.len() + 4 * self.boats.len() + 1];
+    /// Points queried every frame: one per buoy, one per column of each boat (as it floats
+    /// now), and the eye last.
+    pub fn queries(&mut self, eye: Vec3) -> Vec<[f64; 2]> {
+        let columns: usize = self.boats.iter().map(|b| b.floater.query_count()).sum();
+        let mut points = vec![[0.0; 2]; self.buoys.len() + columns + 1];
         self.write_queries(eye, &mut points);
         points
     }
 
     /// Fills `points` (as long as [`Fleet::queries`] made it) for an eye at `eye`.
-    pub fn write_queries(&self, eye: Vec3, points: &mut [[f64; 2]]) {
+    pub fn write_queries(&mut self, eye: Vec3, points: &mut [[f64; 2]]) {
         let mut k = 0;
         for b in &self.buoys {
             points[k] = [f64::from(b[0]), f64::from(b[1])];
             k += 1;
         }
-        for &[x, z, heading] in &self.boats {
-            let along = [heading.cos(), heading.sin()];
-            let across = [-along[1], along[0]];
-            for (a, c) in [
-                (BOAT_HALF_LENGTH, 0.0),
-                (-BOAT_HALF_LENGTH, 0.0),
-                (0.0, BOAT_HALF_BEAM),
-                (0.0, -BOAT_HALF_BEAM),
-            ] {
-                points[k] = [
-                    f64::from(x + a * along[0] + c * across[0]),
-                    f64::from(z + a * along[1] + c * across[1]),
-                ];
-                k += 1;
-            }
+        for boat in &mut self.boats {
+            let n = boat.floater.query_count();
+            boat.floater.write_queries(&mut points[k..k + n]);
+            k += n;
         }
         points[k] = [f64::from(eye.x), f64::from(eye.z)];
     }
 
-    /// Places every body on the water of `samples` (the answers to the queries); returns the
-    /// water height under the eye.
-    pub fn place(&mut self, samples: &[SurfaceSample]) -> f32 {
+    /// Places every body on the water of `samples` (the answers to the queries), the boats
+    /// floated for `dt` seconds of sea time (put at rest on the water at the first answers);
+    /// returns the water height under the eye.
+    pub fn place(&mut self, samples: &[SurfaceSample], dt: f32) -> f32 {
         let mut k = 0;
         for (b, instance) in self.buoys.iter().zip(&mut self.buoy_instances) {
             let s = &samples[k];
@@ -120,24 +152,33 @@ impl Fleet {
                 colour: [0.55, 0.06, 0.03, 1.0],
             };
         }
-        for (b, instance) in self.boats.iter().zip(&mut self.boat_instances) {
-            let [bow, stern, port, starboard] = [0, 1, 2, 3].map(|i| samples[k + i].height);
-            k += 4;
-            let heave = 0.25 * (bow + stern + port + starboard);
-            let pitch = ((bow - stern) / (2.0 * BOAT_HALF_LENGTH)).atan();
-            let roll = ((port - starboard) / (2.0 * BOAT_HALF_BEAM)).atan();
-            // Local x is the bow, z is port: yaw turns x to the heading (about −y, as a
-            // heading θ is the direction (cos θ, sin θ) in (x, z)), pitch lifts the bow
-            // (about z), roll lifts port (about −x).
-            let rotation = Quat::from_rotation_y(-b[2])
-                * Quat::from_rotation_z(pitch)
-                * Quat::from_rotation_x(-roll);
-            let model = Mat4::from_rotation_translation(rotation, Vec3::new(b[0], heave, b[1]));
+        let mesh = boat_mesh_to_body();
+        for (boat, instance) in self.boats.iter_mut().zip(&mut self.boat_instances) {
+            let floater = &mut boat.floater;
+            let n = floater.query_count();
+            self.heights.clear();
+            self.heights
+                .extend(samples[k..k + n].iter().map(|s| s.height));
+            k += n;
+            if self.afloat {
+                floater.float(&self.heights, dt);
+            } else {
+                floater.settle(&self.heights);
+            }
+            // The step keeps x, z and the spin about y; the heading is kept exactly against
+            // the drift of many small tilts.
+            floater.pose.set_heading(boat.heading);
+            let pose = floater.pose;
+            let model = Mat4::from_rotation_translation(
+                Quat::from_array(pose.rotation),
+                Vec3::from_array(pose.position),
+            ) * mesh;
             *instance = BodyInstance {
                 model: model.to_cols_array_2d(),
                 colour: [0.75, 0.74, 0.70, 1.0],
             };
         }
+        self.afloat = true;
         samples[k].height
     }
 

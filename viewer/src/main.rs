@@ -285,7 +285,7 @@ impl State {
 
         let sea = options.sea.clone();
         let spectrum = sea.spectrum().map_err(|e| format!("sea: {e}"))?;
-        let fleet = Fleet::new(options.camera, options.heading, options.bodies);
+        let mut fleet = Fleet::new(options.camera, options.heading, options.bodies);
         let queries = fleet.queries(options.camera);
         let sim = Simulation::start(
             SeaSettings {
@@ -296,7 +296,7 @@ impl State {
             options.time,
             options.pre_roll,
             options.threads,
-            queries.len(),
+            &queries,
         )?;
         let camera = Camera::new(
             options.camera,
@@ -398,7 +398,7 @@ impl State {
         self.renderer.upload(&self.device, &self.queue, &frame);
         let upload = upload_start.elapsed().as_secs_f64() * 1e3;
         self.info = frame.info;
-        self.water_under_eye = self.fleet.place(&frame.samples);
+        self.water_under_eye = self.fleet.place(&frame.samples, sea_dt as f32);
         let times = frame.times;
         self.sim.give_back(frame);
 
