@@ -119,9 +119,10 @@ fn median(times: &mut [Duration]) -> Duration {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let pool = rayon::ThreadPoolBuilder::new().build()?;
     let (f32_run, f16_run) = pool.install(|| -> Result<_, Error> {
-        let f32_run = run::<[f32; 4]>(|ocean, c, layout, out| ocean.pack_texels(c, layout, out))?;
+        let f32_run =
+            run::<[f32; 4]>(|ocean, c, layout, out| ocean.textures().pack(c, layout, out))?;
         let f16_run =
-            run::<[f16; 4]>(|ocean, c, layout, out| ocean.pack_texels_f16(c, layout, out))?;
+            run::<[f16; 4]>(|ocean, c, layout, out| ocean.textures().pack_f16(c, layout, out))?;
         Ok((f32_run, f16_run))
     })?;
 

@@ -179,17 +179,17 @@ mod spectrum;
 
 pub use cascade::{Cascade, CascadeConfig};
 pub use error::Error;
-pub use foam::{FoamConfig, FoamCoverage};
+pub use foam::{FoamConfig, FoamCoverage, FoamView};
 /// The `half` crate (with the `half` feature), whose `f16` the `pack_texels_f16` functions
 /// write: `ocean_fft::half::f16` is the version this crate was built with.
 #[cfg(feature = "half")]
 pub use half;
 pub use math::determinism::Determinism;
-pub use ocean::{OceanConfig, OceanSnapshot, OceanState, SeaFit};
+pub use ocean::{Diagnostics, OceanConfig, OceanSnapshot, OceanState, SeaFit};
 pub use presets::SeaState;
-pub use query::{Interpolation, Location, QueryConfig, Surface, SurfaceSample};
+pub use query::{Interpolation, Location, QueryConfig, Surface, SurfaceSample, Water};
 pub use spectrum::dispersion::{Dispersion, GRAVITY};
-pub use spectrum::{DepthFactor, Spectrum, Spreading};
+pub use spectrum::{DepthFactor, SlopeVariance, Spectrum, Spreading};
 
 // The Rust blocks of the guide's chapters (docs/guide/) are doc-tests when every optional
 // feature is on (the serde block of spectra.md needs `serde`), as CI runs them:

@@ -51,7 +51,7 @@ impl Component for f32 {
         layout: TexelLayout,
         out: &mut [[f32; 4]],
     ) -> Result<(), ocean_fft::Error> {
-        ocean.pack_texels(cascade, layout, out)
+        ocean.textures().pack(cascade, layout, out)
     }
 }
 
@@ -62,7 +62,7 @@ impl Component for f16 {
         layout: TexelLayout,
         out: &mut [[f16; 4]],
     ) -> Result<(), ocean_fft::Error> {
-        ocean.pack_texels_f16(cascade, layout, out)
+        ocean.textures().pack_f16(cascade, layout, out)
     }
 }
 

@@ -10,14 +10,15 @@
 //! nothing is allocated inside a pool.
 
 mod engine;
+mod ocean;
 
 use rayon::prelude::*;
 
 pub use engine::Engine;
+pub use ocean::Textures;
 
 use crate::cascade::Cascade;
 use crate::error::{self, Error};
-use crate::ocean::OceanState;
 
 /// What the four channels of a packed RGBA texel hold. Texel (i, j) (index `j * N + i`)
 /// describes the cascade's grid point (x, z) = (i·L/N, j·L/N) in metres; the textures tile
@@ -461,59 +462,6 @@ impl Cascade {
 
     fn n_squared(&self) -> usize {
         self.size() * self.size()
-    }
-}
-
-impl OceanState {
-    /// Packs cascade `cascade` (0 the largest) into interleaved RGBA32F texels of `layout`
-    /// (see [`TexelLayout`]), texel (i, j) of that cascade's N×N grid at `out[j * N + i]`.
-    /// The ocean's one foam field lives on cascade 0's grid ([`OceanState::foam`]), so the
-    /// layouts with foam carry it in cascade 0's texels and 0 in every other cascade's (a
-    /// shader that sums the foam channels, or combines them as 1 − Π(1 − f), gets the foam).
-    /// Copies the values bit for bit. Row blocks in
-    /// parallel; allocates nothing inside a rayon pool; the result does not depend on the
-    /// number of threads.
-    ///
-    /// # Errors
-    /// [`Error::IndexOutOfRange`] naming `cascade` unless it is below the number of cascades;
-    /// [`Error::LengthMismatch`] naming `out` unless `out.len()` is that cascade's N².
-    /// Nothing is written then.
-    pub fn pack_texels(
-        &self,
-        cascade: usize,
-        layout: TexelLayout,
-        out: &mut [[f32; 4]],
-    ) -> Result<(), Error> {
-        let (sources, n) = self.pack_sources(cascade, out.len())?;
-        sources.pack_f32(n, layout, out);
-        Ok(())
-    }
-
-    /// [`OceanState::pack_texels`] into RGBA16F texels (with the `half` feature), rounded and
-    /// saturated as [`Cascade::pack_texels_f16`] says: nearest f16, ties to even, ±65504
-    /// beyond the f16 range (never ±∞ or NaN).
-    ///
-    /// # Errors
-    /// As [`OceanState::pack_texels`]; nothing is written then.
-    #[cfg(feature = "half")]
-    pub fn pack_texels_f16(
-        &self,
-        cascade: usize,
-        layout: TexelLayout,
-        out: &mut [[half::f16; 4]],
-    ) -> Result<(), Error> {
-        let (sources, n) = self.pack_sources(cascade, out.len())?;
-        sources.pack_f16(n, layout, out);
-        Ok(())
-    }
-
-    /// Checks a pack of cascade `cascade` into a buffer of `len` texels; its sources and N.
-    fn pack_sources(&self, cascade: usize, len: usize) -> Result<(Sources<'_>, usize), Error> {
-        error::index("cascade", cascade, self.cascades().len())?;
-        let c = &self.cascades()[cascade];
-        error::length("out", len, c.size() * c.size())?;
-        let foam = (cascade == 0).then(|| self.foam());
-        Ok((Sources::new(c, foam), c.size()))
     }
 }
 

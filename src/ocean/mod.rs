@@ -4,6 +4,7 @@
 //! its snapshots.
 
 mod config;
+mod diagnostics;
 mod fit;
 mod foam_api;
 mod live;
@@ -15,9 +16,10 @@ use crate::cascade::{Cascade, LoopError};
 use crate::error::{self, Error};
 use crate::foam::Foam;
 use crate::query::frame::{Frame, Frames};
-use crate::spectrum::{SlopeVariance, Spectrum};
+use crate::spectrum::Spectrum;
 
 pub use config::OceanConfig;
+pub use diagnostics::Diagnostics;
 pub use fit::SeaFit;
 pub use snapshot::OceanSnapshot;
 
@@ -166,37 +168,30 @@ impl OceanState {
         self.config.choppiness = choppiness;
     }
 
-    /// How far the repeat period moved the waves' frequencies, over every cascade (`None`
-    /// without one): the largest relative error, and the mean weighted by each wave's share
-    /// of the height variance.
+    /// Deprecated: [`Diagnostics::loop_error`] through [`OceanState::diagnostics`].
+    #[deprecated(since = "0.4.0", note = "use `ocean.diagnostics().loop_error()`")]
+    #[doc(hidden)]
     pub fn loop_error(&self) -> Option<LoopError> {
-        LoopError::combine(self.cascades.iter().filter_map(Cascade::loop_error))
+        self.diagnostics().loop_error()
     }
 
-    /// The mean-level correction in metres in the summed height: the sum of every cascade's
-    /// [`Cascade::mean_level_offset`], λ·2 Σ_k |k| |h0(k)|² over all of them. With it the
-    /// Eulerian mean of the displaced surface is still water (y = 0) for any choppiness;
-    /// without it the sea would sit about λ ∫ k S(k) d²k lower (about 4.8 cm for the
-    /// default sea at λ = 1, 34 cm for the storm preset at its λ = 1.2).
+    /// Deprecated: [`Diagnostics::mean_level_offset`] through [`OceanState::diagnostics`].
+    #[deprecated(
+        since = "0.4.0",
+        note = "use `ocean.diagnostics().mean_level_offset()`"
+    )]
+    #[doc(hidden)]
     pub fn mean_level_offset(&self) -> f32 {
-        self.cascades.iter().map(Cascade::mean_level_offset).sum()
+        self.diagnostics().mean_level_offset()
     }
 
-    /// Slope variance along and across the wind that the spectrum holds above the finest
-    /// cascade's band, up to [`SlopeVariance::DEFAULT_CUTOFF`]: the roughness the grids
-    /// cannot show (the last cascade's [`Cascade::subgrid_slope_variance`]; a cascade `c`
-    /// reports what lies above its own band). For another cut-off use
-    /// [`Spectrum::slope_variance`] from the top of the last band.
-    pub fn subgrid_slope_variance(&self) -> SlopeVariance {
-        self.cascades
-            .last()
-            .map(Cascade::subgrid_slope_variance)
-            .unwrap_or_default()
-    }
-
-    /// Expected variance of the summed height in m²: the sum over cascades of
-    /// [`Cascade::expected_variance`]; 4√ of it is the expected H_s of the simulated sea.
+    /// Deprecated: [`Diagnostics::expected_variance`] through [`OceanState::diagnostics`].
+    #[deprecated(
+        since = "0.4.0",
+        note = "use `ocean.diagnostics().expected_variance()`"
+    )]
+    #[doc(hidden)]
     pub fn expected_variance(&self) -> f64 {
-        self.cascades.iter().map(Cascade::expected_variance).sum()
+        self.diagnostics().expected_variance()
     }
 }
