@@ -46,8 +46,8 @@ struct Run {
     allocations: usize,
 }
 
-/// Runs the frame loop with texels of type `T`, packed by `pack` (`OceanState::pack_texels`
-/// or `pack_texels_f16`).
+/// Runs the frame loop with texels of type `T`, packed by `pack` (`ocean.textures().pack`
+/// or `pack_f16`).
 fn run<T: bytemuck::Pod>(
     pack: impl Fn(&OceanState, usize, TexelLayout, &mut [T]) -> Result<(), Error>,
 ) -> Result<Run, Error> {

@@ -1,5 +1,5 @@
 //! The end of the data flow, what a renderer needs: the layouts of the RGBA texels that
-//! [`Cascade::pack_texels`] and [`OceanState::pack_texels`] interleave a cascade's buffers into
+//! [`Cascade::pack_texels`] and [`Textures::pack`] interleave a cascade's buffers into
 //! (f32, and f16 with the `half` feature), the [`Vertex`] of a cascade mesh with its triangle
 //! indices, the green channel of tangent-space normal maps ([`NormalMapGreen`]), and each engine's
 //! axes and units ([`Engine`]).
@@ -19,6 +19,8 @@ pub use ocean::Textures;
 
 use crate::cascade::Cascade;
 use crate::error::{self, Error};
+#[cfg(doc)]
+use crate::ocean::OceanState;
 
 /// What the four channels of a packed RGBA texel hold. Texel (i, j) (index `j * N + i`)
 /// describes the cascade's grid point (x, z) = (i·L/N, j·L/N) in metres; the textures tile
@@ -36,7 +38,7 @@ use crate::error::{self, Error};
 /// | [`Normal`](Self::Normal) | n_x | n_y | n_z | σ² sub-grid | yes |
 ///
 /// The layouts with foam take the foam an [`OceanState`] holds, so they are packed with
-/// [`OceanState::pack_texels`]; [`Cascade::pack_texels`] refuses them with
+/// [`Textures::pack`]; [`Cascade::pack_texels`] refuses them with
 /// [`Error::NotApplicable`] naming `layout`. The foam is one field for the whole ocean on
 /// cascade 0's grid: cascade 0's texels carry it, the other cascades' foam channel is 0.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -47,12 +49,12 @@ pub enum TexelLayout {
     /// Jacobian J (dimensionless, < 0 where the surface folds).
     DisplacementJacobian,
     /// `[D_x, η, D_z, foam]`: RGB as in [`DisplacementJacobian`](Self::DisplacementJacobian),
-    /// A the foam coverage in [0, 1]. Only through [`OceanState::pack_texels`].
+    /// A the foam coverage in [0, 1]. Only through [`Textures::pack`] ([`OceanState::textures`]).
     DisplacementFoam,
     /// `[∂y/∂x, ∂y/∂z, J, foam]`: the slope of the displaced surface (dimensionless), the
     /// Jacobian J and the foam coverage in [0, 1]. Slopes of cascades add, so a shader may
     /// sum the RG of every cascade and take the normal of the sum as
-    /// normalize(−s_x, 1, −s_z). Only through [`OceanState::pack_texels`].
+    /// normalize(−s_x, 1, −s_z). Only through [`Textures::pack`] ([`OceanState::textures`]).
     SlopeJacobianFoam,
     /// `[n_x, n_y, n_z, σ²]`: the unit normal of the displaced surface (y up; n_y < 0 where
     /// the surface folds), and in alpha the **sub-grid mean-square slope** σ² (dimensionless,
@@ -78,7 +80,7 @@ impl TexelLayout {
     ];
 
     /// Whether the layout holds foam, and so can be packed only through
-    /// [`OceanState::pack_texels`].
+    /// [`Textures::pack`].
     pub fn has_foam(self) -> bool {
         matches!(
             self,
@@ -271,7 +273,8 @@ fn check_cascade_layout(layout: TexelLayout) -> Result<(), Error> {
     if layout.has_foam() {
         return Err(Error::NotApplicable {
             name: "layout",
-            reason: "a bare Cascade holds no foam: pack this layout with OceanState::pack_texels",
+            reason:
+                "a bare Cascade holds no foam: pack this layout with OceanState::textures().pack",
         });
     }
     Ok(())
@@ -324,7 +327,7 @@ impl Cascade {
     ///
     /// # Errors
     /// [`Error::NotApplicable`] naming `layout` for a layout with foam (a bare cascade has
-    /// none: use [`OceanState::pack_texels`]); [`Error::LengthMismatch`] naming `out` unless
+    /// none: use [`Textures::pack`]); [`Error::LengthMismatch`] naming `out` unless
     /// `out.len()` is N². Nothing is written then.
     pub fn pack_texels(&self, layout: TexelLayout, out: &mut [[f32; 4]]) -> Result<(), Error> {
         check_cascade_layout(layout)?;

@@ -222,7 +222,7 @@ impl OceanState {
 
     /// λ_max·σ at the largest choppiness λ_max, σ² the mean-square slope the grids hold:
     /// about 53 % of a Gaussian sea's surface folds there. See
-    /// [`max_choppiness`](Self::max_choppiness).
+    /// [`max_choppiness`](super::Diagnostics::max_choppiness).
     pub const MAX_FOLD_SCALE: f32 = 4.0;
 
     /// Deprecated: [`Diagnostics::fit`](super::Diagnostics::fit) through
@@ -270,7 +270,7 @@ impl OceanState {
     }
 
     /// Refuses a new spectrum too steep for the current choppiness (its
-    /// [`max_choppiness`](Self::max_choppiness) below it).
+    /// [`max_choppiness`](super::Diagnostics::max_choppiness) below it).
     pub(super) fn check_change_choppiness(&self, spectrum: &Spectrum) -> Result<(), Error> {
         let bands = self.config.bands_unchecked();
         if self.config.choppiness > max_choppiness(spectrum, &bands) {

@@ -25,15 +25,37 @@ pub use snapshot::OceanSnapshot;
 
 /// An ocean: cascades of one spectrum over disjoint wave-number bands, the time, and foam.
 ///
+/// What it does, by group:
+///
+/// - **Stepping**: [`new`](Self::new), [`step`](Self::step), [`step_to`](Self::step_to),
+///   [`set_time`](Self::set_time), [`pre_roll`](Self::pre_roll), [`time`](Self::time).
+/// - **Weather**: [`set_spectrum`](Self::set_spectrum) (a change over simulated time),
+///   [`set_spectrum_unfitted`](Self::set_spectrum_unfitted),
+///   [`transition_progress`](Self::transition_progress),
+///   [`set_choppiness`](Self::set_choppiness), [`set_foam_config`](Self::set_foam_config),
+///   [`spectrum`](Self::spectrum), [`config`](Self::config).
+/// - **Queries**: [`water`](Self::water) for the world queries (heights and surfaces at world
+///   points, samples at rest points, batches, grids), [`surface`](Self::surface) for a handle
+///   other threads query while the ocean steps.
+/// - **Foam**: [`foam`](Self::foam) (the field), [`foam_view`](Self::foam_view) (its parts,
+///   breaking, values at a point, coverage, calibration), [`clear_foam`](Self::clear_foam).
+/// - **Buffers and textures**: [`cascades`](Self::cascades) (each cascade's buffers),
+///   [`textures`](Self::textures) (texels with the foam, the sub-grid slope variance).
+/// - **Snapshots**: [`snapshot`](Self::snapshot), [`snapshot_into`](Self::snapshot_into),
+///   [`restore`](Self::restore).
+/// - **Diagnostics**: [`diagnostics`](Self::diagnostics) (what the grids hold of the sea, the
+///   largest choppiness, the loop error, the mean level, the expected variance).
+///
 /// ```
 /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
 /// let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
 /// let config = OceanConfig { size: 64, ..OceanConfig::default() };
 /// let mut ocean = OceanState::new(spectrum, config)?;
-/// ocean.step(1.0 / 60.0)?;                       // s
-/// let s = ocean.sample(12.0, -40.0)?;            // world x, z in m
-/// let y = ocean.height_at(12.0, -40.0)?;         // water height at that point, m
-/// assert!(s.height.is_finite() && y.is_finite());
+/// ocean.step(1.0 / 60.0)?;                              // s
+/// let water = ocean.water();
+/// let y = water.height_at(12.0, -40.0)?;                // m, water height at world (x, z)
+/// let s = water.at_rest(12.0, -40.0)?;                  // the water resting at (x0, z0), m
+/// assert!(y.is_finite() && s.height.is_finite());
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```
 ///
@@ -63,7 +85,7 @@ impl OceanState {
 
     /// Builds the cascades (h0 of each drawn once) on the bands of
     /// [`OceanConfig::bands`], at t = 0 with no foam, and calibrates the whitecaps (the
-    /// breaking threshold, [`foam_calibration`](Self::foam_calibration)).
+    /// breaking threshold, [`calibration`](crate::FoamView::calibration)).
     ///
     /// # Errors
     /// Those of [`OceanConfig::validate`] and of [`Cascade::new`] for each cascade;
@@ -71,7 +93,7 @@ impl OceanState {
     /// [`MIN_BUILD_SHARE`](Self::MIN_BUILD_SHARE) of its variance (the message says whether
     /// the largest tile or the finest cell is at fault; [`OceanConfig::fitted`] gives grids
     /// that hold it); [`Error::OutOfRange`] naming `choppiness` above
-    /// [`max_choppiness`](Self::max_choppiness);
+    /// [`max_choppiness`](super::Diagnostics::max_choppiness);
     /// [`Error::AmplitudeTooLarge`] also if, with [`OceanConfig::second_order`], the
     /// second-order terms could overflow f32; [`Error::OutOfMemory`] if the system refuses the
     /// foam's or the second order's buffers.
@@ -139,7 +161,7 @@ impl OceanState {
     ///
     /// # Errors
     /// [`Error::OutOfRange`] naming `choppiness` above
-    /// [`max_choppiness`](Self::max_choppiness), where the surface folds nearly everywhere
+    /// [`max_choppiness`](super::Diagnostics::max_choppiness), where the surface folds nearly everywhere
     /// it can; as [`Cascade::set_choppiness`], for any cascade; no cascade changes then.
     /// (The check costs a slope quadrature, about a millisecond: set it when it changes, not
     /// every frame.)

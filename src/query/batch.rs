@@ -89,9 +89,9 @@ fn run_batch<Q: PointQuery>(
     );
 }
 
-/// One row of [`OceanState::sample_grid`](crate::OceanState::sample_grid), as a
+/// One row of [`Water::at_rest_grid`](crate::Water::at_rest_grid), as a
 /// [`ShuffledKernel`]: its points eight at a time, as
-/// [`OceanState::sample_many`](crate::OceanState::sample_many) samples them.
+/// [`Water::at_rest_many`](crate::Water::at_rest_many) samples them.
 struct GridRow<'a> {
     fields: &'a Fields<'a>,
     /// The row's first point `[x, z]`, in metres.
@@ -115,7 +115,7 @@ impl ShuffledKernel for GridRow<'_> {
     }
 }
 
-/// The samples of [`OceanState::sample_grid`](crate::OceanState::sample_grid) once its
+/// The samples of [`Water::at_rest_grid`](crate::Water::at_rest_grid) once its
 /// arguments are checked: a grid of rows `columns` long, sample (c, r) at
 /// `origin` + (c, r)·`spacing` summed over cascades `cascades`, rows in parallel at the
 /// frame's SIMD level, into `out`.
