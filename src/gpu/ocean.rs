@@ -9,7 +9,7 @@ use crate::spectrum::SlopeVariance;
 
 /// What a renderer reads from an ocean each frame: what
 /// [`OceanState::textures`] returns. The cascades' texels with the ocean's foam
-/// ([`pack`](Self::pack), [`pack_f16`](Self::pack_f16) with the `half` feature) and the
+/// ([`pack`](Self::pack), `pack_f16` with the `half` feature) and the
 /// slope variance the grids cannot show ([`subgrid_slope_variance`](Self::subgrid_slope_variance)).
 /// Borrows the ocean; `Copy`; allocates nothing.
 ///

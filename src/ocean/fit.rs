@@ -285,7 +285,7 @@ impl OceanState {
     }
 }
 
-/// [`Diagnostics::max_choppiness`] for a spectrum and bands.
+/// [`Diagnostics::max_choppiness`](super::Diagnostics::max_choppiness) for a spectrum and bands.
 pub(super) fn max_choppiness(spectrum: &Spectrum, bands: &[(f32, f32)]) -> f32 {
     let slope: f64 = bands
         .iter()
