@@ -190,7 +190,7 @@ pub use ocean::{Diagnostics, OceanConfig, OceanSnapshot, OceanState, SeaFit};
 pub use presets::SeaState;
 pub use query::{Interpolation, Location, QueryConfig, Surface, SurfaceSample, Water};
 pub use spectrum::dispersion::{Dispersion, GRAVITY};
-pub use spectrum::{DepthFactor, SlopeVariance, Spectrum, Spreading};
+pub use spectrum::{DepthFactor, SlopeVariance, Spectrum, SpectrumKind, SpectrumParams, Spreading};
 
 // The Rust blocks of the guide's chapters (docs/guide/) are doc-tests when every optional
 // feature is on (the serde block of spectra.md needs `serde`), as CI runs them:
