@@ -68,7 +68,7 @@ pub fn water_point_under(
     let [x, _, z] = engine.position_to_crate(position);
     let found = ocean.water().locate(x, z)?; // the undisplaced point whose water lands on (x, z)
     let [x0, z0] = found.undisplaced;
-    let height = ocean.water().at_rest(x0, z0)?.height; // = ocean.height_at(x, z)
+    let height = ocean.water().at_rest(x0, z0)?.height; // = ocean.water().height_at(x, z)
     Ok((engine.position([x, f64::from(height), z]), found.converged))
 }
 // guide: end
