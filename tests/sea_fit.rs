@@ -174,24 +174,35 @@ fn fitted_grids_hold_the_sea() {
 }
 
 #[test]
-fn fitted_grids_are_near_the_presets_hand_chosen_ones() {
-    for sea in SeaState::ALL {
+fn presets_use_fitted_grids_near_the_hand_chosen_ones_of_0_3() {
+    // 0.3's hand-chosen lengths, 9 to 14 peak wavelengths for the largest tile: an
+    // independent judgement of what suits each sea, which fitted grids (12) stay near.
+    let hand_chosen: [(SeaState, [f32; 3]); 6] = [
+        (SeaState::Calm, [60.0, 13.8, 3.1]),
+        (SeaState::ModerateBreeze, [500.0, 115.0, 25.5]),
+        (SeaState::FreshBreeze, [1000.0, 230.0, 51.0]),
+        (SeaState::Storm, [4000.0, 920.0, 204.0]),
+        (SeaState::Swell, [2000.0, 460.0, 102.0]),
+        (SeaState::ShallowBay, [200.0, 46.0, 10.2]),
+    ];
+    for (sea, old) in hand_chosen {
         let (spectrum, preset) = sea.build();
-        let fitted = OceanConfig::fitted(&spectrum).unwrap();
-        let preset_fit = preset.fit(&spectrum).unwrap();
-        // Every preset's own grids hold what fitted grids must.
-        assert!(
-            preset_fit.held >= OceanConfig::FITTED_SHARE,
-            "{sea:?}: {preset_fit:?}"
-        );
-        let ratio = fitted.lengths[0] / preset.lengths[0];
-        eprintln!(
-            "{sea:?}: fitted {:?}, preset {:?}",
-            fitted.lengths, preset.lengths
-        );
-        // The presets' largest tiles are 9 to 14 peak wavelengths, fitted ones 12.
-        assert!((0.8..1.4).contains(&ratio), "{sea:?}: {ratio}");
-        assert_eq!(fitted.lengths.len(), preset.lengths.len());
+        let fit = preset.fit(&spectrum).unwrap();
+        assert!(fit.held >= OceanConfig::FITTED_SHARE, "{sea:?}: {fit:?}");
+        let fitted = OceanConfig {
+            choppiness: preset.choppiness,
+            foam: preset.foam,
+            ..OceanConfig::default()
+        }
+        .with_fitted_lengths(&spectrum)
+        .unwrap();
+        assert_eq!(preset, fitted, "{sea:?}");
+        eprintln!("{sea:?}: preset {:?}, 0.3 {old:?}", preset.lengths);
+        assert_eq!(preset.lengths.len(), old.len(), "{sea:?}");
+        // 12 peak wavelengths against 9 to 14: within 0.8 and 1.4 of the hand-chosen tile.
+        for (new, old) in preset.lengths.iter().zip(old) {
+            assert!((0.8..1.4).contains(&(new / old)), "{sea:?}: {new} vs {old}");
+        }
     }
 }
 

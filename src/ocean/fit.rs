@@ -50,7 +50,7 @@ impl SeaFit {
 impl OceanConfig {
     /// The largest tile of [`fitted`](Self::fitted) grids, in peak wavelengths: enough that
     /// the waves longer than it hold far below 1 % of any sea here, and that a view of a few
-    /// wavelengths shows no repeat (the presets' hand-chosen tiles are 9 to 14).
+    /// wavelengths shows no repeat (0.3's hand-chosen preset tiles were 9 to 14).
     pub const FIT_PEAK_WAVELENGTHS: f32 = 12.0;
 
     /// The share of a spectrum's variance that [`fitted`](Self::fitted) grids hold at least
