@@ -34,7 +34,7 @@ fn fingerprint(ocean: &OceanState) -> Vec<(String, Vec<u64>)> {
             ],
         ));
     }
-    let calibration = ocean.foam_calibration();
+    let calibration = ocean.foam_view().calibration();
     all.push((
         "foam calibration".into(),
         bits(&[

@@ -50,7 +50,7 @@ impl SeaFit {
 impl OceanConfig {
     /// The largest tile of [`fitted`](Self::fitted) grids, in peak wavelengths: enough that
     /// the waves longer than it hold far below 1 % of any sea here, and that a view of a few
-    /// wavelengths shows no repeat (the presets' hand-chosen tiles are 9 to 14).
+    /// wavelengths shows no repeat (0.3's hand-chosen preset tiles were 9 to 14).
     pub const FIT_PEAK_WAVELENGTHS: f32 = 12.0;
 
     /// The share of a spectrum's variance that [`fitted`](Self::fitted) grids hold at least
@@ -222,39 +222,28 @@ impl OceanState {
 
     /// λ_max·σ at the largest choppiness λ_max, σ² the mean-square slope the grids hold:
     /// about 53 % of a Gaussian sea's surface folds there. See
-    /// [`max_choppiness`](Self::max_choppiness).
+    /// [`max_choppiness`](super::Diagnostics::max_choppiness).
     pub const MAX_FOLD_SCALE: f32 = 4.0;
 
-    /// What the grids hold of the current spectrum (see [`SeaFit`]; during a change of
-    /// weather, of the new one). Costs a few quadratures, about half a millisecond.
+    /// Deprecated: [`Diagnostics::fit`](super::Diagnostics::fit) through
+    /// [`OceanState::diagnostics`].
+    #[deprecated(since = "0.4.0", note = "use `ocean.diagnostics().fit()`")]
+    #[doc(hidden)]
     pub fn fit(&self) -> SeaFit {
-        self.config
-            .fit_bands(&self.spectrum, &self.config.bands_unchecked())
+        self.diagnostics().fit()
     }
 
-    /// The largest choppiness [`set_choppiness`](Self::set_choppiness) and
-    /// [`OceanState::new`] accept for this spectrum and these grids,
-    /// [`MAX_FOLD_SCALE`](Self::MAX_FOLD_SCALE)/σ, with σ² the mean-square slope the
-    /// cascades' bands hold ([`Spectrum::slope_variance`] summed over them: a quadrature of
-    /// about a millisecond, which [`set_choppiness`](Self::set_choppiness) pays too).
-    ///
-    /// Why: the Jacobian of the horizontal displacement is J = (1 + λD_xx)(1 + λD_zz) −
-    /// λ²D_xz², and D_xx + D_zz (multiplier −|k|) has the variance of the slope, σ². For a
-    /// Gaussian sea (an isotropic one; a wind sea's spreading changes these little) the
-    /// surface folds, J < 0, on 0.3 % of its area at λσ = 0.5 (the presets sit below it),
-    /// 41 % at λσ = 2, 53 % at λσ = 4 and never more than 58 % at any λ (where
-    /// D_xx·D_zz < D_xz²). Beyond λσ = 4 more choppiness folds at most a few percent more
-    /// of a surface already folded nearly everywhere it can, and the world queries'
-    /// inversion of the displacement stops converging. Their heights stay those of the sea
-    /// even then: the inversion's iterate is a point of the surface, and the mean-level
-    /// correction λ∫k S d²k is at most λσ·√m0 = H_s here (Cauchy–Schwarz).
+    /// Deprecated: [`Diagnostics::max_choppiness`](super::Diagnostics::max_choppiness)
+    /// through [`OceanState::diagnostics`].
+    #[deprecated(since = "0.4.0", note = "use `ocean.diagnostics().max_choppiness()`")]
+    #[doc(hidden)]
     pub fn max_choppiness(&self) -> f32 {
-        max_choppiness(&self.spectrum, &self.config.bands_unchecked())
+        self.diagnostics().max_choppiness()
     }
 
     /// [`set_spectrum`](Self::set_spectrum) for a sea the grids may hold less than
     /// [`MIN_CHANGE_SHARE`](Self::MIN_CHANGE_SHARE) of: the caller accepts a sea whose
-    /// simulated H_s falls short of the spectrum's (see [`fit`](Self::fit) after the call).
+    /// simulated H_s falls short of the spectrum's (see [`Diagnostics::fit`](super::Diagnostics::fit) after the call).
     ///
     /// # Errors
     /// Those of [`set_spectrum`](Self::set_spectrum) but [`Error::SeaDoesNotFit`]; nothing
@@ -281,7 +270,7 @@ impl OceanState {
     }
 
     /// Refuses a new spectrum too steep for the current choppiness (its
-    /// [`max_choppiness`](Self::max_choppiness) below it).
+    /// [`max_choppiness`](super::Diagnostics::max_choppiness) below it).
     pub(super) fn check_change_choppiness(&self, spectrum: &Spectrum) -> Result<(), Error> {
         let bands = self.config.bands_unchecked();
         if self.config.choppiness > max_choppiness(spectrum, &bands) {
@@ -289,14 +278,14 @@ impl OceanState {
                 name: "spectrum",
                 reason: "the new sea is so steep that the current choppiness would fold it \
                          nearly everywhere: lower the choppiness first (see \
-                         `OceanState::max_choppiness`)",
+                         `Diagnostics::max_choppiness`)",
             });
         }
         Ok(())
     }
 }
 
-/// [`OceanState::max_choppiness`] for a spectrum and bands.
+/// [`Diagnostics::max_choppiness`](super::Diagnostics::max_choppiness) for a spectrum and bands.
 pub(super) fn max_choppiness(spectrum: &Spectrum, bands: &[(f32, f32)]) -> f32 {
     let slope: f64 = bands
         .iter()

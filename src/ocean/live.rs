@@ -106,7 +106,7 @@ impl OceanState {
     /// never dip (a wind that turns 90° moves energy from one lobe to the other; an amplitude
     /// blend would halve the sea half way). The weight w rises from 0 to 1 as the smoothstep
     /// 3τ² − 2τ³ of the elapsed fraction τ of `duration`, so waves that appear or vanish do so
-    /// smoothly; [`expected_variance`](Self::expected_variance) moves monotonically.
+    /// smoothly; [`expected_variance`](super::Diagnostics::expected_variance) moves monotonically.
     ///
     /// **When.** With a positive `duration` the blend begins
     /// [`TRANSITION_LAG`](Self::TRANSITION_LAG) seconds of simulated time after the call and
@@ -123,7 +123,7 @@ impl OceanState {
     ///
     /// **A function of time.** The waves are a function of the calls, the simulated times
     /// they were made at and the current time, never of the steps between: every cascade
-    /// buffer, [`Cascade::h0`], the statistics and the [foam calibration](Self::foam_calibration)
+    /// buffer, [`Cascade::h0`], the statistics and the [foam calibration](crate::FoamView::calibration)
     /// have the same bits at the same time whether the ocean stepped at 30 or 144 fps, took
     /// one step across the change or jumped into it with [`set_time`](Self::set_time) (before
     /// the blend's start the old sea, during it the blend of that time, after its end the new
@@ -135,7 +135,7 @@ impl OceanState {
     /// on; [`transition_progress`](Self::transition_progress) the new sea's weight w at the
     /// last update while the change lasts (0 before the blend begins); the cascades'
     /// buffers, [`Cascade::h0`], the expected variance and the
-    /// [foam calibration](Self::foam_calibration) the sea as blended at the last update.
+    /// [foam calibration](crate::FoamView::calibration) the sea as blended at the last update.
     ///
     /// **Foam.** The foam is kept; its breaking threshold follows the blended sea (calibrated
     /// afresh at w = 0, 1/8, …, 1 and interpolated between, so a function of w), its drift
@@ -155,7 +155,7 @@ impl OceanState {
     /// or accept the loss with [`set_spectrum_unfitted`](Self::set_spectrum_unfitted));
     /// [`Error::NotApplicable`] naming `spectrum.dispersion` for another dispersion, or
     /// naming `spectrum` for a sea so steep that the current choppiness is above its
-    /// [`max_choppiness`](Self::max_choppiness);
+    /// [`max_choppiness`](super::Diagnostics::max_choppiness);
     /// [`Error::AmplitudeTooLarge`] if the new sea is too strong for the grids at the
     /// current choppiness (as [`OceanState::new`] would refuse it); [`Error::OutOfMemory`] if
     /// the system refuses the change's buffers (16 bytes a grid point, once). Nothing

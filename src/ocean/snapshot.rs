@@ -28,11 +28,11 @@ use super::OceanState;
 /// ocean.step(0.5)?;
 /// let saved = ocean.snapshot();
 /// ocean.step(0.25)?;
-/// let later = ocean.height_at(3.0, 4.0)?;
+/// let later = ocean.water().height_at(3.0, 4.0)?;
 ///
 /// ocean.restore(&saved)?;                  // back to t = 0.5 s, foam and all
 /// ocean.step(0.25)?;
-/// assert_eq!(ocean.height_at(3.0, 4.0)?, later);
+/// assert_eq!(ocean.water().height_at(3.0, 4.0)?, later);
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```
 #[derive(Debug, Clone, PartialEq)]

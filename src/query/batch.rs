@@ -91,11 +91,11 @@ fn run_batch<Q: PointQuery>(
     );
 }
 
-/// The samples of [`OceanState::sample_grid`](crate::OceanState::sample_grid) once its
+/// The samples of [`Water::at_rest_grid`](crate::Water::at_rest_grid) once its
 /// arguments are checked: a grid of rows `columns` long, sample (c, r) at
 /// `origin` + (c, r)·`spacing` summed over cascades `cascades`, rows in parallel at the
-/// frame's SIMD level, into `out`. Each row's points are batches of [`Sample`], so that the grid shares
-/// [`OceanState::sample_many`](crate::OceanState::sample_many)'s compiled lanes.
+/// frame's SIMD level, into `out`. Each row's points are batches of [`Sample`], so that the
+/// grid shares [`Water::at_rest_many`](crate::Water::at_rest_many)'s compiled lanes.
 pub(crate) fn sample_rows(
     fields: &Fields<'_>,
     origin: [f64; 2],
