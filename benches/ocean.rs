@@ -622,7 +622,7 @@ fn live(c: &mut Criterion) {
                 },
                 |state| {
                     state
-                        .step(black_box(OceanState::TRANSITION_LAG))
+                        .step(black_box(ocean_fft::limits::TRANSITION_LAG))
                         .expect("step")
                 },
                 BatchSize::PerIteration,
@@ -634,7 +634,7 @@ fn live(c: &mut Criterion) {
         let mut toward_gale = true;
         pool.install(|| {
             b.iter(|| {
-                if state.transition_progress().is_none() {
+                if state.diagnostics().transition_progress().is_none() {
                     let to = if toward_gale { &gale } else { &breeze };
                     state.set_spectrum(to.clone(), 10.0).expect("change");
                     toward_gale = !toward_gale;

@@ -91,7 +91,10 @@ fn main() -> Result<()> {
                 println!(
                     "{:6.1} {:5.3}   {:6.3} {:6.3}                  {:9.3e} {:9.3e}",
                     t,
-                    ocean.transition_progress().unwrap_or(f64::NAN),
+                    ocean
+                        .diagnostics()
+                        .transition_progress()
+                        .unwrap_or(f64::NAN),
                     row.hs_measured,
                     row.hs_predicted,
                     row.active,

@@ -186,7 +186,7 @@ pub use foam::{FoamConfig, FoamCoverage, FoamView};
 #[cfg(feature = "half")]
 pub use half;
 pub use math::determinism::Determinism;
-pub use ocean::{Diagnostics, OceanConfig, OceanSnapshot, OceanState, SeaFit};
+pub use ocean::{limits, Diagnostics, OceanConfig, OceanSnapshot, OceanState, SeaFit};
 pub use presets::SeaState;
 pub use query::{Interpolation, Location, QueryConfig, Surface, SurfaceSample, Water};
 pub use spectrum::dispersion::{Dispersion, GRAVITY};

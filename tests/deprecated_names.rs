@@ -141,3 +141,47 @@ fn the_old_foam_texture_and_diagnostic_names_answer_as_their_views() {
     assert_eq!(ocean.mean_level_offset(), diagnostics.mean_level_offset());
     assert_eq!(ocean.expected_variance(), diagnostics.expected_variance());
 }
+
+#[test]
+fn the_old_limits_snapshot_and_weather_names_answer_as_the_new_ones() {
+    use ocean_fft::limits;
+    assert_eq!(OceanState::MAX_STEP, limits::MAX_STEP);
+    assert_eq!(OceanState::MAX_PRE_ROLL_STEPS, limits::MAX_PRE_ROLL_STEPS);
+    assert_eq!(OceanState::MAX_TRANSITION, limits::MAX_TRANSITION);
+    assert_eq!(OceanState::TRANSITION_LAG, limits::TRANSITION_LAG);
+    assert_eq!(OceanState::MIN_CHANGE_SHARE, limits::MIN_CHANGE_SHARE);
+    assert_eq!(OceanState::MIN_BUILD_SHARE, limits::MIN_BUILD_SHARE);
+    assert_eq!(OceanState::MAX_FOLD_SCALE, limits::MAX_FOLD_SCALE);
+
+    let mut ocean = ocean();
+    assert_eq!(ocean.transition_progress(), None);
+    let stronger = Spectrum::jonswap(17.0, 200_000.0).unwrap();
+    ocean.set_spectrum(stronger, 2.0).unwrap();
+    for _ in 0..8 {
+        ocean.step(0.25).unwrap();
+        let (old, new) = (
+            ocean.transition_progress(),
+            ocean.diagnostics().transition_progress(),
+        );
+        assert_eq!(old.map(f64::to_bits), new.map(f64::to_bits));
+    }
+    // Mid-change, so that both names are read on a weight strictly between 0 and 1.
+    assert!(ocean
+        .diagnostics()
+        .transition_progress()
+        .is_some_and(|w| w > 0.0 && w < 1.0));
+
+    let mut old = ocean.snapshot();
+    let mut new = ocean.snapshot();
+    ocean.step(0.5).unwrap();
+    ocean.snapshot_into(&mut old);
+    new.capture(&ocean);
+    let (mut a, mut b) = (ocean.clone(), ocean.clone());
+    a.step(1.0).unwrap();
+    a.restore(&old).unwrap();
+    b.step(1.0).unwrap();
+    b.restore(&new).unwrap();
+    assert_eq!(old.time(), new.time());
+    assert_eq!(a.foam(), b.foam());
+    assert_eq!(a.foam(), ocean.foam());
+}

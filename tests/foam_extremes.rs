@@ -339,7 +339,7 @@ proptest! {
         setting in setting(),
         config in ocean_config(),
         first_dt in prop::sample::select(vec![1.0 / 60.0, 0.5]),
-        long_dt in prop::sample::select(vec![2.0, OceanState::MAX_STEP]),
+        long_dt in prop::sample::select(vec![2.0, ocean_fft::limits::MAX_STEP]),
         jump in prop::sample::select(vec![-17.25, 123.4, Cascade::MAX_TIME - 10.0]),
     ) {
         let accepted = |value: f32| {

@@ -77,7 +77,7 @@ fn assert_same_sea(ocean: &OceanState, fresh: &OceanState, what: &str) {
 /// Steps `ocean` by `dt` until its change of weather is over (at most `limit` steps).
 fn finish_change(ocean: &mut OceanState, dt: f64, limit: usize) {
     for _ in 0..limit {
-        if ocean.transition_progress().is_none() {
+        if ocean.diagnostics().transition_progress().is_none() {
             return;
         }
         ocean.step(dt).unwrap();
@@ -134,11 +134,11 @@ fn the_sea_after_a_change_is_the_new_sea_bit_for_bit() {
                 }
                 ocean.set_spectrum(to.clone(), duration).unwrap();
                 assert_eq!(ocean.spectrum(), to);
-                assert!(ocean.transition_progress().is_some());
+                assert!(ocean.diagnostics().transition_progress().is_some());
                 if duration == 0.0 {
                     // At once: the next step shows the new sea.
                     ocean.step(0.1).unwrap();
-                    assert_eq!(ocean.transition_progress(), None);
+                    assert_eq!(ocean.diagnostics().transition_progress(), None);
                 }
                 finish_change(&mut ocean, 1.0 / 30.0, 400);
                 let mut fresh = OceanState::new(to.clone(), config.clone()).unwrap();
@@ -161,7 +161,7 @@ fn the_sea_after_a_change_is_the_new_sea_bit_for_bit() {
     for _ in 0..60 {
         ocean.step(1.0 / 30.0).unwrap();
     }
-    let w = ocean.transition_progress().unwrap();
+    let w = ocean.diagnostics().transition_progress().unwrap();
     assert!(w > 0.05 && w < 0.95, "half way: {w}");
     ocean.set_spectrum(swell.clone(), 1.0).unwrap();
     finish_change(&mut ocean, 1.0 / 30.0, 400);
@@ -243,7 +243,7 @@ fn a_change_moves_the_sea_no_faster_than_the_sea_moves_itself() {
         let mut previous_variance = ocean.diagnostics().expected_variance();
         let mut worst: f64 = 0.0;
         let mut frames = 0;
-        while ocean.transition_progress().is_some() {
+        while ocean.diagnostics().transition_progress().is_some() {
             let before = heights(&ocean);
             let before_alone = [heights(&alone[0]), heights(&alone[1])];
             ocean.step(dt).unwrap();
@@ -319,7 +319,7 @@ fn the_whitecaps_follow_the_new_wind() {
             ocean.foam_view().coverage().total > 0.5 * before,
             "the foam was kept"
         );
-        while ocean.transition_progress().is_some() {
+        while ocean.diagnostics().transition_progress().is_some() {
             ocean.step(dt).unwrap();
         }
         let _ = mean_active(&mut ocean, 20.0, dt);
@@ -383,7 +383,7 @@ fn bad_changes_are_errors_that_change_nothing() {
         ..FoamConfig::default()
     };
     assert!(ocean.set_foam_config(bad_foam).is_err());
-    assert_eq!(ocean.transition_progress(), None);
+    assert_eq!(ocean.diagnostics().transition_progress(), None);
     assert_same_sea(&ocean, &reference, "after refused changes");
     assert_eq!(ocean.foam(), reference.foam());
     assert_eq!(ocean.config(), reference.config());

@@ -63,7 +63,7 @@ fn stepping_and_querying_allocate_nothing() {
                 // A networked game: follow a given clock, keep snapshots, roll back.
                 let t = ocean.time();
                 ocean.step_to(t + 0.01).unwrap();
-                ocean.snapshot_into(&mut snapshot);
+                snapshot.capture(&ocean);
                 if frame % 50 == 49 {
                     ocean.restore(&snapshot).unwrap();
                 }

@@ -91,11 +91,11 @@ fn step_to_refuses_going_back_or_too_far_and_changes_nothing() {
             name: "t",
             value: 1.5,
             min: Bound::Included(2.0),
-            max: Bound::Included(2.0 + OceanState::MAX_STEP),
+            max: Bound::Included(2.0 + ocean_fft::limits::MAX_STEP),
         })
     );
     assert!(matches!(
-        ocean.step_to(2.0 + OceanState::MAX_STEP * 2.0),
+        ocean.step_to(2.0 + ocean_fft::limits::MAX_STEP * 2.0),
         Err(Error::OutOfRange { name: "t", .. })
     ));
     assert_eq!(ocean.step_to(f64::NAN), Err(Error::NonFinite { name: "t" }));
@@ -158,9 +158,9 @@ fn a_restored_snapshot_steps_to_the_same_bits() {
     clone.step(0.1).unwrap();
     assert_eq!(bits(&clone), bits(&original));
 
-    // snapshot_into refills an existing snapshot to the same value.
+    // capture refills an existing snapshot to the same value.
     let mut reused = snapshot.clone();
-    original.snapshot_into(&mut reused);
+    reused.capture(&original);
     assert_eq!(reused, original.snapshot());
     assert_eq!(reused.time(), original.time());
 }

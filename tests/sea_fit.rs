@@ -68,7 +68,7 @@ fn a_change_of_weather_the_grids_cannot_hold_is_refused() {
         panic!("{error:?}");
     };
     assert_eq!(name, "spectrum");
-    assert_eq!(min, OceanState::MIN_CHANGE_SHARE);
+    assert_eq!(min, ocean_fft::limits::MIN_CHANGE_SHARE);
     // The quadrature of the bands gives 7.7 %, nearly all the rest too long for the 60 m
     // tile (the grid's own sums at 64² are a few percent of the variance off).
     assert!(held < 0.1, "{held}");
@@ -83,7 +83,7 @@ fn a_change_of_weather_the_grids_cannot_hold_is_refused() {
     }
     // Nothing changed.
     assert_eq!(ocean.spectrum(), &before);
-    assert_eq!(ocean.transition_progress(), None);
+    assert_eq!(ocean.diagnostics().transition_progress(), None);
     // Accepted when asked, and then the ocean says what it holds.
     ocean.set_spectrum_unfitted(storm.clone(), 0.0).unwrap();
     assert_eq!(ocean.spectrum(), &storm);
@@ -143,7 +143,10 @@ fn fit_is_the_quadrature_of_the_bands() {
             assert_eq!(ocean.diagnostics().fit(), fit);
         } else {
             // Only the storm on the calm grids, which hold below a quarter of it.
-            assert!(fit.held < OceanState::MIN_BUILD_SHARE, "{sea:?} {fit:?}");
+            assert!(
+                fit.held < ocean_fft::limits::MIN_BUILD_SHARE,
+                "{sea:?} {fit:?}"
+            );
         }
         eprintln!("{sea:?}: {fit:?}");
     }
@@ -215,7 +218,7 @@ fn a_sea_the_default_grids_cannot_hold_is_refused() {
         panic!("{error:?}");
     };
     assert_eq!(name, "spectrum");
-    assert!(held < OceanState::MIN_BUILD_SHARE, "{held}");
+    assert!(held < ocean_fft::limits::MIN_BUILD_SHARE, "{held}");
     // Fitted grids hold it.
     let config = OceanConfig {
         size: 32,
@@ -355,7 +358,7 @@ fn the_largest_choppiness_folds_the_surface_nearly_everywhere_it_can() {
         let mut ocean = OceanState::new(spectrum.clone(), config).unwrap();
         let limit = ocean.diagnostics().max_choppiness();
         for (s, scale) in scales.iter().enumerate() {
-            let lambda = limit * scale / OceanState::MAX_FOLD_SCALE;
+            let lambda = limit * scale / ocean_fft::limits::MAX_FOLD_SCALE;
             ocean.set_choppiness(lambda).unwrap();
             ocean.step(1.0).unwrap();
             let cascade = &ocean.cascades()[0];
@@ -449,7 +452,10 @@ fn grids_fitted_to_the_roughest_sea_hold_the_calmer_ones() {
     ] {
         let fit = config.fit(&sea.build().0).unwrap();
         eprintln!("{sea:?} on the storm's fitted grids: {fit:?}");
-        assert!(fit.held >= OceanState::MIN_CHANGE_SHARE, "{sea:?}: {fit:?}");
+        assert!(
+            fit.held >= ocean_fft::limits::MIN_CHANGE_SHARE,
+            "{sea:?}: {fit:?}"
+        );
     }
     let calm = config.fit(&SeaState::Calm.build().0).unwrap();
     eprintln!("Calm on the storm's fitted grids: {calm:?}");
@@ -463,7 +469,8 @@ fn every_preset_sits_far_below_the_largest_choppiness() {
         let (spectrum, config) = sea.build();
         let choppiness = config.choppiness;
         let ocean = OceanState::new(spectrum, config).unwrap();
-        let scale = choppiness / ocean.diagnostics().max_choppiness() * OceanState::MAX_FOLD_SCALE;
+        let scale =
+            choppiness / ocean.diagnostics().max_choppiness() * ocean_fft::limits::MAX_FOLD_SCALE;
         eprintln!("{sea:?}: λσ = {scale}");
         assert!(scale < 0.5, "{sea:?}: λσ = {scale}");
     }

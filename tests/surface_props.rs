@@ -175,7 +175,7 @@ fn any_f64() -> impl Strategy<Value = f64> {
         2 => prop::sample::select(EDGES_F64.to_vec()),
         1 => any::<f64>(),
         2 => (
-            prop::sample::select(vec![Cascade::MAX_TIME, -Cascade::MAX_TIME, OceanState::MAX_STEP]),
+            prop::sample::select(vec![Cascade::MAX_TIME, -Cascade::MAX_TIME, ocean_fft::limits::MAX_STEP]),
             -2i32..=2
         )
             .prop_map(|(limit, ulps)| {
@@ -316,7 +316,12 @@ fn ocean_bits(ocean: &OceanState) -> Vec<u64> {
     bits.extend([c.active, c.residual, c.total].map(|x| x.to_bits() as u64));
     // What a change of weather or of the foam settings moves.
     bits.push(ocean.diagnostics().expected_variance().to_bits());
-    bits.push(ocean.transition_progress().map_or(u64::MAX, f64::to_bits));
+    bits.push(
+        ocean
+            .diagnostics()
+            .transition_progress()
+            .map_or(u64::MAX, f64::to_bits),
+    );
     bits.push(ocean.foam_view().calibration().threshold.to_bits() as u64);
     bits
 }
@@ -909,7 +914,7 @@ fn any_ocean_op() -> impl Strategy<Value = OceanOp> {
             prop_oneof![3 => 0f64..1.0, 1 => prop::sample::select(vec![-1.0, f64::NAN, f64::INFINITY, 1e300, 0.0])],
             prop_oneof![
                 3 => 0.05f64..0.5,
-                1 => prop::sample::select(vec![0.0, -0.1, 1e-300, f64::NAN, f64::INFINITY, OceanState::MAX_STEP, OceanState::MAX_STEP * (1.0 + 1e-15)]),
+                1 => prop::sample::select(vec![0.0, -0.1, 1e-300, f64::NAN, f64::INFINITY, ocean_fft::limits::MAX_STEP, ocean_fft::limits::MAX_STEP * (1.0 + 1e-15)]),
             ],
         )
             .prop_map(|(seconds, dt)| OceanOp::PreRoll(seconds, dt)),
@@ -1030,7 +1035,7 @@ proptest! {
         };
         prop_assert!(ocean_finite(&ocean));
         check_fit(&ocean.diagnostics().fit());
-        prop_assert!(ocean.diagnostics().fit().held >= OceanState::MIN_BUILD_SHARE);
+        prop_assert!(ocean.diagnostics().fit().held >= ocean_fft::limits::MIN_BUILD_SHARE);
         prop_assert!(ocean.config().choppiness <= ocean.diagnostics().max_choppiness());
         let mut saved = ocean.snapshot();
         // Handles taken by `OceanOp::Surface`, with the answers they gave then.
@@ -1077,7 +1082,7 @@ proptest! {
                     .map(|()| {
                         assert_eq!(ocean.spectrum(), spectrum);
                         // Accepted only if the grids hold the share.
-                        assert!(ocean.diagnostics().fit().held >= OceanState::MIN_CHANGE_SHARE);
+                        assert!(ocean.diagnostics().fit().held >= ocean_fft::limits::MIN_CHANGE_SHARE);
                     }),
                 OceanOp::SetSpectrumUnfitted(ref spectrum, duration) => ocean
                     .set_spectrum_unfitted(spectrum.clone(), duration)
@@ -1263,7 +1268,7 @@ proptest! {
             prop_oneof![3 => 0f32..=1.0, 1 => prop::sample::select(vec![0.0f32, 1.0, 1.0000001, -0.0, f32::NAN])],
         ),
         steps in prop::collection::vec(
-            prop::sample::select(vec![0.0, 1e-300, 1.0 / 60.0, 0.5, 60.0, OceanState::MAX_STEP]),
+            prop::sample::select(vec![0.0, 1e-300, 1.0 / 60.0, 0.5, 60.0, ocean_fft::limits::MAX_STEP]),
             1..6,
         ),
     ) {

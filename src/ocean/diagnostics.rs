@@ -47,6 +47,14 @@ impl OceanState {
 }
 
 impl Diagnostics<'_> {
+    /// The weight w in [0, 1] of the new sea in a change of weather at the last update
+    /// (`None` when no change is in progress): 0 until the blend begins
+    /// ([`limits::TRANSITION_LAG`](crate::limits::TRANSITION_LAG) after the call), then rising to 1 over the
+    /// change's duration (see [`OceanState::set_spectrum`]).
+    pub fn transition_progress(&self) -> Option<f64> {
+        self.ocean.change.map(|change| change.weight)
+    }
+
     /// What the grids hold of the current spectrum (see [`SeaFit`]; during a change of
     /// weather, of the new one). Costs a few quadratures, about half a millisecond.
     pub fn fit(&self) -> SeaFit {
@@ -55,7 +63,7 @@ impl Diagnostics<'_> {
     }
 
     /// The largest choppiness [`OceanState::set_choppiness`] and [`OceanState::new`] accept
-    /// for this spectrum and these grids, [`OceanState::MAX_FOLD_SCALE`]/σ, with σ² the
+    /// for this spectrum and these grids, [`limits::MAX_FOLD_SCALE`](crate::limits::MAX_FOLD_SCALE)/σ, with σ² the
     /// mean-square slope the cascades' bands hold
     /// ([`Spectrum::slope_variance`](crate::Spectrum::slope_variance) summed over them: a
     /// quadrature of about a millisecond, which [`OceanState::set_choppiness`] pays too).

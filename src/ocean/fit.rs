@@ -210,20 +210,17 @@ impl SeaFit {
 }
 
 impl OceanState {
-    /// The share of a new spectrum's variance that the grids must hold for
-    /// [`set_spectrum`](Self::set_spectrum) to accept it (H_s at least 89 % of the sea's);
-    /// [`set_spectrum_unfitted`](Self::set_spectrum_unfitted) takes any.
-    pub const MIN_CHANGE_SHARE: f64 = 0.8;
+    #[deprecated(since = "0.4.0", note = "use `ocean_fft::limits::MIN_CHANGE_SHARE`")]
+    #[doc(hidden)]
+    pub const MIN_CHANGE_SHARE: f64 = super::limits::MIN_CHANGE_SHARE;
 
-    /// The share of the spectrum's variance (in the config's band) that the grids must hold
-    /// for [`OceanState::new`] to build the ocean: below it the simulated H_s is under half
-    /// the sea's, another sea than the one asked for.
-    pub const MIN_BUILD_SHARE: f64 = 0.25;
+    #[deprecated(since = "0.4.0", note = "use `ocean_fft::limits::MIN_BUILD_SHARE`")]
+    #[doc(hidden)]
+    pub const MIN_BUILD_SHARE: f64 = super::limits::MIN_BUILD_SHARE;
 
-    /// λ_max·σ at the largest choppiness λ_max, σ² the mean-square slope the grids hold:
-    /// about 53 % of a Gaussian sea's surface folds there. See
-    /// [`max_choppiness`](super::Diagnostics::max_choppiness).
-    pub const MAX_FOLD_SCALE: f32 = 4.0;
+    #[deprecated(since = "0.4.0", note = "use `ocean_fft::limits::MAX_FOLD_SCALE`")]
+    #[doc(hidden)]
+    pub const MAX_FOLD_SCALE: f32 = super::limits::MAX_FOLD_SCALE;
 
     /// Deprecated: [`Diagnostics::fit`](super::Diagnostics::fit) through
     /// [`OceanState::diagnostics`].
@@ -242,7 +239,7 @@ impl OceanState {
     }
 
     /// [`set_spectrum`](Self::set_spectrum) for a sea the grids may hold less than
-    /// [`MIN_CHANGE_SHARE`](Self::MIN_CHANGE_SHARE) of: the caller accepts a sea whose
+    /// [`limits::MIN_CHANGE_SHARE`](crate::limits::MIN_CHANGE_SHARE) of: the caller accepts a sea whose
     /// simulated H_s falls short of the spectrum's (see [`Diagnostics::fit`](super::Diagnostics::fit) after the call).
     ///
     /// # Errors
@@ -258,13 +255,13 @@ impl OceanState {
     }
 
     /// Refuses a new spectrum the grids hold less than
-    /// [`MIN_CHANGE_SHARE`](Self::MIN_CHANGE_SHARE) of.
+    /// [`limits::MIN_CHANGE_SHARE`](crate::limits::MIN_CHANGE_SHARE) of.
     pub(super) fn check_change_fit(&self, spectrum: &Spectrum) -> Result<(), Error> {
         let fit = self
             .config
             .fit_bands(spectrum, &self.config.bands_unchecked());
-        if fit.held < Self::MIN_CHANGE_SHARE {
-            return Err(fit.error("spectrum", &self.config, Self::MIN_CHANGE_SHARE));
+        if fit.held < super::limits::MIN_CHANGE_SHARE {
+            return Err(fit.error("spectrum", &self.config, super::limits::MIN_CHANGE_SHARE));
         }
         Ok(())
     }
@@ -292,7 +289,7 @@ pub(super) fn max_choppiness(spectrum: &Spectrum, bands: &[(f32, f32)]) -> f32 {
         .map(|&(lo, hi)| f64::from(spectrum.slope_variance(lo, hi).total()))
         .sum();
     if slope > 0.0 {
-        error::saturate(f64::from(OceanState::MAX_FOLD_SCALE) / slope.sqrt())
+        error::saturate(f64::from(super::limits::MAX_FOLD_SCALE) / slope.sqrt())
     } else {
         f32::MAX
     }
@@ -308,15 +305,15 @@ pub(super) fn check_choppiness(
     error::in_range("choppiness", choppiness, Included(0.0), Included(limit))
 }
 
-/// Checks that the grids hold at least [`OceanState::MIN_BUILD_SHARE`] of the sea.
+/// Checks that the grids hold at least [`limits::MIN_BUILD_SHARE`](crate::limits::MIN_BUILD_SHARE) of the sea.
 pub(super) fn check_build_fit(
     spectrum: &Spectrum,
     config: &OceanConfig,
     bands: &[(f32, f32)],
 ) -> Result<(), Error> {
     let fit = config.fit_bands(spectrum, bands);
-    if fit.held < OceanState::MIN_BUILD_SHARE {
-        return Err(fit.error("spectrum", config, OceanState::MIN_BUILD_SHARE));
+    if fit.held < super::limits::MIN_BUILD_SHARE {
+        return Err(fit.error("spectrum", config, super::limits::MIN_BUILD_SHARE));
     }
     Ok(())
 }

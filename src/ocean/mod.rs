@@ -7,6 +7,7 @@ mod config;
 mod diagnostics;
 mod fit;
 mod foam_api;
+pub mod limits;
 mod live;
 mod query_api;
 mod snapshot;
@@ -31,7 +32,6 @@ pub use snapshot::OceanSnapshot;
 ///   [`set_time`](Self::set_time), [`pre_roll`](Self::pre_roll), [`time`](Self::time).
 /// - **Weather**: [`set_spectrum`](Self::set_spectrum) (a change over simulated time),
 ///   [`set_spectrum_unfitted`](Self::set_spectrum_unfitted),
-///   [`transition_progress`](Self::transition_progress),
 ///   [`set_choppiness`](Self::set_choppiness), [`set_foam_config`](Self::set_foam_config),
 ///   [`spectrum`](Self::spectrum), [`config`](Self::config).
 /// - **Queries**: [`water`](Self::water) for the world queries (heights and surfaces at world
@@ -41,10 +41,14 @@ pub use snapshot::OceanSnapshot;
 ///   breaking, values at a point, coverage, calibration), [`clear_foam`](Self::clear_foam).
 /// - **Buffers and textures**: [`cascades`](Self::cascades) (each cascade's buffers),
 ///   [`textures`](Self::textures) (texels with the foam, the sub-grid slope variance).
-/// - **Snapshots**: [`snapshot`](Self::snapshot), [`snapshot_into`](Self::snapshot_into),
-///   [`restore`](Self::restore).
+/// - **Snapshots**: [`snapshot`](Self::snapshot), [`restore`](Self::restore) (and
+///   [`OceanSnapshot::capture`] to refill one without allocating).
 /// - **Diagnostics**: [`diagnostics`](Self::diagnostics) (what the grids hold of the sea, the
-///   largest choppiness, the loop error, the mean level, the expected variance).
+///   progress of a change of weather, the largest choppiness, the loop error, the mean level,
+///   the expected variance).
+///
+/// The limits its calls check (the longest step, the share of a sea the grids must hold, …)
+/// are constants of the [`limits`](crate::limits) module.
 ///
 /// ```
 /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
@@ -80,8 +84,9 @@ pub struct OceanState {
 }
 
 impl OceanState {
-    /// Largest accepted time step of [`OceanState::step`], in seconds.
-    pub const MAX_STEP: f64 = 3600.0;
+    #[deprecated(since = "0.4.0", note = "use `ocean_fft::limits::MAX_STEP`")]
+    #[doc(hidden)]
+    pub const MAX_STEP: f64 = limits::MAX_STEP;
 
     /// Builds the cascades (h0 of each drawn once) on the bands of
     /// [`OceanConfig::bands`], at t = 0 with no foam, and calibrates the whitecaps (the
@@ -90,7 +95,7 @@ impl OceanState {
     /// # Errors
     /// Those of [`OceanConfig::validate`] and of [`Cascade::new`] for each cascade;
     /// [`Error::SeaDoesNotFit`] naming `spectrum` if the grids hold less than
-    /// [`MIN_BUILD_SHARE`](Self::MIN_BUILD_SHARE) of its variance (the message says whether
+    /// [`limits::MIN_BUILD_SHARE`](crate::limits::MIN_BUILD_SHARE) of its variance (the message says whether
     /// the largest tile or the finest cell is at fault; [`OceanConfig::fitted`] gives grids
     /// that hold it); [`Error::OutOfRange`] naming `choppiness` above
     /// [`max_choppiness`](super::Diagnostics::max_choppiness);
