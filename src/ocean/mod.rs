@@ -48,7 +48,7 @@ pub use snapshot::OceanSnapshot;
 ///   the expected variance).
 ///
 /// The limits its calls check (the longest step, the share of a sea the grids must hold, …)
-/// are constants of the [`limits`](crate::limits) module.
+/// are constants of the [`limits`] module.
 ///
 /// ```
 /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
@@ -95,7 +95,7 @@ impl OceanState {
     /// # Errors
     /// Those of [`OceanConfig::validate`] and of [`Cascade::new`] for each cascade;
     /// [`Error::SeaDoesNotFit`] naming `spectrum` if the grids hold less than
-    /// [`limits::MIN_BUILD_SHARE`](crate::limits::MIN_BUILD_SHARE) of its variance (the message says whether
+    /// [`limits::MIN_BUILD_SHARE`] of its variance (the message says whether
     /// the largest tile or the finest cell is at fault; [`OceanConfig::fitted`] gives grids
     /// that hold it); [`Error::OutOfRange`] naming `choppiness` above
     /// [`max_choppiness`](super::Diagnostics::max_choppiness);
