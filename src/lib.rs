@@ -176,6 +176,7 @@ mod query;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod spectrum;
+mod wake;
 
 pub use cascade::{Cascade, CascadeConfig};
 pub use error::Error;
@@ -190,6 +191,7 @@ pub use presets::SeaState;
 pub use query::{Interpolation, Location, QueryConfig, Surface, SurfaceSample};
 pub use spectrum::dispersion::{Dispersion, GRAVITY};
 pub use spectrum::{DepthFactor, Spectrum, Spreading};
+pub use wake::{Hull, WakeConfig, Wakes};
 
 // The Rust blocks of the guide's chapters (docs/guide/) are doc-tests when every optional
 // feature is on (the serde block of spectra.md needs `serde`), as CI runs them:

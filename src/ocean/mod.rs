@@ -10,12 +10,14 @@ mod live;
 mod query_api;
 mod snapshot;
 mod time;
+mod wake_api;
 
 use crate::cascade::{Cascade, LoopError};
 use crate::error::{self, Error};
 use crate::foam::Foam;
 use crate::query::frame::{Frame, Frames};
 use crate::spectrum::{SlopeVariance, Spectrum};
+use crate::wake::sim::WakeSim;
 
 pub use config::OceanConfig;
 pub use fit::SeaFit;
@@ -53,6 +55,8 @@ pub struct OceanState {
     pub(crate) applied_choppiness: f32,
     /// A change of weather in progress ([`OceanState::set_spectrum`]).
     pub(crate) change: Option<live::Change>,
+    /// The wake layer ([`OceanConfig::wakes`]); its buffers live in the current frame.
+    pub(crate) wake: Option<WakeSim>,
 }
 
 impl OceanState {
@@ -91,7 +95,17 @@ impl OceanState {
             }
         }
         let foam = Foam::new(&mut cascades, &config.foam, &spectrum)?;
-        let frame = Frame::new(config.query, config.determinism, &cascades, &foam, 0.0)?;
+        let mut frame = Frame::new(config.query, config.determinism, &cascades, &foam, 0.0)?;
+        let wake = match &config.wakes {
+            Some(wakes) => {
+                let sim = WakeSim::new(wakes, spectrum.dispersion(), config.determinism, 0.0)?;
+                let mut output = sim.new_output()?;
+                sim.write(&mut output, 0.0);
+                frame.wake = Some(output);
+                Some(sim)
+            }
+            None => None,
+        };
         let frames = Frames::new(frame);
         Ok(OceanState {
             spectrum,
@@ -102,6 +116,7 @@ impl OceanState {
             frames,
             time: 0.0,
             change: None,
+            wake,
         })
     }
 
@@ -111,6 +126,7 @@ impl OceanState {
         self.foam.clear();
         // Handles taken before keep the foam they saw.
         self.frames.advance(self.time, self.config.query);
+        self.write_wake();
     }
 
     /// Simulated time in seconds.

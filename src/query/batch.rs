@@ -141,6 +141,14 @@ pub(crate) fn sample_rows(
                     cascades: &cascades,
                 },
             );
+            if fields.frame().wake.is_some() {
+                let z = origin[1] + r as f64 * spacing;
+                let query = Sample(cascades.clone());
+                for (c, sample) in row.iter_mut().enumerate() {
+                    let x = origin[0] + c as f64 * spacing;
+                    query.add_wakes(fields, &[[x, z]], std::slice::from_mut(sample));
+                }
+            }
         });
 }
 
@@ -162,8 +170,10 @@ pub(crate) fn for_each_point<Q: PointQuery>(
 ) {
     let simd = fields.frame().simd;
     let query = &query;
-    let chunk =
-        |out: &mut [Q::Output], points: &[[f64; 2]]| run_batch(simd, fields, points, out, query);
+    let chunk = |out: &mut [Q::Output], points: &[[f64; 2]]| {
+        run_batch(simd, fields, points, out, query);
+        query.add_wakes(fields, points, out);
+    };
     if points.len() < PARALLEL_BATCH {
         chunk(out, points);
     } else {
