@@ -21,6 +21,7 @@ use super::fft::Fft;
 use super::window::Wakes;
 use crate::error::{self, Error};
 use crate::math::determinism::{with_math, Determinism, Math};
+use crate::math::fft2d::ROWS_PER_TASK;
 use crate::math::grid::wave_index;
 use crate::spectrum::dispersion::{Dispersion, GRAVITY, SURFACE_TENSION, WATER_DENSITY};
 
@@ -49,8 +50,9 @@ pub(crate) struct WakeSim {
     /// ψ̂ in wave-number space, transposed (`[k_x][k_z]`), normalised (its unnormalised
     /// inverse transform is ψ).
     psi: Vec<Complex32>,
-    /// Per mode (transposed order): cos ωτ, sin ωτ, (1 − cos ωτ)·G, sin ωτ·G; all zero for
-    /// the mean and the Nyquist row and column.
+    /// Per mode (|m_x|, |m_z|), (N/2 + 1)² of them (a mode's rotation depends on |k| alone):
+    /// cos ωτ, sin ωτ, (1 − cos ωτ)·G, sin ωτ·G; all zero for the mean and the Nyquist
+    /// row and column.
     modes: Vec<[f32; 4]>,
     /// Per index along an axis: the border's damping factor over one tick.
     sponge: Vec<f32>,
@@ -159,18 +161,19 @@ impl WakeSim {
         // The modes: η̂ and the pressure head P̂ unpacked from the transform of η + iP (each
         // the Hermitian part of a real field), then rotated with ψ̂.
         let scale = 0.5 / (n * n) as f32;
-        let work = &self.work;
+        let (work, modes) = (&self.work, &self.modes);
+        let half = n / 2 + 1;
         self.field
             .par_chunks_mut(n)
             .zip(self.psi.par_chunks_mut(n))
-            .zip(self.modes.par_chunks(n))
             .enumerate()
-            .for_each(|(a, ((out, psi), modes))| {
+            .with_min_len(ROWS_PER_TASK)
+            .for_each(|(a, (out, psi))| {
                 let row = &work[a * n..(a + 1) * n];
                 let mirror = &work[((n - a) % n) * n..][..n];
-                for (b, ((out, psi), &[c, s, g1, g2])) in
-                    out.iter_mut().zip(psi.iter_mut()).zip(modes).enumerate()
-                {
+                let modes = &modes[a.min(n - a) * half..][..half];
+                for (b, (out, psi)) in out.iter_mut().zip(psi.iter_mut()).enumerate() {
+                    let [c, s, g1, g2] = modes[b.min(n - b)];
                     let f = row[b];
                     let m = mirror[(n - b) % n].conj();
                     let eta = (f + m) * scale;
@@ -188,6 +191,7 @@ impl WakeSim {
         self.field
             .par_chunks_mut(n)
             .zip(sponge.par_iter())
+            .with_min_len(ROWS_PER_TASK)
             .for_each(|(row, &sz)| {
                 for (value, &sx) in row.iter_mut().zip(sponge) {
                     *value = Complex32::new(value.re * (sx * sz), 0.0);
@@ -206,6 +210,7 @@ impl WakeSim {
         self.field
             .par_chunks_mut(n)
             .enumerate()
+            .with_min_len(ROWS_PER_TASK)
             .for_each(|(j, row)| {
                 let z = (origin[1] + j as i64) as f64 * spacing;
                 for placed in hulls {
@@ -264,27 +269,28 @@ impl WakeSim {
         out.origin = self.origin.map(|cell| cell as f64 * self.spacing);
         out.time = time;
         let (field, fade) = (&self.field, &self.fade);
+        // The faded height at (i, j), 0 outside the grid.
+        let height = |i: usize, j: usize| {
+            if i < n && j < n {
+                field[j * n + i].re * (fade[i] * fade[j])
+            } else {
+                0.0
+            }
+        };
+        let per = (0.5 / self.spacing) as f32;
         out.height
             .par_chunks_mut(n)
-            .zip(field.par_chunks(n))
-            .zip(fade.par_iter())
-            .for_each(|((row, values), &wz)| {
-                for ((h, v), &wx) in row.iter_mut().zip(values).zip(fade) {
-                    *h = v.re * (wx * wz);
-                }
-            });
-        let per = (0.5 / self.spacing) as f32;
-        let height = &out.height;
-        out.slope
-            .par_chunks_mut(n)
+            .zip(out.slope.par_chunks_mut(n))
             .enumerate()
-            .for_each(|(j, row)| {
-                let at = |i: usize, j: usize| height[j * n + i];
-                for (i, slope) in row.iter_mut().enumerate() {
-                    let left = if i > 0 { at(i - 1, j) } else { 0.0 };
-                    let right = if i + 1 < n { at(i + 1, j) } else { 0.0 };
-                    let down = if j > 0 { at(i, j - 1) } else { 0.0 };
-                    let up = if j + 1 < n { at(i, j + 1) } else { 0.0 };
+            .with_min_len(ROWS_PER_TASK)
+            .for_each(|(j, (heights, slopes))| {
+                for (i, (h, slope)) in heights.iter_mut().zip(slopes).enumerate() {
+                    // Index 0 − 1 wraps to usize::MAX: outside the grid, as N is.
+                    let left = height(i.wrapping_sub(1), j);
+                    let right = height(i + 1, j);
+                    let down = height(i, j.wrapping_sub(1));
+                    let up = height(i, j + 1);
+                    *h = height(i, j);
                     *slope = [(right - left) * per, (up - down) * per];
                 }
             });
@@ -305,21 +311,24 @@ fn bump(u: f32) -> f32 {
 
 /// `to[j][i] = from[j + dz][i + dx]` (its real part), or 0 where that lies outside.
 fn shift_into(from: &[Complex32], to: &mut [Complex32], n: usize, [dx, dz]: [i64; 2]) {
-    to.par_chunks_mut(n).enumerate().for_each(|(j, row)| {
-        let source = j as i64 + dz;
-        for (i, value) in row.iter_mut().enumerate() {
-            let column = i as i64 + dx;
-            *value = if (0..n as i64).contains(&source) && (0..n as i64).contains(&column) {
-                Complex32::new(from[source as usize * n + column as usize].re, 0.0)
-            } else {
-                Complex32::default()
-            };
-        }
-    });
+    to.par_chunks_mut(n)
+        .enumerate()
+        .with_min_len(ROWS_PER_TASK)
+        .for_each(|(j, row)| {
+            let source = j as i64 + dz;
+            for (i, value) in row.iter_mut().enumerate() {
+                let column = i as i64 + dx;
+                *value = if (0..n as i64).contains(&source) && (0..n as i64).contains(&column) {
+                    Complex32::new(from[source as usize * n + column as usize].re, 0.0)
+                } else {
+                    Complex32::default()
+                };
+            }
+        });
 }
 
-/// The rotation of each mode over a tick of `substep` s (see [`WakeSim::modes`]), in the
-/// transposed order of the forward transform's output.
+/// The rotation of each mode (|m_x|, |m_z|) over a tick of `substep` s (see
+/// [`WakeSim::modes`]).
 fn mode_table<M: Math>(
     n: usize,
     spacing: f64,
@@ -328,10 +337,11 @@ fn mode_table<M: Math>(
 ) -> Result<Vec<[f32; 4]>, Error> {
     let dk = std::f64::consts::TAU / (n as f64 * spacing);
     let nyquist = -((n / 2) as i32);
-    let mut modes = error::try_vec(n * n, [0.0f32; 4])?;
+    let half = n / 2 + 1;
+    let mut modes = error::try_vec(half * half, [0.0f32; 4])?;
     let g = f64::from(GRAVITY);
     let tension = f64::from(SURFACE_TENSION) / f64::from(WATER_DENSITY);
-    for (a, row) in modes.chunks_mut(n).enumerate() {
+    for (a, row) in modes.chunks_mut(half).enumerate() {
         let mx = wave_index(a, n);
         for (b, mode) in row.iter_mut().enumerate() {
             let mz = wave_index(b, n);
