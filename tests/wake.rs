@@ -415,7 +415,7 @@ fn crossing(config: OceanConfig, times: &[f64]) -> (Vec<f32>, Vec<[f32; 2]>, Vec
         .map(|i| [f64::from(i) * 0.77 - 30.0, f64::from(i % 7) * 3.1 - 10.0])
         .collect();
     let mut heights = vec![0.0; points.len()];
-    ocean.heights_at(&points, &mut heights).unwrap();
+    ocean.water().heights_at(&points, &mut heights).unwrap();
     let wakes = ocean.wakes().unwrap();
     (wakes.height().to_vec(), wakes.slope().to_vec(), heights)
 }
@@ -482,7 +482,8 @@ fn queries_include_the_wake_inside_the_window_only() {
     ocean.step(2.0).unwrap();
     plain.step(2.0).unwrap();
     let wakes = ocean.wakes().unwrap().clone();
-    let surface = ocean.surface();
+    let handle = ocean.surface();
+    let (water, plain, surface) = (ocean.water(), plain.water(), handle.water());
     // Inside: the sum, with the wake's height at the query point; outside (the window is
     // 64 m wide around the origin): the same bits as without wakes.
     for [x, z] in [
@@ -495,43 +496,70 @@ fn queries_include_the_wake_inside_the_window_only() {
         let (h, slope) = wakes.at(x, z);
         let inside = x.abs() < 30.0 && z.abs() < 30.0;
         assert_eq!(h != 0.0, inside, "({x}, {z})");
-        let both = ocean.height_at(x, z).unwrap();
+        let both = water.height_at(x, z).unwrap();
         let alone = plain.height_at(x, z).unwrap();
         assert_eq!(both, alone + h, "({x}, {z})");
         assert_eq!(surface.height_at(x, z).unwrap(), both);
-        let s = ocean.surface_at(x, z).unwrap();
+        let s = water.surface_at(x, z).unwrap();
         let p = plain.surface_at(x, z).unwrap();
         assert_eq!(s.height, p.height + h);
         assert_eq!(s.slope, [p.slope[0] + slope[0], p.slope[1] + slope[1]]);
         assert_eq!(surface.surface_at(x, z).unwrap(), s);
-        let sample = ocean.sample(x, z).unwrap();
-        let base = plain.sample(x, z).unwrap();
+        let sample = water.at_rest(x, z).unwrap();
+        let base = plain.at_rest(x, z).unwrap();
         let (landed, _) = wakes.at(
             x + f64::from(base.displacement[0]),
             z + f64::from(base.displacement[1]),
         );
         assert_eq!(sample.height, base.height + landed);
+        assert_eq!(surface.at_rest(x, z).unwrap(), sample);
+        // Cascade 0 carries the wake, as it carries the foam: a range without it has none.
+        let first = water.at_rest_cascades(x, z, 0..1).unwrap();
+        let first_alone = plain.at_rest_cascades(x, z, 0..1).unwrap();
+        assert_eq!(first.height - first_alone.height, {
+            let d = first_alone.displacement;
+            wakes.at(x + f64::from(d[0]), z + f64::from(d[1])).0
+        });
+        assert_eq!(
+            water.at_rest_cascades(x, z, 1..2).unwrap(),
+            plain.at_rest_cascades(x, z, 1..2).unwrap()
+        );
+        // Locating the water is horizontal: the wake moves no water sideways.
+        assert_eq!(water.locate(x, z).unwrap(), plain.locate(x, z).unwrap());
         if !inside {
             assert_eq!(s, p);
             assert_eq!(sample, base);
         }
     }
     // Under the hull the water is pressed down.
-    assert!(ocean.height_at(0.0, 0.0).unwrap() < plain.height_at(0.0, 0.0).unwrap() - 0.5);
-    // Batches give the single queries' bits.
+    assert!(water.height_at(0.0, 0.0).unwrap() < plain.height_at(0.0, 0.0).unwrap() - 0.5);
+    // Batches and grids give the single queries' bits, on the ocean and on the handle.
     let points: Vec<[f64; 2]> = (0..300)
         .map(|i| [f64::from(i) * 0.31 - 40.0, f64::from(i % 13) - 6.0])
         .collect();
-    let mut heights = vec![0.0; points.len()];
-    ocean.heights_at(&points, &mut heights).unwrap();
-    let mut surfaces = vec![Default::default(); points.len()];
-    ocean.surfaces_at(&points, &mut surfaces).unwrap();
-    let mut samples = vec![Default::default(); points.len()];
-    ocean.sample_many(&points, &mut samples).unwrap();
-    for (k, &[x, z]) in points.iter().enumerate() {
-        assert_eq!(heights[k], ocean.height_at(x, z).unwrap());
-        assert_eq!(surfaces[k], ocean.surface_at(x, z).unwrap());
-        assert_eq!(samples[k], ocean.sample(x, z).unwrap());
+    for view in [water, surface] {
+        let mut heights = vec![0.0; points.len()];
+        view.heights_at(&points, &mut heights).unwrap();
+        let mut surfaces = vec![Default::default(); points.len()];
+        view.surfaces_at(&points, &mut surfaces).unwrap();
+        let mut samples = vec![Default::default(); points.len()];
+        view.at_rest_many(&points, &mut samples).unwrap();
+        for (k, &[x, z]) in points.iter().enumerate() {
+            assert_eq!(heights[k], water.height_at(x, z).unwrap());
+            assert_eq!(surfaces[k], water.surface_at(x, z).unwrap());
+            assert_eq!(samples[k], water.at_rest(x, z).unwrap());
+        }
+        // 19 columns: two full lanes of eight and a ragged three.
+        let mut grid = vec![Default::default(); 19 * 7];
+        view.at_rest_grid([-40.0, -10.0], 4.3, [19, 7], &mut grid)
+            .unwrap();
+        for (k, got) in grid.iter().enumerate() {
+            let (c, r) = ((k % 19) as f64, (k / 19) as f64);
+            assert_eq!(
+                *got,
+                water.at_rest(-40.0 + c * 4.3, -10.0 + r * 4.3).unwrap()
+            );
+        }
     }
 }
 

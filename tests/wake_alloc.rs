@@ -40,16 +40,16 @@ fn stepping_with_wakes_allocates_nothing() {
             for _ in 0..3 {
                 ocean.set_hulls(&hulls).unwrap();
                 ocean.step(1.0 / 60.0).unwrap();
-                ocean.heights_at(&points, &mut heights).unwrap();
+                ocean.water().heights_at(&points, &mut heights).unwrap();
             }
             let before = count();
             for frame in 0..120 {
                 ocean.set_hulls(&hulls).unwrap();
                 ocean.step(1.0 / 60.0).unwrap();
                 ocean.set_wake_centre(f64::from(frame) * 0.1, 0.0).unwrap();
-                ocean.heights_at(&points, &mut heights).unwrap();
-                let _ = ocean.sample(3.0, 4.0).unwrap();
-                let _ = ocean.surface_at(3.0, 4.0).unwrap();
+                ocean.water().heights_at(&points, &mut heights).unwrap();
+                let _ = ocean.water().at_rest(3.0, 4.0).unwrap();
+                let _ = ocean.water().surface_at(3.0, 4.0).unwrap();
             }
             (before, count())
         });

@@ -26,7 +26,7 @@ pub struct SurfaceSample {
     /// Foam coverage in [0, 1]: the ocean's one foam field
     /// ([`OceanState::foam`](crate::OceanState::foam), on cascade 0's grid) interpolated
     /// bilinearly; 0 from a range of cascades without cascade 0
-    /// ([`OceanState::sample_cascades`](crate::OceanState::sample_cascades)), as cascade 0's
+    /// ([`Water::at_rest_cascades`](crate::Water::at_rest_cascades)), as cascade 0's
     /// textures carry the foam.
     pub foam: f32,
 }
@@ -46,7 +46,7 @@ impl Default for SurfaceSample {
 }
 
 /// Where the water at a world point comes from: the result of
-/// [`OceanState::locate`](crate::OceanState::locate).
+/// [`Water::locate`](crate::Water::locate).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Location {
     /// The undisplaced world point `[x, z]` in metres whose water lands on the query point
