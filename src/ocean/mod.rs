@@ -127,7 +127,13 @@ impl OceanState {
         let mut frame = Frame::new(config.query, config.determinism, &cascades, &foam, 0.0)?;
         let wake = match &config.wakes {
             Some(wakes) => {
-                let sim = WakeSim::new(wakes, spectrum.dispersion(), config.determinism, 0.0)?;
+                let sim = WakeSim::new(
+                    wakes,
+                    spectrum.dispersion(),
+                    config.determinism,
+                    0.0,
+                    config.foam.residual_decay,
+                )?;
                 let mut output = sim.new_output()?;
                 sim.write(&mut output, 0.0);
                 frame.wake = Some(output);

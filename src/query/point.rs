@@ -256,16 +256,18 @@ pub(crate) fn run<Q: PointQuery>(fields: &Fields<'_>, query: Q, x: f64, z: f64) 
     out
 }
 
-/// Adds the wake at world (x, z) to a surface sample: its height, its slope, and the normal
-/// of the summed slope (unchanged outside the window).
+/// Adds the wake at world (x, z) to a surface sample: its height, its slope, the normal of
+/// the summed slope, and its foam w over the ocean's f as f + w·(1 − f) (unchanged outside
+/// the window).
 #[inline(always)]
 pub(crate) fn add_wake_to(wakes: &Wakes, x: f64, z: f64, out: &mut SurfaceSample) {
-    let (height, slope) = wakes.at(x, z);
-    if height == 0.0 && slope == [0.0; 2] {
+    let (height, slope, foam) = wakes.sample(x, z);
+    if height == 0.0 && slope == [0.0; 2] && foam == 0.0 {
         return;
     }
     let slope = [out.slope[0] + slope[0], out.slope[1] + slope[1]];
-    *out = surface(out.height + height, out.displacement, slope, out.foam);
+    let foam = out.foam + foam * (1.0 - out.foam);
+    *out = surface(out.height + height, out.displacement, slope, foam);
 }
 
 /// One point's query, as a [`Kernel`].

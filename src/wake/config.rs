@@ -120,12 +120,13 @@ impl WakeConfig {
         (self.size - 2 * self.border_cells()) as f32 * self.spacing
     }
 
-    /// Bytes the wake layer holds: four complex and five real grids of `size`² (the state,
-    /// the transforms' working space, the tables and the buffers the queries read).
+    /// Bytes the wake layer holds: four complex and eight real grids of `size`² (the state,
+    /// the transforms' working space, the tables, the hulls' pressure, the foam trail and
+    /// its moves, and the buffers the queries read).
     pub fn memory_bytes(&self) -> usize {
         self.size
             .saturating_mul(self.size)
-            .saturating_mul(4 * 8 + 5 * 4)
+            .saturating_mul(4 * 8 + 8 * 4)
     }
 }
 

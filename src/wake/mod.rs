@@ -6,6 +6,7 @@
 
 mod config;
 mod fft;
+mod foam;
 pub(crate) mod sim;
 #[cfg(test)]
 mod tests;
@@ -13,3 +14,15 @@ mod window;
 
 pub use config::{Hull, WakeConfig};
 pub use window::Wakes;
+
+/// The smooth bump (1 − u²)³ on |u| < 1, 0 outside: the waterplane's shape along each axis
+/// (zero with its first two derivatives at the ends).
+#[inline(always)]
+pub(crate) fn bump(u: f32) -> f32 {
+    let w = 1.0 - u * u;
+    if w > 0.0 {
+        w * w * w
+    } else {
+        0.0
+    }
+}

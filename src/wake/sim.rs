@@ -16,8 +16,10 @@
 use num_complex::Complex32;
 use rayon::prelude::*;
 
+use super::bump;
 use super::config::{Hull, WakeConfig};
 use super::fft::Fft;
+use super::foam::{crest_tick, hull_row, shift_foam, TrailClock};
 use super::window::Wakes;
 use crate::error::{self, Error};
 use crate::math::determinism::{with_math, Determinism, Math};
@@ -58,6 +60,15 @@ pub(crate) struct WakeSim {
     sponge: Vec<f32>,
     /// Per index along an axis: the weight of the wake in the queries (0 at the edges).
     fade: Vec<f32>,
+    /// The hulls' pressure head p/(ρg) in metres at the last tick's middle (`[z][x]`): the
+    /// static dip the crests of the foam are measured from.
+    head: Vec<f32>,
+    /// Whether `head` holds anything (a hull pressed at the last tick).
+    pressed: bool,
+    /// The foam trail's coverage in [0, 1] (`[z][x]`), and room for its moves.
+    foam: Vec<f32>,
+    foam_work: Vec<f32>,
+    clock: TrailClock,
     hulls: Vec<Placed>,
     /// Simulated time in seconds at which the hulls were at their positions.
     hull_time: f64,
@@ -69,12 +80,13 @@ pub(crate) struct WakeSim {
 
 impl WakeSim {
     /// A still window of `config` centred on the world origin, with `dispersion`, at time
-    /// `time` (s).
+    /// `time` (s), its foam lasting `foam_lifetime` s (> 0).
     pub(crate) fn new(
         config: &WakeConfig,
         dispersion: Dispersion,
         determinism: Determinism,
         time: f64,
+        foam_lifetime: f32,
     ) -> Result<WakeSim, Error> {
         config.validate()?;
         let n = config.size;
@@ -97,6 +109,11 @@ impl WakeSim {
             modes,
             sponge,
             fade,
+            head: error::try_vec(n * n, 0.0)?,
+            pressed: false,
+            foam: error::try_vec(n * n, 0.0)?,
+            foam_work: error::try_vec(n * n, 0.0)?,
+            clock: TrailClock::new(substep, foam_lifetime, determinism),
             hulls: Vec::with_capacity(WakeConfig::MAX_HULLS),
             hull_time: time,
             origin: [0; 2],
@@ -131,6 +148,11 @@ impl WakeSim {
             }
         }));
         self.hull_time = time;
+    }
+
+    /// Sets the foam trail's lifetime to `seconds` (> 0); the foam on the water is kept.
+    pub(crate) fn set_foam_lifetime(&mut self, seconds: f32, determinism: Determinism) {
+        self.clock = TrailClock::new(self.substep, seconds, determinism);
     }
 
     /// The tick whose start is the last at or before time `t` (s).
@@ -197,26 +219,52 @@ impl WakeSim {
                     *value = Complex32::new(value.re * (sx * sz), 0.0);
                 }
             });
+        crest_tick(
+            &mut self.foam,
+            &self.field,
+            &self.head,
+            n,
+            self.spacing,
+            self.clock,
+        );
     }
 
     /// Writes the hulls' pressure head p/(ρg) in metres at time `t` (s) into the imaginary
-    /// parts of the field (which are zero).
+    /// parts of the field (which are zero) and into `head`, and their bow and stern foam
+    /// over the tick into the trail.
     fn press(&mut self, t: f64) {
-        if self.hulls.is_empty() {
+        if self.hulls.is_empty() && !self.pressed {
             return;
         }
+        self.pressed = !self.hulls.is_empty();
         let (n, spacing, origin) = (self.n, self.spacing, self.origin);
-        let (hulls, since) = (&self.hulls, t - self.hull_time);
+        let (hulls, since, tick) = (&self.hulls, t - self.hull_time, self.clock.tick);
+        let first_x = origin[0] as f64 * spacing;
         self.field
             .par_chunks_mut(n)
+            .zip(self.head.par_chunks_mut(n))
+            .zip(self.foam.par_chunks_mut(n))
             .enumerate()
             .with_min_len(ROWS_PER_TASK)
-            .for_each(|(j, row)| {
+            .for_each(|(j, ((row, heads), foam))| {
+                heads.fill(0.0);
                 let z = (origin[1] + j as i64) as f64 * spacing;
                 for placed in hulls {
                     let hull = &placed.hull;
                     let cx = hull.position[0] + f64::from(hull.velocity[0]) * since;
                     let cz = hull.position[1] + f64::from(hull.velocity[1]) * since;
+                    let [vx, vz] = hull.velocity;
+                    hull_row(
+                        foam,
+                        z,
+                        first_x,
+                        spacing,
+                        [cx, cz],
+                        placed.bow,
+                        [hull.length, hull.beam, hull.draft],
+                        (vx * vx + vz * vz).sqrt(),
+                        tick,
+                    );
                     let dz = (z - cz) as f32;
                     let r = placed.radius;
                     if dz.abs() > r {
@@ -228,12 +276,15 @@ impl WakeSim {
                     let last = (last + 1).clamp(0, n as i64) as usize;
                     let [cos, sin] = placed.bow;
                     let (half_l, half_b) = (2.0 / hull.length, 2.0 / hull.beam);
-                    for (i, value) in row.iter_mut().enumerate().take(last).skip(first) {
+                    let cells = row.iter_mut().zip(heads.iter_mut());
+                    for (i, (value, head)) in cells.enumerate().take(last).skip(first) {
                         let x = (origin[0] + i as i64) as f64 * spacing;
                         let dx = (x - cx) as f32;
                         let u = (dx * cos + dz * sin) * half_l;
                         let v = (dz * cos - dx * sin) * half_b;
-                        value.im += hull.draft * bump(u) * bump(v);
+                        let pressure = hull.draft * bump(u) * bump(v);
+                        value.im += pressure;
+                        *head += pressure;
                     }
                 }
             });
@@ -253,6 +304,8 @@ impl WakeSim {
         let scale = 1.0 / (n * n) as f32;
         shift_into(&self.field, &mut self.work, n, shift);
         std::mem::swap(&mut self.field, &mut self.work);
+        shift_foam(&self.foam, &mut self.foam_work, n, shift);
+        std::mem::swap(&mut self.foam, &mut self.foam_work);
         // ψ to physical space, moved, and back.
         self.work.copy_from_slice(&self.psi);
         self.fft.run(true, &mut self.work, &mut self.psi);
@@ -262,8 +315,8 @@ impl WakeSim {
         true
     }
 
-    /// Writes what the queries read (the faded height, its slope, the origin and the time
-    /// `time` (s)) into `out`. Allocates nothing.
+    /// Writes what the queries read (the faded height, its slope and foam, the origin and
+    /// the time `time` (s)) into `out`. Allocates nothing.
     pub(crate) fn write(&self, out: &mut Wakes, time: f64) {
         let n = self.n;
         out.origin = self.origin.map(|cell| cell as f64 * self.spacing);
@@ -278,12 +331,18 @@ impl WakeSim {
             }
         };
         let per = (0.5 / self.spacing) as f32;
+        let trail = &self.foam;
         out.height
             .par_chunks_mut(n)
             .zip(out.slope.par_chunks_mut(n))
+            .zip(out.foam.par_chunks_mut(n))
             .enumerate()
             .with_min_len(ROWS_PER_TASK)
-            .for_each(|(j, (heights, slopes))| {
+            .for_each(|(j, ((heights, slopes), foams))| {
+                let trail = &trail[j * n..][..n];
+                for (i, (foam, &value)) in foams.iter_mut().zip(trail).enumerate() {
+                    *foam = value * (fade[i] * fade[j]);
+                }
                 for (i, (h, slope)) in heights.iter_mut().zip(slopes).enumerate() {
                     // Index 0 − 1 wraps to usize::MAX: outside the grid, as N is.
                     let left = height(i.wrapping_sub(1), j);
@@ -294,18 +353,6 @@ impl WakeSim {
                     *slope = [(right - left) * per, (up - down) * per];
                 }
             });
-    }
-}
-
-/// The smooth bump (1 − u²)³ on |u| < 1, 0 outside: the waterplane's shape along each axis
-/// (zero with its first two derivatives at the ends).
-#[inline(always)]
-fn bump(u: f32) -> f32 {
-    let w = 1.0 - u * u;
-    if w > 0.0 {
-        w * w * w
-    } else {
-        0.0
     }
 }
 

@@ -73,15 +73,31 @@ impl Wakes {
         &self.slope
     }
 
-    /// The wake's foam coverage in [0, 1] at each sample (zero for now: the foam trail is
-    /// not simulated yet).
+    /// The wake's foam coverage in [0, 1] at each sample (faded to zero at the edges): the
+    /// trail of foam where hulls broke the water at their bow and stern and where the wake's
+    /// crests broke, fading with
+    /// [`FoamConfig::residual_decay`](crate::FoamConfig::residual_decay). The world queries
+    /// add it to the ocean's foam f as f + w·(1 − f).
     pub fn foam(&self) -> &[f32] {
         &self.foam
+    }
+
+    /// The wake's foam coverage in [0, 1] at world (x, z) in metres, interpolated
+    /// bilinearly; 0 outside the window (and for coordinates that are not finite).
+    pub fn foam_at(&self, x: f64, z: f64) -> f32 {
+        self.sample(x, z).2
     }
 
     /// The wake's height in metres and slope at world (x, z) in metres, interpolated
     /// bilinearly; 0 outside the window (and for coordinates that are not finite).
     pub fn at(&self, x: f64, z: f64) -> (f32, [f32; 2]) {
+        let (height, slope, _) = self.sample(x, z);
+        (height, slope)
+    }
+
+    /// [`at`](Self::at) and [`foam_at`](Self::foam_at) at once.
+    #[inline(always)]
+    pub(crate) fn sample(&self, x: f64, z: f64) -> (f32, [f32; 2], f32) {
         match self.cell(x, z) {
             Some((index, fx, fz)) => {
                 let n = self.size;
@@ -94,14 +110,16 @@ impl Wakes {
                 let at = [index, index + 1, index + n, index + n + 1];
                 let mut height = 0.0;
                 let mut slope = [0.0; 2];
+                let mut foam = 0.0;
                 for (w, i) in w.into_iter().zip(at) {
                     height += w * self.height[i];
                     slope[0] += w * self.slope[i][0];
                     slope[1] += w * self.slope[i][1];
+                    foam += w * self.foam[i];
                 }
-                (height, slope)
+                (height, slope, foam.clamp(0.0, 1.0))
             }
-            None => (0.0, [0.0; 2]),
+            None => (0.0, [0.0; 2], 0.0),
         }
     }
 
