@@ -161,7 +161,7 @@ fn a_boat_behind_another_rocks_in_its_wake() {
     // waves it also meets are met faster, and its damping lags the motion a little.
     let ratio = heave / wake.water;
     assert!(
-        (ratio - 1.0).abs() < 0.15,
+        (ratio - 1.0).abs() < 0.05,
         "heave {heave} against the water's {}",
         wake.water
     );
