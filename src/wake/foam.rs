@@ -3,6 +3,7 @@
 //! a breaking slope, kept where it was made (it moves with the window's whole-cell moves) and
 //! fading with the ocean's residual-foam lifetime. See docs/theory.md, "Wakes".
 
+use num_complex::Complex32;
 use rayon::prelude::*;
 
 use super::bump;
@@ -99,31 +100,51 @@ pub(crate) fn hull_row(
 /// the water pressed down under a hull at rest is no crest).
 pub(crate) fn crest_tick(
     foam: &mut [f32],
-    eta: &[num_complex::Complex32],
+    eta: &[Complex32],
     head: &[f32],
     n: usize,
     spacing: f64,
     clock: TrailClock,
 ) {
     let per = (0.5 / spacing) as f32;
-    let wave = |i: usize, j: usize| eta[j * n + i].re + head[j * n + i];
+    let row = |j: usize| (&eta[j * n..][..n], &head[j * n..][..n]);
     foam.par_chunks_mut(n)
         .enumerate()
         .with_min_len(ROWS_PER_TASK)
-        .for_each(|(j, row)| {
-            let (down, up) = (j.saturating_sub(1), (j + 1).min(n - 1));
-            for (i, foam) in row.iter_mut().enumerate() {
-                let (left, right) = (i.saturating_sub(1), (i + 1).min(n - 1));
-                let sx = (wave(right, j) - wave(left, j)) * per;
-                let sz = (wave(i, up) - wave(i, down)) * per;
-                let slope = (sx * sx + sz * sz).sqrt();
-                *foam *= clock.keep;
-                if slope > CREST_SLOPE {
-                    let excess = slope / CREST_SLOPE - 1.0;
-                    whiten(foam, CREST_RATE * excess * clock.tick);
-                }
+        .for_each(|(j, foam)| {
+            // One-sided differences at the edges (the border has absorbed the waves there).
+            let (here, down, up) = (row(j), row(j.saturating_sub(1)), row((j + 1).min(n - 1)));
+            let wave = |(eta, head): (&[Complex32], &[f32]), i: usize| eta[i].re + head[i];
+            let mut slope_x = |i: usize, left: usize, right: usize| {
+                let sx = (wave(here, right) - wave(here, left)) * per;
+                let sz = (wave(up, i) - wave(down, i)) * per;
+                crest(&mut foam[i], sx, sz, clock);
+            };
+            slope_x(0, 0, 1);
+            slope_x(n - 1, n - 2, n - 1);
+            // The inside, in straight slices (a loop the compiler vectorises).
+            let sx = here.0[2..].iter().zip(&here.1[2..]);
+            let sx = sx.zip(here.0[..n - 2].iter().zip(&here.1[..n - 2]));
+            let sz = up.0[1..n - 1].iter().zip(&up.1[1..n - 1]);
+            let sz = sz.zip(down.0[1..n - 1].iter().zip(&down.1[1..n - 1]));
+            for ((foam, ((r, rh), (l, lh))), ((u, uh), (d, dh))) in
+                foam[1..n - 1].iter_mut().zip(sx).zip(sz)
+            {
+                let sx = ((r.re + rh) - (l.re + lh)) * per;
+                let sz = ((u.re + uh) - (d.re + dh)) * per;
+                crest(foam, sx, sz, clock);
             }
         });
+}
+
+/// One cell of [`crest_tick`]: its foam kept over the tick, then whitened by a crest of
+/// slope (`sx`, `sz`) steeper than [`CREST_SLOPE`] (no branch: the loop vectorises).
+#[inline(always)]
+fn crest(foam: &mut f32, sx: f32, sz: f32, clock: TrailClock) {
+    let slope = (sx * sx + sz * sz).sqrt();
+    let excess = (slope / CREST_SLOPE - 1.0).max(0.0);
+    let kept = *foam * clock.keep;
+    *foam = kept + (1.0 - kept) * (CREST_RATE * excess * clock.tick).min(1.0);
 }
 
 /// `to[j][i] = from[j + dz][i + dx]`, or 0 where that lies outside the `n`×`n` grid.

@@ -322,35 +322,60 @@ impl WakeSim {
         out.origin = self.origin.map(|cell| cell as f64 * self.spacing);
         out.time = time;
         let (field, fade) = (&self.field, &self.fade);
-        // The faded height at (i, j), 0 outside the grid.
-        let height = |i: usize, j: usize| {
-            if i < n && j < n {
-                field[j * n + i].re * (fade[i] * fade[j])
-            } else {
-                0.0
-            }
-        };
-        let per = (0.5 / self.spacing) as f32;
         let trail = &self.foam;
+        // The faded height and foam, row by row (loops the compiler vectorises).
         out.height
             .par_chunks_mut(n)
-            .zip(out.slope.par_chunks_mut(n))
             .zip(out.foam.par_chunks_mut(n))
             .enumerate()
             .with_min_len(ROWS_PER_TASK)
-            .for_each(|(j, ((heights, slopes), foams))| {
-                let trail = &trail[j * n..][..n];
-                for (i, (foam, &value)) in foams.iter_mut().zip(trail).enumerate() {
-                    *foam = value * (fade[i] * fade[j]);
+            .for_each(|(j, (heights, foams))| {
+                let (row, trail, fj) = (&field[j * n..][..n], &trail[j * n..][..n], fade[j]);
+                for ((h, value), &f) in heights.iter_mut().zip(row).zip(fade) {
+                    *h = value.re * (f * fj);
                 }
-                for (i, (h, slope)) in heights.iter_mut().zip(slopes).enumerate() {
-                    // Index 0 − 1 wraps to usize::MAX: outside the grid, as N is.
-                    let left = height(i.wrapping_sub(1), j);
-                    let right = height(i + 1, j);
-                    let down = height(i, j.wrapping_sub(1));
-                    let up = height(i, j + 1);
-                    *h = height(i, j);
-                    *slope = [(right - left) * per, (up - down) * per];
+                for ((foam, &value), &f) in foams.iter_mut().zip(trail).zip(fade) {
+                    *foam = value * (f * fj);
+                }
+            });
+        // Central differences of the faded height, 0 outside the grid.
+        let per = (0.5 / self.spacing) as f32;
+        let height = &out.height;
+        out.slope
+            .par_chunks_mut(n)
+            .enumerate()
+            .with_min_len(ROWS_PER_TASK)
+            .for_each(|(j, slopes)| {
+                let row = &height[j * n..][..n];
+                let down = j.checked_sub(1).map(|d| &height[d * n..][..n]);
+                let up = (j + 1 < n).then(|| &height[(j + 1) * n..][..n]);
+                // The window has at least 16 samples a side.
+                slopes[0][0] = (row[1] - 0.0) * per;
+                slopes[n - 1][0] = (0.0 - row[n - 2]) * per;
+                let inner = slopes[1..n - 1]
+                    .iter_mut()
+                    .zip(&row[2..])
+                    .zip(&row[..n - 2]);
+                for ((slope, &right), &left) in inner {
+                    slope[0] = (right - left) * per;
+                }
+                match (down, up) {
+                    (Some(down), Some(up)) => {
+                        for ((slope, &u), &d) in slopes.iter_mut().zip(up).zip(down) {
+                            slope[1] = (u - d) * per;
+                        }
+                    }
+                    (None, Some(up)) => {
+                        for (slope, &u) in slopes.iter_mut().zip(up) {
+                            slope[1] = (u - 0.0) * per;
+                        }
+                    }
+                    (Some(down), None) => {
+                        for (slope, &d) in slopes.iter_mut().zip(down) {
+                            slope[1] = (0.0 - d) * per;
+                        }
+                    }
+                    (None, None) => {}
                 }
             });
     }
