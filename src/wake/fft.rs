@@ -61,4 +61,44 @@ impl Fft {
                 plan.process(rows, &mut scratch[..plan.scratch_len()]);
             });
     }
+    /// The inverse of [`run`](Self::run)'s forward output for a real field: `src` holds the
+    /// transposed spectrum (`[k_x][k_z]`, Hermitian: the value at −k the conjugate of that at
+    /// k; used as working space), and `dst`'s first N/2 rows receive the real field's rows
+    /// two by two, row 2p in the real parts of row p and row 2p + 1 in the imaginary parts
+    /// (unnormalised, as [`run`](Self::run)'s inverse). Half the work of the complex
+    /// inverse: only the rows k_x = 0..=N/2 are transformed along k_z, and each transform
+    /// along k_x carries two rows of the field.
+    pub(crate) fn inverse_real(&mut self, src: &mut [Complex32], dst: &mut [Complex32]) {
+        let n = self.n;
+        let half = n / 2;
+        let (plan, task) = (&self.inverse, self.task);
+        // Along k_z, the rows k_x = 0..=N/2 (the others are their conjugates).
+        src[..(half + 1) * n]
+            .par_chunks_mut(n * ROWS_PER_TASK)
+            .zip(self.scratch.par_chunks_mut(task))
+            .for_each(|(rows, scratch)| plan.process(rows, &mut scratch[..plan.scratch_len()]));
+        let g = &*src;
+        // Row p of the pairs: G(k_x, z₁) + i·G(k_x, z₂), z₁ = 2p, z₂ = 2p + 1, over all k_x
+        // (G(−k_x, z) = conj G(k_x, z)), read a block's columns a row of G at a time.
+        dst[..half * n]
+            .par_chunks_mut(n * ROWS_PER_TASK)
+            .zip(self.scratch.par_chunks_mut(task))
+            .enumerate()
+            .for_each(|(block, (rows, scratch))| {
+                let pairs = rows.len() / n;
+                let first = 2 * block * ROWS_PER_TASK;
+                for a in 0..=half {
+                    let segment = &g[a * n + first..][..2 * pairs];
+                    for (q, two) in segment.chunks_exact(2).enumerate() {
+                        let (g1, g2) = (two[0], two[1]);
+                        let row = &mut rows[q * n..][..n];
+                        row[a] = Complex32::new(g1.re - g2.im, g1.im + g2.re);
+                        if a != 0 && a != half {
+                            row[n - a] = Complex32::new(g1.re + g2.im, g2.re - g1.im);
+                        }
+                    }
+                }
+                plan.process(rows, &mut scratch[..plan.scratch_len()]);
+            });
+    }
 }

@@ -194,10 +194,13 @@ impl WakeSim {
                 let row = &work[a * n..(a + 1) * n];
                 let mirror = &work[((n - a) % n) * n..][..n];
                 let modes = &modes[a.min(n - a) * half..][..half];
-                for (b, (out, psi)) in out.iter_mut().zip(psi.iter_mut()).enumerate() {
-                    let [c, s, g1, g2] = modes[b.min(n - b)];
-                    let f = row[b];
-                    let m = mirror[(n - b) % n].conj();
+                // Mode b's mirror is n − b (0's is 0), its table entry min(b, n − b): in
+                // straight slices, without an index computed per mode.
+                let mirrors = std::iter::once(&mirror[0]).chain(mirror[1..].iter().rev());
+                let entries = modes[..=n / 2].iter().chain(modes[1..n / 2].iter().rev());
+                let cells = out.iter_mut().zip(psi.iter_mut()).zip(row);
+                for (((out, psi), &f), (&m, &[c, s, g1, g2])) in cells.zip(mirrors.zip(entries)) {
+                    let m = m.conj();
                     let eta = (f + m) * scale;
                     let d = f - m;
                     let head = Complex32::new(d.im, -d.re) * scale;
@@ -206,17 +209,21 @@ impl WakeSim {
                     *psi = p * c - eta * s - head * g2;
                 }
             });
-        self.fft.run(true, &mut self.field, &mut self.work);
-        std::mem::swap(&mut self.field, &mut self.work);
-        // The absorbing border (and the imaginary parts cleared for the next pressure).
+        self.fft.inverse_real(&mut self.field, &mut self.work);
+        // The field's rows out of their pairs, with the absorbing border (the imaginary
+        // parts cleared for the next pressure).
         let sponge = &self.sponge;
         self.field
-            .par_chunks_mut(n)
-            .zip(sponge.par_iter())
-            .with_min_len(ROWS_PER_TASK)
-            .for_each(|(row, &sz)| {
-                for (value, &sx) in row.iter_mut().zip(sponge) {
-                    *value = Complex32::new(value.re * (sx * sz), 0.0);
+            .par_chunks_mut(2 * n)
+            .zip(self.work.par_chunks(n))
+            .zip(sponge.par_chunks(2))
+            .with_min_len(ROWS_PER_TASK / 2)
+            .for_each(|((rows, pair), sz)| {
+                let (even, odd) = rows.split_at_mut(n);
+                let cells = even.iter_mut().zip(odd.iter_mut()).zip(pair).zip(sponge);
+                for (((even, odd), value), &sx) in cells {
+                    *even = Complex32::new(value.re * (sx * sz[0]), 0.0);
+                    *odd = Complex32::new(value.im * (sx * sz[1]), 0.0);
                 }
             });
         crest_tick(
