@@ -40,7 +40,11 @@ fn pack_wakes_copies_height_slope_and_foam() {
         for i in 0..n {
             let k = j * n + i;
             let want = [w.height()[k], w.slope()[k][0], w.slope()[k][1], w.foam()[k]];
-            assert_eq!(texels[k].map(f32::to_bits), want.map(f32::to_bits), "({i}, {j})");
+            assert_eq!(
+                texels[k].map(f32::to_bits),
+                want.map(f32::to_bits),
+                "({i}, {j})"
+            );
             // The texel is the world point origin + (i, j)·spacing.
             let (x, z) = (
                 w.origin()[0] + i as f64 * f64::from(w.spacing()),
