@@ -1,7 +1,8 @@
-//! A Kelvin wake seen from above, `out/wake.png`: a 20 m × 5 m hull of 1 m draft at 6 m/s
-//! (length Froude number 0.43) in deep water for 70 s, the 256 m wake window (512 cells of
-//! 0.5 m) following it, the wake's height shaded (crests light, troughs dark) with Kelvin's
-//! cusp lines at ±19.47° from the track drawn in red from the hull's centre.
+//! A Kelvin wake seen from above, `out/wake.png`: a 20 m × 5 m hull of 1 m draft at 8 m/s
+//! (length Froude number 0.57) in deep water for 50 s, the 256 m wake window (512 cells of
+//! 0.5 m) following it, the wake's height shaded (crests light, troughs dark), its foam trail
+//! blended in white, and Kelvin's cusp lines at ±19.47° from the track drawn in red from the
+//! hull's centre.
 //!
 //! Run with `cargo run --release -p ocean-fft-examples --example wake`.
 
@@ -26,13 +27,13 @@ fn main() -> Result<()> {
     }
     .with_fitted_lengths(&spectrum)?;
     let mut ocean = OceanState::new(spectrum, config)?;
-    let speed = 6.0;
+    let speed = 8.0;
     ocean.set_hulls(&[Hull {
         velocity: [speed as f32, 0.0],
         ..Hull::default()
     }])?;
     let side = 256.0;
-    for step in 1..=1400 {
+    for step in 1..=1000 {
         ocean.step_to(f64::from(step) * 0.05)?;
         ocean.set_wake_centre(speed * ocean.time() - 0.3 * side, 0.0)?;
     }
@@ -40,14 +41,12 @@ fn main() -> Result<()> {
     let n = wakes.size();
     let scale = 0.3; // m of wake height to full contrast
     let mut canvas = Canvas::new(n, n, [0, 0, 0]);
-    for (index, &h) in wakes.height().iter().enumerate() {
+    for (index, (&h, &foam)) in wakes.height().iter().zip(wakes.foam()).enumerate() {
         let v = (0.5 + 0.5 * (h / scale).clamp(-1.0, 1.0)) * 255.0;
         let (i, j) = (index % n, index / n);
-        canvas.set(
-            i as i64,
-            j as i64,
-            [(v * 0.6) as u8, (v * 0.8) as u8, v as u8],
-        );
+        let water = [v * 0.6, v * 0.8, v];
+        let white = water.map(|c| (c + (255.0 - c) * foam) as u8);
+        canvas.set(i as i64, j as i64, white);
     }
     // The cusp lines from the hull's centre, backwards along the track.
     let spacing = f64::from(wakes.spacing());
