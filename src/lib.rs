@@ -217,6 +217,8 @@ mod guide_doc_tests {
     struct Weather;
     #[doc = include_str!("../docs/guide/cascades.md")]
     struct Cascades;
+    #[doc = include_str!("../docs/guide/wakes.md")]
+    struct Wakes;
 }
 
 // The README's example is a doc-test with or without features.
