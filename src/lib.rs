@@ -177,6 +177,7 @@ mod query;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod spectrum;
+mod wake;
 
 pub use cascade::{Cascade, CascadeConfig};
 pub use error::Error;
@@ -191,6 +192,7 @@ pub use presets::SeaState;
 pub use query::{Interpolation, Location, QueryConfig, Surface, SurfaceSample, Water};
 pub use spectrum::dispersion::{Dispersion, GRAVITY};
 pub use spectrum::{DepthFactor, SlopeVariance, Spectrum, SpectrumKind, SpectrumParams, Spreading};
+pub use wake::{Hull, WakeConfig, Wakes};
 
 // The Rust blocks of the guide's chapters (docs/guide/) are doc-tests when every optional
 // feature is on (the serde block of spectra.md needs `serde`), as CI runs them:
@@ -215,6 +217,8 @@ mod guide_doc_tests {
     struct Weather;
     #[doc = include_str!("../docs/guide/cascades.md")]
     struct Cascades;
+    #[doc = include_str!("../docs/guide/wakes.md")]
+    struct Wakes;
 }
 
 // The README's example is a doc-test with or without features.

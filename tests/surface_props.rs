@@ -840,6 +840,7 @@ fn any_ocean_config() -> impl Strategy<Value = OceanConfig> {
                     memory_limit,
                     determinism,
                     second_order,
+                    wakes: None,
                 }
             },
         )

@@ -15,7 +15,7 @@ mod state;
 #[cfg(test)]
 mod tests;
 mod transport;
-mod view;
+pub(crate) mod view;
 
 pub use calibration::FoamCalibration;
 pub use config::FoamConfig;

@@ -29,6 +29,16 @@ use crate::error::Error;
 #[derive(Clone, Copy)]
 pub struct FoamView<'a> {
     foam: &'a Foam,
+    /// The foam the wake window adds, with an ocean's wakes.
+    extra: Option<&'a dyn ExtraFoam>,
+}
+
+/// Foam added to the ocean's at a rest point: the wake window's trail, where the water of
+/// that point lands.
+pub(crate) trait ExtraFoam: Sync {
+    /// All foam in [0, 1] at the rest point (`x0`, `z0`) (m, finite): the ocean's with the
+    /// extra foam over it.
+    fn total_at(&self, x0: f64, z0: f64) -> f32;
 }
 
 impl std::fmt::Debug for FoamView<'_> {
@@ -43,8 +53,8 @@ impl std::fmt::Debug for FoamView<'_> {
 
 impl<'a> FoamView<'a> {
     /// The view of `foam`.
-    pub(crate) fn new(foam: &'a Foam) -> FoamView<'a> {
-        FoamView { foam }
+    pub(crate) fn new(foam: &'a Foam, extra: Option<&'a dyn ExtraFoam>) -> FoamView<'a> {
+        FoamView { foam, extra }
     }
 
     /// All foam in [0, 1] — active whitecaps and residual foam together, a + r(1 − a) — on
@@ -82,14 +92,20 @@ impl<'a> FoamView<'a> {
     /// [`Water::at_rest`](crate::Water::at_rest)'s `foam`), each a fraction of the surface
     /// there, as [`coverage`](Self::coverage) gives them for the whole ocean. To draw fresh
     /// whitecaps apart from older foam; for a world point, find its rest point with
-    /// [`Water::locate`](crate::Water::locate) first.
+    /// [`Water::locate`](crate::Water::locate) first. With
+    /// [`OceanConfig::wakes`](crate::OceanConfig::wakes), the wake's foam trail where that
+    /// point's water lands is part of the residual foam and of the total (the fields of this
+    /// view are the ocean's alone; the trail's is [`Wakes::foam`](crate::Wakes::foam)).
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn foam_at(&self, x0: f64, z0: f64) -> Result<FoamCoverage, Error> {
         check_point(x0, z0)?;
         let active = self.foam.active_at(x0, z0);
-        let total = self.foam.foam_at(x0, z0);
+        let total = match self.extra {
+            Some(extra) => extra.total_at(x0, z0),
+            None => self.foam.foam_at(x0, z0),
+        };
         Ok(FoamCoverage {
             active,
             residual: (total - active).max(0.0),

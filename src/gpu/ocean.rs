@@ -1,6 +1,8 @@
 //! What a renderer reads from a whole ocean ([`Textures`]): every cascade's texels with the
 //! ocean's foam in cascade 0's, and the sub-grid slope variance for the sun's glitter.
 
+use rayon::prelude::*;
+
 use super::{Sources, TexelLayout};
 use crate::cascade::Cascade;
 use crate::error::{self, Error};
@@ -153,6 +155,42 @@ impl Textures<'_> {
             .last()
             .map(Cascade::subgrid_slope_variance)
             .unwrap_or_default()
+    }
+
+    /// Packs the wake window ([`OceanState::wakes`]) into interleaved RGBA32F texels
+    /// `[η, ∂y/∂x, ∂y/∂z, foam]` — the wake's height in metres (y up), its slope
+    /// (dimensionless) and its foam coverage in [0, 1] — texel (i, j) of the window's N×N
+    /// grid at `out[j * N + i]`, for world (x₀ + i·Δ, z₀ + j·Δ) with (x₀, z₀) =
+    /// [`Wakes::origin`](crate::Wakes::origin) and Δ = [`Wakes::spacing`](crate::Wakes::spacing)
+    /// (upload them with the texture; the window
+    /// moves by whole cells). A shader adds the height and slope to the cascades' sums, and
+    /// combines the foam f with the ocean's as f_ocean + f·(1 − f_ocean), as the queries do.
+    /// The texels are zero outside the window: sample with clamp-to-border (or clamp to the
+    /// edge: the wake is faded to zero there). Copies the values bit for bit; rows in
+    /// parallel; allocates nothing inside a rayon pool.
+    ///
+    /// # Errors
+    /// [`Error::NotApplicable`] naming `wakes` without
+    /// [`OceanConfig::wakes`](crate::OceanConfig::wakes); [`Error::LengthMismatch`] naming
+    /// `out` unless `out.len()` is N². Nothing is written then.
+    pub fn pack_wakes(&self, out: &mut [[f32; 4]]) -> Result<(), Error> {
+        let wakes = self.ocean.wakes().ok_or(Error::NotApplicable {
+            name: "wakes",
+            reason: "the ocean was built without `OceanConfig::wakes`",
+        })?;
+        let n = wakes.size();
+        error::length("out", out.len(), n * n)?;
+        let (height, slope, foam) = (wakes.height(), wakes.slope(), wakes.foam());
+        out.par_chunks_mut(n)
+            .zip(height.par_chunks(n))
+            .zip(slope.par_chunks(n).zip(foam.par_chunks(n)))
+            .for_each(|((texels, height), (slope, foam))| {
+                let cells = texels.iter_mut().zip(height).zip(slope.iter().zip(foam));
+                for ((texel, &h), (&[sx, sz], &f)) in cells {
+                    *texel = [h, sx, sz, f];
+                }
+            });
+        Ok(())
     }
 
     /// Checks a pack of cascade `cascade` into a buffer of `len` texels; its sources and N.

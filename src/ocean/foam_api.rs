@@ -3,6 +3,7 @@
 //! old foam methods, forwarded for a release.
 
 use crate::error::Error;
+use crate::foam::view::ExtraFoam;
 use crate::foam::{FoamCalibration, FoamCoverage, FoamView};
 
 use super::OceanState;
@@ -23,7 +24,8 @@ impl OceanState {
     /// [`FoamView`]). Costs nothing.
     #[inline]
     pub fn foam_view(&self) -> FoamView<'_> {
-        FoamView::new(&self.foam)
+        let wakes = self.wake.as_ref().map(|_| self as &dyn ExtraFoam);
+        FoamView::new(&self.foam, wakes)
     }
 
     /// Deprecated: [`FoamView::active`] through [`OceanState::foam_view`].
@@ -79,5 +81,16 @@ impl OceanState {
     #[doc(hidden)]
     pub fn foam_calibration(&self) -> FoamCalibration {
         self.foam_view().calibration()
+    }
+}
+
+/// The wake's foam trail over the ocean's foam: what [`Water::at_rest`] gives.
+///
+/// [`Water::at_rest`]: crate::query::Water::at_rest
+impl ExtraFoam for OceanState {
+    fn total_at(&self, x0: f64, z0: f64) -> f32 {
+        self.water()
+            .at_rest(x0, z0)
+            .map_or(0.0, |sample| sample.foam)
     }
 }

@@ -173,8 +173,15 @@ impl OceanState {
                 FoamMotion::Jump => self.foam.refresh(),
                 FoamMotion::Keep => {}
             }
+            if let Some(wake) = &mut self.wake {
+                match (foam, scope) {
+                    (FoamMotion::Integrate(_), Scope::All) => wake.advance(t),
+                    _ => wake.jump(t),
+                }
+            }
             self.time = t;
             self.frames.advance(t, self.config.query);
+            self.write_wake();
         });
     }
 

@@ -13,6 +13,7 @@ use crate::foam::Foam;
 use crate::math::determinism::Determinism;
 use crate::math::periodic::{cell_on, periodic_bilinear, Period};
 use crate::math::simd::Simd;
+use crate::wake::Wakes;
 
 /// One cascade's part of a frame.
 #[derive(Debug, Clone)]
@@ -47,6 +48,9 @@ pub(crate) struct Frame {
     foam: Vec<f32>,
     foam_n: usize,
     foam_length: f32,
+    /// The wake window's buffers at this frame's time (`None` without wakes): the ocean
+    /// writes them after each move in time, and the queries add them.
+    pub(crate) wake: Option<Wakes>,
 }
 
 impl Frame {
@@ -87,6 +91,7 @@ impl Frame {
             foam: Vec::new(),
             foam_n: foam.n,
             foam_length: foam.length,
+            wake: None,
         })
     }
 
