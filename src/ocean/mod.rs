@@ -43,6 +43,8 @@ pub use snapshot::OceanSnapshot;
 ///   breaking, values at a point, coverage, calibration), [`clear_foam`](Self::clear_foam).
 /// - **Buffers and textures**: [`cascades`](Self::cascades) (each cascade's buffers),
 ///   [`textures`](Self::textures) (texels with the foam, the sub-grid slope variance).
+/// - **Wakes** (with [`OceanConfig::wakes`]): [`set_hulls`](Self::set_hulls),
+///   [`set_wake_centre`](Self::set_wake_centre), [`wakes`](Self::wakes).
 /// - **Snapshots**: [`snapshot`](Self::snapshot), [`restore`](Self::restore) (and
 ///   [`OceanSnapshot::capture`] to refill one without allocating).
 /// - **Diagnostics**: [`diagnostics`](Self::diagnostics) (what the grids hold of the sea, the
