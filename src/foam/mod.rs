@@ -7,6 +7,7 @@
 mod calibration;
 mod change;
 mod config;
+mod detail;
 mod intensity;
 mod model;
 mod moments;

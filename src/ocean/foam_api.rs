@@ -53,13 +53,18 @@ impl OceanState {
         Ok(self.foam.breaking_at(x, z))
     }
 
-    /// The foam at the undisplaced world point (`x`, `z`) (any finite coordinates: the foam
-    /// grid wraps with cascade 0's period), interpolated bilinearly from the foam grid: the
-    /// active whitecaps a, the residual foam not under them r·(1 − a), and all foam
-    /// ([`foam`](Self::foam); the same value as [`sample`](Self::sample)'s `foam`), each a
-    /// fraction of the surface there, as [`foam_coverage`](Self::foam_coverage) gives them for
-    /// the whole ocean. To draw fresh whitecaps apart from older foam, or for a point of the
-    /// displaced surface after [`locate`](Self::locate).
+    /// The foam at the undisplaced world point (`x`, `z`) (any finite coordinates), patterned
+    /// at the finest breaking scale: the active whitecaps a, the residual foam not under them
+    /// r·(1 − a), and all foam, each in [0, 1] — white (1) on foam, 0 on water, with soft
+    /// edges — so that their means over a stretch of sea are the fractions of
+    /// [`foam_coverage`](Self::foam_coverage). Whitecaps lie where the finer cascades
+    /// compress the surface most (their Jacobians), as many of them as the coarse active foam
+    /// on the foam grid ([`active_foam`](Self::active_foam)) says; residual foam lies in thin
+    /// streaks along the wind, as much as the coarse residual foam says, carried with the
+    /// water (its wind drift, and the orbital motion of the undisplaced point itself) and
+    /// fading with it (docs/theory.md, §15.8). [`sample`](Self::sample)'s `foam` is the
+    /// coarse coverage, the expectation of this `total`. To draw fresh whitecaps apart from
+    /// older foam, or for a point of the displaced surface after [`locate`](Self::locate).
     ///
     /// ```
     /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
@@ -68,7 +73,7 @@ impl OceanState {
     /// ocean.pre_roll(20.0, 0.1)?;
     /// let foam = ocean.foam_at(40.0, -12.0)?;
     /// assert!((foam.active + foam.residual - foam.total).abs() < 1e-6);
-    /// assert_eq!(foam.total, ocean.sample(40.0, -12.0)?.foam);
+    /// assert!((0.0..=1.0).contains(&foam.total));
     /// # Ok::<(), ocean_fft::Error>(())
     /// ```
     ///
@@ -80,13 +85,7 @@ impl OceanState {
                 return Err(Error::NonFinite { name });
             }
         }
-        let active = self.foam.active_at(x, z);
-        let total = self.foam.foam_at(x, z);
-        Ok(FoamCoverage {
-            active,
-            residual: (total - active).max(0.0),
-            total,
-        })
+        Ok(self.foam.detail_at(&self.cascades, x, z))
     }
 
     /// The area fractions covered by active whitecaps, residual foam and all foam (summed in

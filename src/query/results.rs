@@ -25,7 +25,9 @@ pub struct SurfaceSample {
     pub normal: [f32; 3],
     /// Foam coverage in [0, 1]: the ocean's one foam field
     /// ([`OceanState::foam`](crate::OceanState::foam), on cascade 0's grid) interpolated
-    /// bilinearly; 0 from a range of cascades without cascade 0
+    /// bilinearly, the fraction of the sea around the point that foam covers (the foam
+    /// itself, patterned at the breaking scale, is
+    /// [`OceanState::foam_at`](crate::OceanState::foam_at)); 0 from a range of cascades without cascade 0
     /// ([`OceanState::sample_cascades`](crate::OceanState::sample_cascades)), as cascade 0's
     /// textures carry the foam.
     pub foam: f32,
