@@ -5,7 +5,8 @@
 
 use super::*;
 use crate::math::determinism::Std;
-use crate::{OceanState, SeaState};
+use crate::ocean::OceanState;
+use crate::presets::SeaState;
 
 /// E[ρ] by Simpson's rule on steps of 1e-4 over the ramp and the tail beyond it,
 /// independent of the table's cumulative sums.

@@ -545,3 +545,25 @@ impl Foam {
         crate::math::periodic::periodic_bilinear(values, self.n, length, x, z).max(0.0)
     }
 }
+
+impl Foam {
+    /// The foam at undisplaced world (x, z) with its detail: the coarse fractions a and r
+    /// interpolated bilinearly from the foam grid, placed by the compression of `cascades` ≥ 1
+    /// (the ocean's, whose cascade 0 is the foam's grid) and by the streak field.
+    pub(crate) fn detail_at(&self, cascades: &[Cascade], x: f64, z: f64) -> FoamCoverage {
+        let length = f64::from(self.length);
+        let coarse = |values: &[f32]| {
+            // NaN becomes 0, as the coarse lookup always made it.
+            let v = crate::math::periodic::periodic_bilinear(values, self.n, length, x, z);
+            if v.is_nan() {
+                0.0
+            } else {
+                v.clamp(0.0, 1.0)
+            }
+        };
+        let (a, r) = (coarse(&self.active), coarse(&self.residual));
+        let variance = self.sea.unresolved_compression();
+        let u = self.detail.compression_at(cascades, variance, x, z);
+        self.detail.foam(a, r, u, self.detail.streak_at(x, z))
+    }
+}
