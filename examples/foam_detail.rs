@@ -23,7 +23,10 @@ fn main() -> Result<()> {
     let width = 2 * SIDE + GAP;
     let height = 2 * SIDE + GAP;
     let mut pixels = vec![40u8; width * height];
-    for (row, sea) in [SeaState::FreshBreeze, SeaState::Storm].into_iter().enumerate() {
+    for (row, sea) in [SeaState::FreshBreeze, SeaState::Storm]
+        .into_iter()
+        .enumerate()
+    {
         let (spectrum, config) = sea.build();
         let spectrum = spectrum.with_wind_direction(0.0)?;
         let mut ocean = OceanState::new(spectrum, config)?;

@@ -169,3 +169,44 @@ fn fresh_breeze_foam_is_patterned_at_the_breaking_scale() {
 fn storm_foam_is_patterned_at_the_breaking_scale() {
     check(SeaState::Storm);
 }
+
+/// The patterned foam has the same bits whatever the number of threads the ocean was built
+/// and stepped on (the lookup is serial; what it reads, the cascades' Jacobians and the foam
+/// grid, is thread-count independent, and the streak field and quantile tables are built
+/// serially), in both determinism modes.
+#[test]
+fn foam_at_has_the_same_bits_on_any_thread_count() {
+    for determinism in [
+        ocean_fft::Determinism::SameMachine,
+        ocean_fft::Determinism::CrossPlatform,
+    ] {
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let (spectrum, mut config) = SeaState::FreshBreeze.build();
+                config.size = 64;
+                config.determinism = determinism;
+                let mut ocean = OceanState::new(spectrum, config).unwrap();
+                ocean.pre_roll(5.0, 0.1).unwrap();
+                (0..4000)
+                    .map(|k| {
+                        let foam = ocean
+                            .foam_at(f64::from(k) * 0.37 - 90.0, f64::from(k % 37) * 1.9)
+                            .unwrap();
+                        [foam.active, foam.residual, foam.total].map(f32::to_bits)
+                    })
+                    .collect::<Vec<_>>()
+            })
+        };
+        let one = run(1);
+        assert!(
+            one.iter().any(|v| v[2] != 0),
+            "{determinism:?}: no foam at all"
+        );
+        assert_eq!(one, run(2), "{determinism:?}");
+        assert_eq!(one, run(3), "{determinism:?}");
+    }
+}
