@@ -525,6 +525,16 @@ impl Foam {
         self.residual.copy_from_slice(residual);
     }
 
+    /// How far the streak field of the foam's detail has drifted, `[x, z]` m.
+    pub(crate) fn drift_offset(&self) -> [f64; 2] {
+        self.detail.offset
+    }
+
+    /// Sets the streak field's drift (a restored snapshot's).
+    pub(crate) fn set_drift_offset(&mut self, offset: [f64; 2]) {
+        self.detail.offset = offset;
+    }
+
     /// Removes all foam from the state; the total and the coverage follow at the next
     /// [`refresh`](Self::refresh) or step.
     pub(crate) fn clear_state(&mut self) {

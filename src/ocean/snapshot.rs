@@ -13,7 +13,7 @@ use super::OceanState;
 /// follows from these, so [`OceanState::restore`] brings an ocean back to exactly the bits it
 /// had when the snapshot was taken, and it then steps to the same bits as the original did.
 ///
-/// A snapshot holds 8 bytes per point of the foam grid (cascade 0's N×N). Take one with
+/// A snapshot holds 8 bytes per point of the foam grid (cascade 0's N×N) and the drift of the foam's streaks. Take one with
 /// [`OceanState::snapshot`], or refill one without allocating with
 /// [`OceanState::snapshot_into`]. With the `serde` feature it can be saved and loaded; a
 /// loaded snapshot is checked when it is restored. For a restore that is bit-exact, the format
@@ -47,6 +47,10 @@ pub struct OceanSnapshot {
     active: Vec<f32>,
     /// Residual foam on the foam grid.
     residual: Vec<f32>,
+    /// How far the foam's streak field has drifted, `[x, z]` m (absent from snapshots saved
+    /// before 0.4: 0).
+    #[cfg_attr(feature = "serde", serde(default))]
+    foam_drift: [f64; 2],
 }
 
 impl OceanSnapshot {
@@ -66,6 +70,7 @@ impl OceanState {
             applied_choppiness: 0.0,
             active: Vec::new(),
             residual: Vec::new(),
+            foam_drift: [0.0; 2],
         };
         self.snapshot_into(&mut snapshot);
         snapshot
@@ -82,6 +87,7 @@ impl OceanState {
         snapshot.active.extend_from_slice(self.foam.active());
         snapshot.residual.clear();
         snapshot.residual.extend_from_slice(self.foam.residual());
+        snapshot.foam_drift = self.foam.drift_offset();
     }
 
     /// Brings the ocean back to the state `snapshot` holds: its time, choppiness and foam, and
@@ -94,7 +100,9 @@ impl OceanState {
     /// snapshot comes from an ocean with another foam grid; for a snapshot loaded from a file,
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for a time beyond
     /// [`Cascade::MAX_TIME`](crate::Cascade::MAX_TIME) or a foam value outside [0, 1], and the
-    /// errors of [`set_choppiness`](Self::set_choppiness). Nothing changes then.
+    /// errors of [`set_choppiness`](Self::set_choppiness); [`Error::NonFinite`] naming
+    /// `snapshot.foam_drift` for a drift of the foam's streaks that is not finite. Nothing
+    /// changes then.
     pub fn restore(&mut self, snapshot: &OceanSnapshot) -> Result<(), Error> {
         self.foam.check_state(
             ("snapshot.active", &snapshot.active),
@@ -103,7 +111,13 @@ impl OceanState {
         let t = check_time("snapshot.time", snapshot.time)?;
         self.check_choppiness(snapshot.applied_choppiness)?;
         self.check_choppiness(snapshot.choppiness)?;
+        if snapshot.foam_drift.iter().any(|v| !v.is_finite()) {
+            return Err(Error::NonFinite {
+                name: "snapshot.foam_drift",
+            });
+        }
         self.foam.set_state(&snapshot.active, &snapshot.residual);
+        self.foam.set_drift_offset(snapshot.foam_drift);
         // The buffers as they were (with the choppiness they were computed with), then the
         // choppiness set since, for the next update.
         self.set_choppiness_checked(snapshot.applied_choppiness);
