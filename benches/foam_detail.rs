@@ -62,7 +62,11 @@ fn foam_detail(c: &mut Criterion) {
         b.iter(|| {
             let mut sum = 0.0f32;
             for &(x, z) in &points {
-                sum += state.foam_at(black_box(x), z).expect("finite").total;
+                sum += state
+                    .foam_view()
+                    .foam_at(black_box(x), z)
+                    .expect("finite")
+                    .total;
             }
             sum
         })
@@ -71,7 +75,10 @@ fn foam_detail(c: &mut Criterion) {
         b.iter(|| {
             let mut sum = 0.0f32;
             for &(x, z) in &points {
-                sum += state.breaking_at(black_box(x), z).expect("finite");
+                sum += state
+                    .foam_view()
+                    .breaking_at(black_box(x), z)
+                    .expect("finite");
             }
             sum
         })

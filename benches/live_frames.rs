@@ -45,7 +45,7 @@ fn main() {
             ocean.set_spectrum(gale.clone(), 10.0).expect("change");
             set = set.min(t.elapsed().as_secs_f64());
             let mut k = 0;
-            while ocean.transition_progress().is_some() {
+            while ocean.diagnostics().transition_progress().is_some() {
                 let t = Instant::now();
                 ocean.step(dt).expect("step");
                 let e = t.elapsed().as_secs_f64();
@@ -54,7 +54,7 @@ fn main() {
                 } else {
                     frames[k] = frames[k].min(e);
                 }
-                if ocean.transition_progress() > Some(0.0) {
+                if ocean.diagnostics().transition_progress() > Some(0.0) {
                     prepared = prepared.min(k);
                 }
                 k += 1;

@@ -304,31 +304,40 @@ fn queries(c: &mut Criterion) {
         group.bench_function(BenchmarkId::new("sample", name), |b| {
             b.iter(|| {
                 state
-                    .sample(black_box(123.4), black_box(-56.7))
+                    .water()
+                    .at_rest(black_box(123.4), black_box(-56.7))
                     .expect("sample")
             })
         });
         group.bench_function(BenchmarkId::new("height_at", name), |b| {
             b.iter(|| {
                 state
+                    .water()
                     .height_at(black_box(123.4), black_box(-56.7))
                     .expect("height_at")
             })
         });
         group.bench_function(BenchmarkId::new("heights_at_10k", name), |b| {
-            b.iter(|| state.heights_at(&points, &mut heights).expect("heights_at"))
+            b.iter(|| {
+                state
+                    .water()
+                    .heights_at(&points, &mut heights)
+                    .expect("heights_at")
+            })
         });
         group.bench_function(BenchmarkId::new("sample_many_10k", name), |b| {
             b.iter(|| {
                 state
-                    .sample_many(&points, &mut samples)
+                    .water()
+                    .at_rest_many(&points, &mut samples)
                     .expect("sample_many")
             })
         });
         group.bench_function(BenchmarkId::new("sample_grid_100x100", name), |b| {
             b.iter(|| {
                 state
-                    .sample_grid([-300.0, 0.0], 3.1, [100, 100], &mut samples)
+                    .water()
+                    .at_rest_grid([-300.0, 0.0], 3.1, [100, 100], &mut samples)
                     .expect("sample_grid")
             })
         });
@@ -357,7 +366,12 @@ fn query_batch(c: &mut Criterion) {
                 &count,
                 |b, _| {
                     pool.install(|| {
-                        b.iter(|| state.heights_at(&points, &mut heights).expect("heights_at"))
+                        b.iter(|| {
+                            state
+                                .water()
+                                .heights_at(&points, &mut heights)
+                                .expect("heights_at")
+                        })
                     })
                 },
             );
@@ -368,6 +382,7 @@ fn query_batch(c: &mut Criterion) {
                     pool.install(|| {
                         b.iter(|| {
                             state
+                                .water()
                                 .surfaces_at(&points, &mut surfaces)
                                 .expect("surfaces_at")
                         })
@@ -398,7 +413,10 @@ fn small_batches(c: &mut Criterion) {
             pool.install(|| {
                 b.iter(|| {
                     for batch in &batches {
-                        state.heights_at(batch, &mut heights).expect("heights_at");
+                        state
+                            .water()
+                            .heights_at(batch, &mut heights)
+                            .expect("heights_at");
                     }
                 })
             })
@@ -408,7 +426,7 @@ fn small_batches(c: &mut Criterion) {
                 b.iter(|| {
                     for batch in &batches {
                         for (height, &[x, z]) in heights.iter_mut().zip(*batch) {
-                            *height = state.height_at(x, z).expect("height_at");
+                            *height = state.water().height_at(x, z).expect("height_at");
                         }
                     }
                 })
@@ -445,7 +463,10 @@ fn first_query(c: &mut Criterion) {
                         b.iter(|| {
                             state.step(black_box(1.0 / 60.0)).expect("step");
                             x += 0.37;
-                            state.height_at(black_box(x), 12.0).expect("height_at")
+                            state
+                                .water()
+                                .height_at(black_box(x), 12.0)
+                                .expect("height_at")
                         })
                     })
                 },
@@ -493,7 +514,10 @@ fn full_coverage(c: &mut Criterion) {
                     pool.install(|| {
                         b.iter(|| {
                             state.step(black_box(1.0 / 60.0)).expect("step");
-                            state.heights_at(&points, &mut heights).expect("heights_at");
+                            state
+                                .water()
+                                .heights_at(&points, &mut heights)
+                                .expect("heights_at");
                             heights[7]
                         })
                     })
@@ -505,7 +529,10 @@ fn full_coverage(c: &mut Criterion) {
                 |b, _| {
                     pool.install(|| {
                         b.iter(|| {
-                            state.heights_at(&points, &mut heights).expect("heights_at");
+                            state
+                                .water()
+                                .heights_at(&points, &mut heights)
+                                .expect("heights_at");
                             heights[7]
                         })
                     })
@@ -595,7 +622,7 @@ fn live(c: &mut Criterion) {
                 },
                 |state| {
                     state
-                        .step(black_box(OceanState::TRANSITION_LAG))
+                        .step(black_box(ocean_fft::limits::TRANSITION_LAG))
                         .expect("step")
                 },
                 BatchSize::PerIteration,
@@ -607,7 +634,7 @@ fn live(c: &mut Criterion) {
         let mut toward_gale = true;
         pool.install(|| {
             b.iter(|| {
-                if state.transition_progress().is_none() {
+                if state.diagnostics().transition_progress().is_none() {
                     let to = if toward_gale { &gale } else { &breeze };
                     state.set_spectrum(to.clone(), 10.0).expect("change");
                     toward_gale = !toward_gale;

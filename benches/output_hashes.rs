@@ -197,9 +197,9 @@ fn main() {
                     }
                     for (buffer, values) in [
                         ("foam", ocean.foam()),
-                        ("active", ocean.active_foam()),
-                        ("residual", ocean.residual_foam()),
-                        ("breaking", ocean.breaking()),
+                        ("active", ocean.foam_view().active()),
+                        ("residual", ocean.foam_view().residual()),
+                        ("breaking", ocean.foam_view().breaking()),
                     ] {
                         let hash = hash_bits(values.iter().map(|v| v.to_bits()));
                         println!(

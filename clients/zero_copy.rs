@@ -56,9 +56,9 @@ fn scalar_buffers_are_f32_slices_and_bytes_for_the_gpu() {
     // The foam buffers live on cascade 0's grid.
     let foam = [
         ocean.foam(),
-        ocean.active_foam(),
-        ocean.residual_foam(),
-        ocean.breaking(),
+        ocean.foam_view().active(),
+        ocean.foam_view().residual(),
+        ocean.foam_view().breaking(),
     ];
     for (c, cascade) in ocean.cascades().iter().enumerate() {
         let own = [cascade.height(), cascade.jacobian()];
@@ -145,6 +145,7 @@ fn surface_samples_cast_to_f32_and_to_a_struct_of_glam_fields() {
         .collect();
     let mut samples = vec![SurfaceSample::default(); points.len()];
     ocean
+        .water()
         .surfaces_at(&points, &mut samples)
         .expect("finite points");
 

@@ -134,6 +134,7 @@ fn main() -> Result<()> {
 
     // What the looping costs: every frequency moved to a whole number of cycles per loop.
     let error = ocean
+        .diagnostics()
         .loop_error()
         .ok_or("a looping ocean reports its loop error")?;
     println!("max |frame(T) − frame(0)| over η, D_x, D_z: {jumped:.2e} m by set_time(T)");

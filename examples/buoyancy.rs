@@ -63,7 +63,7 @@ fn main() -> Result<()> {
         ..OceanConfig::default()
     };
     let mut ocean = OceanState::new(spectrum, config)?;
-    let hs_grid = 4.0 * ocean.expected_variance().sqrt();
+    let hs_grid = 4.0 * ocean.diagnostics().expected_variance().sqrt();
 
     // Corners: bow-port, bow-starboard, stern-port, stern-starboard (bow +x, port −z).
     let (hl, hw) = (0.5 * LENGTH, 0.5 * WIDTH);
@@ -80,7 +80,7 @@ fn main() -> Result<()> {
         if frame > 0 {
             ocean.step(1.0 / RATE)?;
         }
-        ocean.heights_at(&corners, &mut heights)?;
+        ocean.water().heights_at(&corners, &mut heights)?;
         let [bp, bs, sp, ss] = heights;
         let y = 0.25 * (bp + bs + sp + ss);
         let pitch = ((0.5 * (bp + bs) - 0.5 * (sp + ss)) / LENGTH as f32).atan();

@@ -1,7 +1,8 @@
 //! The foam at the breaking scale, `out/foam_detail.png`: a 128 m square of the fresh breeze
 //! (top) and the storm (bottom), wind along +x (to the right), after a minute of pre-roll,
-//! sampled every 0.25 m. Left: the coarse foam coverage (`sample(..).foam`, what `foam_at`
-//! returned before 0.4: a fraction on cascade 0's grid); right: `foam_at(..).total`, the foam
+//! sampled every 0.25 m. Left: the coarse foam coverage (`water().at_rest(..).foam`, what
+//! `foam_at` returned before 0.4: a fraction on cascade 0's grid); right:
+//! `foam_view().foam_at(..).total`, the foam
 //! placed at the finest cascade's resolution, white whitecaps on the most compressed short
 //! crests and thin residual streaks along the wind (docs/theory.md §15.8). Gray levels are
 //! the foam value, 0 black to 1 white; the left panels are stretched (×1/max) so their fog
@@ -37,8 +38,8 @@ fn main() -> Result<()> {
         for j in 0..SIDE {
             for i in 0..SIDE {
                 let (x, z) = (x0 + i as f64 * 0.25, z0 + j as f64 * 0.25);
-                coarse[j * SIDE + i] = ocean.sample(x, z)?.foam;
-                detail[j * SIDE + i] = ocean.foam_at(x, z)?.total;
+                coarse[j * SIDE + i] = ocean.water().at_rest(x, z)?.foam;
+                detail[j * SIDE + i] = ocean.foam_view().foam_at(x, z)?.total;
             }
         }
         let stretch = 1.0 / coarse.iter().fold(1e-6f32, |m, &v| m.max(v));
@@ -50,7 +51,7 @@ fn main() -> Result<()> {
                 pixels[y * width + SIDE + GAP + i] = (255.0 * detail[k]) as u8;
             }
         }
-        let coverage = ocean.foam_coverage();
+        let coverage = ocean.foam_view().coverage();
         let mean = detail.iter().map(|&v| f64::from(v)).sum::<f64>() / detail.len() as f64;
         println!(
             "{sea:?}: coverage {:.4}, mean of foam_at {mean:.4}, coarse max {:.3}",

@@ -31,10 +31,12 @@ const LABEL: usize = 26;
 fn draw(ocean: &OceanState, side: f64) -> Result<Vec<u8>> {
     let spacing = side / PANEL as f64;
     let mut samples = vec![SurfaceSample::default(); PANEL * PANEL];
-    ocean.sample_grid([0.0, 0.0], spacing, [PANEL, PANEL], &mut samples)?;
+    ocean
+        .water()
+        .at_rest_grid([0.0, 0.0], spacing, [PANEL, PANEL], &mut samples)?;
     let n = ocean.cascades()[0].size();
     let cell = f64::from(ocean.cascades()[0].length()) / n as f64;
-    let (active, residual) = (ocean.active_foam(), ocean.residual_foam());
+    let (active, residual) = (ocean.foam_view().active(), ocean.foam_view().residual());
     // Bilinear, periodic: a foam buffer at world (x, z).
     let at = |buffer: &[f32], x: f64, z: f64| {
         let (x, z) = ((x / cell) as f32, (z / cell) as f32);
@@ -146,8 +148,8 @@ fn main() -> Result<()> {
     let dir = out_dir("")?;
     let path = dir.join("foam_streaks.png");
     canvas.save(&path)?;
-    let coverage = ocean.foam_coverage();
-    let calibration = ocean.foam_calibration();
+    let coverage = ocean.foam_view().coverage();
+    let calibration = ocean.foam_view().calibration();
     println!(
         "wrote {} (the {first} m tile of the foam grid, {n}² points, and a quarter of it)",
         path.display()

@@ -46,8 +46,8 @@ struct Run {
     allocations: usize,
 }
 
-/// Runs the frame loop with texels of type `T`, packed by `pack` (`OceanState::pack_texels`
-/// or `pack_texels_f16`).
+/// Runs the frame loop with texels of type `T`, packed by `pack` (`ocean.textures().pack`
+/// or `pack_f16`).
 fn run<T: bytemuck::Pod>(
     pack: impl Fn(&OceanState, usize, TexelLayout, &mut [T]) -> Result<(), Error>,
 ) -> Result<Run, Error> {
@@ -119,9 +119,10 @@ fn median(times: &mut [Duration]) -> Duration {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let pool = rayon::ThreadPoolBuilder::new().build()?;
     let (f32_run, f16_run) = pool.install(|| -> Result<_, Error> {
-        let f32_run = run::<[f32; 4]>(|ocean, c, layout, out| ocean.pack_texels(c, layout, out))?;
+        let f32_run =
+            run::<[f32; 4]>(|ocean, c, layout, out| ocean.textures().pack(c, layout, out))?;
         let f16_run =
-            run::<[f16; 4]>(|ocean, c, layout, out| ocean.pack_texels_f16(c, layout, out))?;
+            run::<[f16; 4]>(|ocean, c, layout, out| ocean.textures().pack_f16(c, layout, out))?;
         Ok((f32_run, f16_run))
     })?;
 

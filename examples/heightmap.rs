@@ -141,8 +141,8 @@ fn main() -> Result<()> {
     image.extend(footer.chunks(3).map(|c| c[1]));
     let path = dir.join("foam.png");
     save_gray8(&path, n, n + FOOTER, &image)?;
-    let coverage = ocean.foam_coverage();
-    let calibration = ocean.foam_calibration();
+    let coverage = ocean.foam_view().coverage();
+    let calibration = ocean.foam_view().calibration();
     println!(
         "wrote {} (foam in [0, 1] → [0, 255]); coverage: active whitecaps {:.2} %, residual \
          {:.2} %; whitecap fraction aimed at (Monahan & O'Muircheartaigh 1980, U10 = {} m/s): \
@@ -166,7 +166,7 @@ fn main() -> Result<()> {
         })
         .collect();
     let mut samples = vec![SurfaceSample::default(); points.len()];
-    ocean.sample_many(&points, &mut samples)?;
+    ocean.water().at_rest_many(&points, &mut samples)?;
     let mean = samples.iter().map(|s| f64::from(s.height)).sum::<f64>() / samples.len() as f64;
     let variance = samples
         .iter()
@@ -174,7 +174,7 @@ fn main() -> Result<()> {
         .sum::<f64>()
         / samples.len() as f64;
     let hs_measured = 4.0 * variance.sqrt();
-    let hs_expected = 4.0 * ocean.expected_variance().sqrt();
+    let hs_expected = 4.0 * ocean.diagnostics().expected_variance().sqrt();
     println!("t = {:.2} s", ocean.time());
     println!(
         "H_s measured, 4·std of the summed height at {m}×{m} world points: {hs_measured:.3} m"

@@ -356,14 +356,14 @@ fn main() -> Result<()> {
         ocean.step(1.0 / 30.0)?;
     }
     let simulated = start.elapsed().as_secs_f32();
-    let coverage = ocean.foam_coverage();
+    let coverage = ocean.foam_view().coverage();
     let mean = |v: &[f32]| v.iter().sum::<f32>() / v.len() as f32;
     println!(
         "foam: active coverage {:.3}, residual {:.3}; mean active {:.3}, residual {:.3}",
         coverage.active,
         coverage.residual,
-        mean(ocean.active_foam()),
-        mean(ocean.residual_foam())
+        mean(ocean.foam_view().active()),
+        mean(ocean.foam_view().residual())
     );
 
     // The sum of each cascade's largest |η| bounds the summed height (plus a margin for the
@@ -375,9 +375,11 @@ fn main() -> Result<()> {
         .sum::<f32>()
         * 1.05
         + 0.01;
-    let sigma = ocean.expected_variance().sqrt() as f32;
+    let sigma = ocean.diagnostics().expected_variance().sqrt() as f32;
     let mut camera = camera;
-    let water = ocean.height_at(f64::from(camera[0]), f64::from(camera[2]))?;
+    let water = ocean
+        .water()
+        .height_at(f64::from(camera[0]), f64::from(camera[2]))?;
     if camera[1] < water + 1.0 {
         println!(
             "the eye at y = {:.2} m is below or within 1 m of the water ({water:.2} m): raised \
@@ -414,7 +416,7 @@ fn main() -> Result<()> {
             [v.along, v.across]
         })
         .collect();
-    let subgrid = ocean.subgrid_slope_variance();
+    let subgrid = ocean.textures().subgrid_slope_variance();
     let wind = Vec3::new(wind_direction.cos(), 0.0, wind_direction.sin());
     let tan = (fov.to_radians() * 0.5).tan();
     let scene = Scene {
@@ -436,8 +438,8 @@ fn main() -> Result<()> {
         ray_angle: 2.0 * tan / (width * samples) as f32,
         foam_length: f64::from(ocean.cascades()[0].length()),
         foam_size: ocean.cascades()[0].size(),
-        active: ocean.active_foam().to_vec(),
-        residual: ocean.residual_foam().to_vec(),
+        active: ocean.foam_view().active().to_vec(),
+        residual: ocean.foam_view().residual().to_vec(),
     };
 
     let mut pixels = vec![0u8; width * height * 3];
@@ -514,12 +516,14 @@ fn gap(ocean: &OceanState, eye: Vec3, dir: Vec3, t: f32) -> f32 {
     let p = eye + dir * t;
     let (x, z) = (f64::from(p.x), f64::from(p.z));
     let approximate = || -> std::result::Result<f32, ocean_fft::Error> {
-        let d = ocean.sample(x, z)?.displacement;
+        let d = ocean.water().at_rest(x, z)?.displacement;
         let d = ocean
-            .sample(x - f64::from(d[0]), z - f64::from(d[1]))?
+            .water()
+            .at_rest(x - f64::from(d[0]), z - f64::from(d[1]))?
             .displacement;
         Ok(ocean
-            .sample(x - f64::from(d[0]), z - f64::from(d[1]))?
+            .water()
+            .at_rest(x - f64::from(d[0]), z - f64::from(d[1]))?
             .height)
     };
     match approximate() {
@@ -570,7 +574,7 @@ fn march(ocean: &OceanState, scene: &Scene, dir: Vec3) -> Option<f32> {
 fn shade_water(ocean: &OceanState, scene: &Scene, dir: Vec3, distance: f32) -> Vec3 {
     let light = &scene.light;
     let p = scene.eye + dir * distance;
-    let Ok(surface) = ocean.surface_at(f64::from(p.x), f64::from(p.z)) else {
+    let Ok(surface) = ocean.water().surface_at(f64::from(p.x), f64::from(p.z)) else {
         return light.haze_colour(dir);
     };
     let view = -dir;

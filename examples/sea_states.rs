@@ -157,7 +157,7 @@ fn main() -> Result<()> {
 
         let foam = |p: usize| {
             let (i, j) = ((p % fine) as f64 + 0.5, (p / fine) as f64 + 0.5);
-            ocean.foam_at(i * spacing, j * spacing)
+            ocean.foam_view().foam_at(i * spacing, j * spacing)
         };
         let x0 = PAD + (index % COLUMNS) * (tile_px + PAD);
         let y0 = PAD + (index / COLUMNS) * (tile_px + label + PAD) + label;
@@ -299,7 +299,9 @@ fn repeat_correlation(
     let spacing = window / m as f64;
     let mut base = vec![SurfaceSample::default(); m * m];
     let mut shifted = vec![SurfaceSample::default(); m * m];
-    ocean.sample_grid([0.0, 0.0], spacing, [m, m], &mut base)?;
+    ocean
+        .water()
+        .at_rest_grid([0.0, 0.0], spacing, [m, m], &mut base)?;
     let mut out = Vec::new();
     for cascade in ocean.cascades() {
         let length = f64::from(cascade.length());
@@ -319,7 +321,9 @@ fn repeat_correlation(
             } else {
                 [0.0, length]
             };
-            ocean.sample_grid(origin, spacing, [m, m], &mut shifted)?;
+            ocean
+                .water()
+                .at_rest_grid(origin, spacing, [m, m], &mut shifted)?;
             let pairs = (0..m * m).filter(|&p| {
                 let (i, j) = (p % m, p / m);
                 (if axis == 0 { i } else { j }) < inside

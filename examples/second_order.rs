@@ -72,7 +72,7 @@ fn main() -> Result<()> {
             .map(|i| [i as f64 / (POINTS - 1) as f64 * span + 311.0, 57.0])
             .collect();
         let mut heights = vec![0.0f32; POINTS];
-        ocean.heights_at(&points, &mut heights)?;
+        ocean.water().heights_at(&points, &mut heights)?;
         Ok(points
             .iter()
             .zip(&heights)

@@ -91,7 +91,10 @@ fn main() -> Result<()> {
                 println!(
                     "{:6.1} {:5.3}   {:6.3} {:6.3}                  {:9.3e} {:9.3e}",
                     t,
-                    ocean.transition_progress().unwrap_or(f64::NAN),
+                    ocean
+                        .diagnostics()
+                        .transition_progress()
+                        .unwrap_or(f64::NAN),
                     row.hs_measured,
                     row.hs_predicted,
                     row.active,
@@ -138,12 +141,12 @@ fn measure(ocean: &OceanState, t: f64) -> Row {
                 / h.len() as f64
         })
         .sum();
-    let calibration = ocean.foam_calibration();
+    let calibration = ocean.foam_view().calibration();
     Row {
         t,
         hs_measured: 4.0 * variance.sqrt(),
-        hs_predicted: 4.0 * ocean.expected_variance().sqrt(),
-        active: f64::from(ocean.foam_coverage().active),
+        hs_predicted: 4.0 * ocean.diagnostics().expected_variance().sqrt(),
+        active: f64::from(ocean.foam_view().coverage().active),
         predicted_active: f64::from(calibration.predicted),
     }
 }
@@ -164,7 +167,7 @@ fn top_view(ocean: &OceanState, sigma_storm: f32) -> Result<Vec<u8>> {
                     (p % fine) as f64 * spacing + 0.5 * spacing,
                     (p / fine) as f64 * spacing + 0.5 * spacing,
                 );
-                let foam = ocean.foam_at(x, z)?;
+                let foam = ocean.foam_view().foam_at(x, z)?;
                 sum += shade(
                     &samples[p],
                     sun,

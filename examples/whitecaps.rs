@@ -59,7 +59,7 @@ fn main() -> Result<()> {
             let (mut active, mut residual) = (0.0f64, 0.0f64);
             for _ in 0..steps {
                 ocean.step(dt)?;
-                let c = ocean.foam_coverage();
+                let c = ocean.foam_view().coverage();
                 active += f64::from(c.active);
                 residual += f64::from(c.residual);
             }
@@ -68,7 +68,7 @@ fn main() -> Result<()> {
             println!(
                 "{name:8} {wind:7.1} {expected:10.3e} {active:10.3e} {:7.3} {residual:9.3e} {:.3}",
                 active / expected,
-                ocean.foam_calibration().threshold
+                ocean.foam_view().calibration().threshold
             );
             rows.push((index, wind, active, residual));
         }

@@ -64,19 +64,19 @@ fn ocean_hashes(ocean: &OceanState) -> Vec<(String, u64)> {
     }
     let mut hash = BitHash::new();
     hash.f32s(ocean.foam().iter().copied());
-    hash.f32s(ocean.breaking().iter().copied());
+    hash.f32s(ocean.foam_view().breaking().iter().copied());
     out.push(("foam".into(), hash.finish()));
     let points = [[0.0, 0.0], [12.5, -40.25], [-333.3, 517.9], [2048.0, 77.7]];
     let mut hash = BitHash::new();
     for [x, z] in points {
-        let s = ocean.sample(x, z).unwrap();
-        let surface = ocean.surface_at(x, z).unwrap();
-        let location = ocean.locate(x, z).unwrap();
+        let s = ocean.water().at_rest(x, z).unwrap();
+        let surface = ocean.water().surface_at(x, z).unwrap();
+        let location = ocean.water().locate(x, z).unwrap();
         for s in [s, surface] {
             hash.f32s([s.height, s.foam]);
             hash.f32s(s.displacement.into_iter().chain(s.slope).chain(s.normal));
         }
-        hash.f32s([ocean.height_at(x, z).unwrap(), location.miss]);
+        hash.f32s([ocean.water().height_at(x, z).unwrap(), location.miss]);
         hash.f64s(location.undisplaced);
         hash.bytes(&(location.iterations as u64).to_le_bytes());
     }

@@ -20,7 +20,7 @@
 //!     ocean.step(1.0 / 60.0)?;                         // s
 //! }
 //! let heights = ocean.cascades()[0].height();          // m, N×N, index j·N + i
-//! let y = ocean.height_at(25.0, -130.0)?;              // m, water height at world (x, z)
+//! let y = ocean.water().height_at(25.0, -130.0)?;      // m, water height at world (x, z)
 //! assert!(heights.len() == 64 * 64 && y.abs() < 5.0);
 //! # Ok::<(), ocean_fft::Error>(())
 //! ```
@@ -35,10 +35,11 @@
 //! - [`OceanState`]: several cascades on disjoint wave-number bands, the time, the foam (one
 //!   field for the whole ocean with whitecaps calibrated against measurements, residual foam
 //!   drawn into streaks and a breaking intensity: [`OceanState::foam`],
-//!   [`OceanState::breaking`], [`FoamConfig`]), and the world queries [`OceanState::sample`]
-//!   and [`OceanState::height_at`].
+//!   [`OceanState::foam_view`], [`FoamConfig`]), and the world queries of its [`Water`]
+//!   ([`OceanState::water`]: [`Water::height_at`] at a world point, [`Water::at_rest`] at a
+//!   rest point), also from other threads through a [`Surface`] handle.
 //! - GPU upload into buffers you own ([`gpu`]): [`Cascade::pack_texels`] and
-//!   [`OceanState::pack_texels`] interleave the buffers into RGBA32F texels of a
+//!   [`OceanState::textures`] ([`gpu::Textures::pack`]) interleave the buffers into RGBA32F texels of a
 //!   [`gpu::TexelLayout`] (RGBA16F with the `half` feature), [`Cascade::write_vertices`]
 //!   writes a [`gpu::Vertex`] array with [`Cascade::triangle_indices`], and
 //!   [`Cascade::write_normal_map`] an RGBA8 tangent-space normal map with OpenGL- or
@@ -93,7 +94,7 @@
 //! all off by default:
 //!
 //! - **`half`**: RGBA16F texel packing, `Cascade::pack_texels_f16` and
-//!   `OceanState::pack_texels_f16`, into `[half::f16; 4]` texels of the `half` crate (2.x,
+//!   `gpu::Textures::pack_f16`, into `[half::f16; 4]` texels of the `half` crate (2.x,
 //!   re-exported as `ocean_fft::half`). Each channel is rounded to the nearest f16 (ties to
 //!   even) and values beyond the f16 range saturate to ±65504, never ±∞ or NaN.
 //! - **`serde`**: `Serialize` and `Deserialize` for [`Spectrum`], [`Spreading`],
@@ -127,7 +128,7 @@
 //! - **`bytemuck`**: `bytemuck::Pod` and `bytemuck::Zeroable` (derived) for
 //!   [`SurfaceSample`] and [`gpu::Vertex`] (and `half`'s f16 when `half` is on too), so that
 //!   `bytemuck::cast_slice` gives a vertex array's bytes to upload and views the results of
-//!   [`OceanState::surfaces_at`] as `&[f32]`, or as any `#[repr(C)]` struct of the same nine
+//!   [`Water::surfaces_at`] as `&[f32]`, or as any `#[repr(C)]` struct of the same nine
 //!   `f32`, without copying. The cascade buffers need no feature: they are `&[f32]`,
 //!   `&[[f32; 2]]` and `&[[f32; 3]]`, which bytemuck already casts to an engine's `Vec2` and
 //!   `Vec3` whatever its version (glam's with its own `bytemuck` feature, for example).
@@ -140,7 +141,7 @@
 //! let mut ocean = OceanState::new(Spectrum::jonswap(10.0, 100_000.0)?, config)?;
 //! ocean.step(1.0 / 60.0)?;
 //! let mut samples = [SurfaceSample::default(); 3];
-//! ocean.surfaces_at(&[[0.0, 0.0], [10.0, -4.0], [250.0, 80.0]], &mut samples)?;
+//! ocean.water().surfaces_at(&[[0.0, 0.0], [10.0, -4.0], [250.0, 80.0]], &mut samples)?;
 //!
 //! let floats: &[f32] = bytemuck::cast_slice(&samples);   // 9 f32 a sample, no copy
 //! assert_eq!(floats.as_ptr(), samples.as_ptr().cast::<f32>());
@@ -179,17 +180,17 @@ mod spectrum;
 
 pub use cascade::{Cascade, CascadeConfig};
 pub use error::Error;
-pub use foam::{FoamConfig, FoamCoverage};
+pub use foam::{FoamConfig, FoamCoverage, FoamView};
 /// The `half` crate (with the `half` feature), whose `f16` the `pack_texels_f16` functions
 /// write: `ocean_fft::half::f16` is the version this crate was built with.
 #[cfg(feature = "half")]
 pub use half;
 pub use math::determinism::Determinism;
-pub use ocean::{OceanConfig, OceanSnapshot, OceanState, SeaFit};
+pub use ocean::{limits, Diagnostics, OceanConfig, OceanSnapshot, OceanState, SeaFit};
 pub use presets::SeaState;
-pub use query::{Interpolation, Location, QueryConfig, Surface, SurfaceSample};
+pub use query::{Interpolation, Location, QueryConfig, Surface, SurfaceSample, Water};
 pub use spectrum::dispersion::{Dispersion, GRAVITY};
-pub use spectrum::{DepthFactor, Spectrum, Spreading};
+pub use spectrum::{DepthFactor, SlopeVariance, Spectrum, SpectrumKind, SpectrumParams, Spreading};
 
 // The Rust blocks of the guide's chapters (docs/guide/) are doc-tests when every optional
 // feature is on (the serde block of spectra.md needs `serde`), as CI runs them:

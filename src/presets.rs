@@ -6,8 +6,9 @@ use crate::spectrum::{Spectrum, Spreading};
 
 /// A named sea state, with a Beaufort-like wind and the fetch and depth that go with it.
 ///
-/// [`SeaState::build`] gives the spectrum and an [`OceanConfig`] whose cascade lengths suit
-/// the sea's peak wavelength. The significant wave heights and peak periods of every preset
+/// [`SeaState::build`] gives the spectrum and an [`OceanConfig`] whose cascade lengths are
+/// fitted to the sea ([`OceanConfig::with_fitted_lengths`]: the largest tile 12 peak
+/// wavelengths, holding at least 97 % of its variance). The significant wave heights and peak periods of every preset
 /// are listed in the guide (`docs/guide/spectra.md`).
 ///
 /// ```
@@ -91,44 +92,25 @@ impl SeaState {
 
     fn try_build(self) -> Result<(Spectrum, OceanConfig), Error> {
         let u = self.wind_speed();
-        let (spectrum, lengths, choppiness) = match self {
-            SeaState::Calm => (Spectrum::jonswap(u, 20_000.0)?, vec![60.0, 13.8, 3.1], 0.8),
-            SeaState::ModerateBreeze => (
-                Spectrum::jonswap(u, 100_000.0)?,
-                vec![500.0, 115.0, 25.5],
-                1.0,
-            ),
-            SeaState::FreshBreeze => (
-                Spectrum::jonswap(u, 300_000.0)?,
-                vec![1000.0, 230.0, 51.0],
-                1.0,
-            ),
-            SeaState::Storm => (
-                Spectrum::jonswap(u, 500_000.0)?,
-                vec![4000.0, 920.0, 204.0],
-                1.2,
-            ),
+        let (spectrum, choppiness) = match self {
+            SeaState::Calm => (Spectrum::jonswap(u, 20_000.0)?, 0.8),
+            SeaState::ModerateBreeze => (Spectrum::jonswap(u, 100_000.0)?, 1.0),
+            SeaState::FreshBreeze => (Spectrum::jonswap(u, 300_000.0)?, 1.0),
+            SeaState::Storm => (Spectrum::jonswap(u, 500_000.0)?, 1.2),
             SeaState::Swell => {
                 let peak_omega = std::f32::consts::TAU / 12.0;
-                (
-                    Spectrum::jonswap_from_parameters(0.0025, peak_omega, 5.0)?
-                        .with_spreading(Spreading::Hasselmann)?
-                        .with_swell(1.0)?,
-                    vec![2000.0, 460.0, 102.0],
-                    0.8,
-                )
+                let spectrum = Spectrum::jonswap_from_parameters(0.0025, peak_omega, 5.0)?
+                    .with_spreading(Spreading::Hasselmann)?
+                    .with_swell(1.0)?;
+                (spectrum, 0.8)
             }
-            SeaState::ShallowBay => (
-                Spectrum::tma(u, 15_000.0, 4.0)?,
-                vec![200.0, 46.0, 10.2],
-                1.0,
-            ),
+            SeaState::ShallowBay => (Spectrum::tma(u, 15_000.0, 4.0)?, 1.0),
         };
         let mut config = OceanConfig {
-            lengths,
             choppiness,
             ..OceanConfig::default()
-        };
+        }
+        .with_fitted_lengths(&spectrum)?;
         if self == SeaState::Swell {
             config.foam.wind_speed = Some(4.0);
         }

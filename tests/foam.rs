@@ -41,7 +41,7 @@ fn mean_coverage(ocean: &mut OceanState, seconds: f64, dt: f64) -> (f64, f64) {
     let (mut active, mut residual) = (0.0, 0.0);
     for _ in 0..steps {
         ocean.step(dt).unwrap();
-        let coverage = ocean.foam_coverage();
+        let coverage = ocean.foam_view().coverage();
         active += f64::from(coverage.active);
         residual += f64::from(coverage.residual);
     }
@@ -86,7 +86,7 @@ fn whitecap_coverage_follows_monahan_and_omuircheartaigh() {
             let (active, residual) = mean_coverage(&mut ocean, seconds, dt);
             let expected = monahan(f64::from(wind));
             let ratio = active / expected;
-            let calibration = ocean.foam_calibration();
+            let calibration = ocean.foam_view().calibration();
             println!(
                 "{name:8} {wind:6.1} {expected:10.3e} {active:10.3e} {ratio:7.3} {residual:9.3e} \
                  {:.3}  {:.3}",
@@ -162,7 +162,13 @@ fn assert_intensity_follows_the_model(ocean: &OceanState, breaking: usize) {
     let tau = f64::from(ocean.config().foam.active_decay);
     let (mut high, mut largest) = (0, 0.0f64);
     let expected = foam_model::breaking_intensities(ocean);
-    for (k, (&got, e)) in ocean.breaking().iter().zip(&expected).enumerate() {
+    for (k, (&got, e)) in ocean
+        .foam_view()
+        .breaking()
+        .iter()
+        .zip(&expected)
+        .enumerate()
+    {
         let (got, expected) = (f64::from(got), e.value);
         // The crate's tail approximation is good to 0.3 %; f32 arithmetic adds less.
         assert!(
@@ -203,8 +209,8 @@ fn foam_is_frame_rate_independent() {
         once.step(2.0 * dt).unwrap();
         twice.step(dt).unwrap();
         twice.step(dt).unwrap();
-        mean_once += f64::from(once.foam_coverage().total);
-        mean_twice += f64::from(twice.foam_coverage().total);
+        mean_once += f64::from(once.foam_view().coverage().total);
+        mean_twice += f64::from(twice.foam_view().coverage().total);
     }
     assert_eq!(once.time(), twice.time());
     let (mut difference, mut norm, mut worst) = (0.0, 0.0, 0.0f32);
@@ -243,7 +249,7 @@ fn residual_foam_forms_streaks_along_the_wind() {
     ocean.set_time(500.0).unwrap();
     ocean.pre_roll(45.0, 0.1).unwrap();
     let n = 64;
-    let residual = ocean.residual_foam();
+    let residual = ocean.foam_view().residual();
     let mean = residual.iter().map(|&r| f64::from(r)).sum::<f64>() / (n * n) as f64;
     let value = |x: f64, z: f64| -> f64 {
         // Bilinear, periodic, in grid units.
@@ -305,18 +311,23 @@ fn pre_roll_is_independent_of_history() {
         assert_eq!(ocean.time(), 300.0);
     }
     let bits = |o: &OceanState| {
-        [o.foam(), o.active_foam(), o.residual_foam(), o.breaking()]
-            .iter()
-            .flat_map(|b| b.iter().map(|v| v.to_bits()))
-            .collect::<Vec<_>>()
+        [
+            o.foam(),
+            o.foam_view().active(),
+            o.foam_view().residual(),
+            o.foam_view().breaking(),
+        ]
+        .iter()
+        .flat_map(|b| b.iter().map(|v| v.to_bits()))
+        .collect::<Vec<_>>()
     };
     assert_eq!(bits(&a), bits(&b));
-    assert_eq!(a.foam_coverage(), b.foam_coverage());
-    assert!(a.foam_coverage().active > 0.0);
+    assert_eq!(a.foam_view().coverage(), b.foam_view().coverage());
+    assert!(a.foam_view().coverage().active > 0.0);
     // A pre-roll of zero seconds clears the foam and changes nothing else.
     a.pre_roll(0.0, 0.1).unwrap();
-    assert_eq!(a.foam_coverage().total, 0.0);
-    assert_eq!(a.breaking(), b.breaking());
+    assert_eq!(a.foam_view().coverage().total, 0.0);
+    assert_eq!(a.foam_view().breaking(), b.foam_view().breaking());
 }
 
 /// A pre-roll is the step sequence it stands for: clear the foam at `time − seconds` and step
@@ -337,10 +348,15 @@ fn pre_roll_equals_clearing_and_stepping() {
     stepped.step(0.25).unwrap();
     assert_eq!(stepped.time(), rolled.time());
     let bits = |o: &OceanState| {
-        let mut all: Vec<u32> = [o.foam(), o.active_foam(), o.residual_foam(), o.breaking()]
-            .iter()
-            .flat_map(|b| b.iter().map(|v| v.to_bits()))
-            .collect();
+        let mut all: Vec<u32> = [
+            o.foam(),
+            o.foam_view().active(),
+            o.foam_view().residual(),
+            o.foam_view().breaking(),
+        ]
+        .iter()
+        .flat_map(|b| b.iter().map(|v| v.to_bits()))
+        .collect();
         for c in o.cascades() {
             all.extend(c.height().iter().map(|v| v.to_bits()));
             all.extend(c.jacobian().iter().map(|v| v.to_bits()));
@@ -349,7 +365,7 @@ fn pre_roll_equals_clearing_and_stepping() {
         all
     };
     assert_eq!(bits(&rolled), bits(&stepped));
-    assert!(rolled.foam_coverage().total > 0.0);
+    assert!(rolled.foam_view().coverage().total > 0.0);
 }
 
 /// The queries read the buffers: `sample` at a grid point of cascade 0 gives its foam, a range
@@ -374,23 +390,26 @@ fn queries_and_coverage_read_the_foam_buffers() {
     let h = length / n as f64;
     let (foam, active, residual, breaking) = (
         ocean.foam(),
-        ocean.active_foam(),
-        ocean.residual_foam(),
-        ocean.breaking(),
+        ocean.foam_view().active(),
+        ocean.foam_view().residual(),
+        ocean.foam_view().breaking(),
     );
     assert!(foam.iter().any(|&f| f > 0.1) && breaking.iter().any(|&s| s > 0.0));
     for (j, i) in [(0, 0), (3, 17), (31, 31), (12, 5)] {
         let k = j * n + i;
         // Whole periods away too: the foam tiles with cascade 0's period.
         let (x, z) = (i as f64 * h - 2.0 * length, j as f64 * h + length);
-        let s = ocean.sample(x, z).unwrap();
+        let s = ocean.water().at_rest(x, z).unwrap();
         assert!((s.foam - foam[k]).abs() < 1e-6, "{} vs {}", s.foam, foam[k]);
-        assert!((ocean.breaking_at(x, z).unwrap() - breaking[k]).abs() < 1e-3);
-        assert_eq!(ocean.sample_cascades(x, z, 1..3).unwrap().foam, 0.0);
+        assert!((ocean.foam_view().breaking_at(x, z).unwrap() - breaking[k]).abs() < 1e-3);
+        assert_eq!(
+            ocean.water().at_rest_cascades(x, z, 1..3).unwrap().foam,
+            0.0
+        );
         assert!((foam[k] - (active[k] + residual[k] * (1.0 - active[k]))).abs() < 1e-6);
     }
     let mean = |values: &mut dyn Iterator<Item = f64>| values.sum::<f64>() / (n * n) as f64;
-    let coverage = ocean.foam_coverage();
+    let coverage = ocean.foam_view().coverage();
     let expected = [
         mean(&mut active.iter().map(|&a| f64::from(a))),
         mean(
@@ -414,7 +433,8 @@ fn queries_and_coverage_read_the_foam_buffers() {
     for c in 0..3 {
         let mut texels = vec![[f32::NAN; 4]; n * n];
         ocean
-            .pack_texels(c, TexelLayout::DisplacementFoam, &mut texels)
+            .textures()
+            .pack(c, TexelLayout::DisplacementFoam, &mut texels)
             .unwrap();
         for (k, texel) in texels.iter().enumerate() {
             let expected = if c == 0 { foam[k] } else { 0.0 };
@@ -440,13 +460,13 @@ fn foam_is_bit_identical_across_thread_counts() {
             for _ in 0..60 {
                 ocean.step(1.0 / 30.0).unwrap();
             }
-            let c = ocean.foam_coverage();
+            let c = ocean.foam_view().coverage();
             let mut bits: Vec<u32> = [c.active, c.residual, c.total].map(f32::to_bits).to_vec();
             for buffer in [
                 ocean.foam(),
-                ocean.active_foam(),
-                ocean.residual_foam(),
-                ocean.breaking(),
+                ocean.foam_view().active(),
+                ocean.foam_view().residual(),
+                ocean.foam_view().breaking(),
             ] {
                 bits.extend(buffer.iter().map(|v| v.to_bits()));
             }

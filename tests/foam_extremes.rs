@@ -261,25 +261,26 @@ fn foam_fault(ocean: &OceanState) -> Option<String> {
     let unit = |v: &f32| (0.0..=1.0).contains(v);
     for (name, buffer) in [
         ("foam", ocean.foam()),
-        ("active_foam", ocean.active_foam()),
-        ("residual_foam", ocean.residual_foam()),
+        ("active_foam", ocean.foam_view().active()),
+        ("residual_foam", ocean.foam_view().residual()),
     ] {
         if let Some(v) = buffer.iter().find(|v| !unit(v)) {
             return Some(format!("{name} holds {v}"));
         }
     }
     if let Some(s) = ocean
+        .foam_view()
         .breaking()
         .iter()
         .find(|s| !(s.is_finite() && **s >= 0.0))
     {
         return Some(format!("breaking holds {s}"));
     }
-    let c = ocean.foam_coverage();
+    let c = ocean.foam_view().coverage();
     if ![c.active, c.residual, c.total].iter().all(unit) {
         return Some(format!("coverage {c:?}"));
     }
-    let k = ocean.foam_calibration();
+    let k = ocean.foam_view().calibration();
     let finite = [
         k.wind_speed,
         k.target,
@@ -303,7 +304,13 @@ fn foam_fault(ocean: &OceanState) -> Option<String> {
 fn model_fault(ocean: &OceanState) -> Option<String> {
     let tau = f64::from(ocean.config().foam.active_decay);
     let expected = foam_model::breaking_intensities(ocean);
-    for (k, (&got, e)) in ocean.breaking().iter().zip(&expected).enumerate() {
+    for (k, (&got, e)) in ocean
+        .foam_view()
+        .breaking()
+        .iter()
+        .zip(&expected)
+        .enumerate()
+    {
         let got = f64::from(got);
         let tolerance = 5e-3 * e.value + e.conditioning + 3e-7 / tau + 1e-9;
         // Written so that a NaN fails.
@@ -332,7 +339,7 @@ proptest! {
         setting in setting(),
         config in ocean_config(),
         first_dt in prop::sample::select(vec![1.0 / 60.0, 0.5]),
-        long_dt in prop::sample::select(vec![2.0, OceanState::MAX_STEP]),
+        long_dt in prop::sample::select(vec![2.0, ocean_fft::limits::MAX_STEP]),
         jump in prop::sample::select(vec![-17.25, 123.4, Cascade::MAX_TIME - 10.0]),
     ) {
         let accepted = |value: f32| {
@@ -363,7 +370,7 @@ proptest! {
         ocean.step(first_dt).unwrap();
         prop_assert_eq!(fault(&ocean, "after the first step"), None);
         let bound = first_dt / f64::from(config.foam.active_decay);
-        let residual = f64::from(ocean.foam_coverage().residual);
+        let residual = f64::from(ocean.foam_view().coverage().residual);
         // 1e-6: the transforms' rounding (the FLUSH level).
         prop_assert!(
             residual <= bound + 1e-6,
@@ -412,5 +419,9 @@ fn jonswap_alpha_at_its_limit_keeps_the_foam_finite() {
     assert_eq!(foam_fault(&o), None);
     o.pre_roll(5.0, 0.1).unwrap();
     assert_eq!(foam_fault(&o), None);
-    assert!(o.foam_coverage().active > 0.1, "{:?}", o.foam_coverage());
+    assert!(
+        o.foam_view().coverage().active > 0.1,
+        "{:?}",
+        o.foam_view().coverage()
+    );
 }

@@ -89,7 +89,7 @@ fn every_layout_copies_its_source_buffers_bit_for_bit() {
         foamy_texels += foam.iter().filter(|&&f| f > 0.01).count();
         for &layout in TexelLayout::ALL {
             let mut texels = vec![[f32::NAN; 4]; n * n];
-            ocean.pack_texels(c, layout, &mut texels).unwrap();
+            ocean.textures().pack(c, layout, &mut texels).unwrap();
             let mut bare = vec![[f32::NAN; 4]; n * n];
             let bare_result = cascade.pack_texels(layout, &mut bare);
             assert_eq!(bare_result.is_ok(), !layout.has_foam(), "{layout:?}");
@@ -162,7 +162,7 @@ mod f16_packing {
             let foam = if c == 0 { ocean.foam() } else { &zeros };
             for &layout in TexelLayout::ALL {
                 let mut texels = vec![[f16::NAN; 4]; n * n];
-                ocean.pack_texels_f16(c, layout, &mut texels).unwrap();
+                ocean.textures().pack_f16(c, layout, &mut texels).unwrap();
                 let what = format!("cascade {c}, {layout:?}");
                 check_f16(&texels, |k| expected_texel(cascade, foam, layout, k), &what);
                 if !layout.has_foam() {
@@ -464,7 +464,7 @@ fn bad_lengths_indices_and_layouts_are_errors_that_write_nothing() {
         let mut texels = vec![sentinel; len];
         for &layout in TexelLayout::ALL {
             assert_eq!(
-                ocean.pack_texels(0, layout, &mut texels),
+                ocean.textures().pack(0, layout, &mut texels),
                 Err(mismatch.clone())
             );
             if !layout.has_foam() {
@@ -501,7 +501,9 @@ fn bad_lengths_indices_and_layouts_are_errors_that_write_nothing() {
         for len in [n2, 0] {
             let mut texels = vec![sentinel; len];
             assert_eq!(
-                ocean.pack_texels(index, TexelLayout::Normal, &mut texels),
+                ocean
+                    .textures()
+                    .pack(index, TexelLayout::Normal, &mut texels),
                 Err(Error::IndexOutOfRange {
                     name: "cascade",
                     index,
@@ -540,7 +542,9 @@ fn bad_lengths_indices_and_layouts_are_errors_that_write_nothing() {
                 got: len,
             });
             assert_eq!(
-                ocean.pack_texels_f16(1, TexelLayout::DisplacementFoam, &mut texels),
+                ocean
+                    .textures()
+                    .pack_f16(1, TexelLayout::DisplacementFoam, &mut texels),
                 mismatch
             );
             assert_eq!(
@@ -551,7 +555,9 @@ fn bad_lengths_indices_and_layouts_are_errors_that_write_nothing() {
         }
         let mut texels = vec![sentinel; n2];
         assert!(matches!(
-            ocean.pack_texels_f16(cascades, TexelLayout::Normal, &mut texels),
+            ocean
+                .textures()
+                .pack_f16(cascades, TexelLayout::Normal, &mut texels),
             Err(Error::IndexOutOfRange {
                 name: "cascade",
                 ..
@@ -572,12 +578,12 @@ fn pack_fingerprint(ocean: &OceanState) -> Vec<Vec<u32>> {
         let n = cascade.size();
         for &layout in TexelLayout::ALL {
             let mut texels = vec![[0.0f32; 4]; n * n];
-            ocean.pack_texels(c, layout, &mut texels).unwrap();
+            ocean.textures().pack(c, layout, &mut texels).unwrap();
             out.push(texels.iter().flat_map(|t| t.map(f32::to_bits)).collect());
             #[cfg(feature = "half")]
             {
                 let mut texels = vec![[ocean_fft::half::f16::ZERO; 4]; n * n];
-                ocean.pack_texels_f16(c, layout, &mut texels).unwrap();
+                ocean.textures().pack_f16(c, layout, &mut texels).unwrap();
                 out.push(
                     texels
                         .iter()

@@ -29,12 +29,16 @@ fn pack_everything(ocean: &OceanState, buffers: &mut Buffers) -> u64 {
     let mut sum = 0u64;
     for (c, cascade) in ocean.cascades().iter().enumerate() {
         for &layout in TexelLayout::ALL {
-            ocean.pack_texels(c, layout, &mut buffers.texels).unwrap();
+            ocean
+                .textures()
+                .pack(c, layout, &mut buffers.texels)
+                .unwrap();
             sum += u64::from(buffers.texels[7][0].to_bits());
             #[cfg(feature = "half")]
             {
                 ocean
-                    .pack_texels_f16(c, layout, &mut buffers.texels_f16)
+                    .textures()
+                    .pack_f16(c, layout, &mut buffers.texels_f16)
                     .unwrap();
                 sum += u64::from(buffers.texels_f16[7][0].to_bits());
             }

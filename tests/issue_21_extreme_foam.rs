@@ -10,19 +10,20 @@ fn assert_foam_finite(ocean: &OceanState, when: &str) {
     let unit = |v: &f32| (0.0..=1.0).contains(v);
     for (name, buffer) in [
         ("foam", ocean.foam()),
-        ("active_foam", ocean.active_foam()),
-        ("residual_foam", ocean.residual_foam()),
+        ("active_foam", ocean.foam_view().active()),
+        ("residual_foam", ocean.foam_view().residual()),
     ] {
         let bad = buffer.iter().filter(|v| !unit(v)).count();
         assert_eq!(bad, 0, "{name}: {bad} values outside [0, 1] {when}");
     }
     let bad = ocean
+        .foam_view()
         .breaking()
         .iter()
         .filter(|s| !(s.is_finite() && **s >= 0.0))
         .count();
     assert_eq!(bad, 0, "breaking: {bad} values not finite and ≥ 0 {when}");
-    let c = ocean.foam_coverage();
+    let c = ocean.foam_view().coverage();
     assert!(
         [c.active, c.residual, c.total].iter().all(unit),
         "coverage {c:?} {when}"
@@ -47,7 +48,11 @@ fn issue_21_jonswap_alpha_1e19_foam_is_finite() {
     o.step(0.5).unwrap();
     assert_foam_finite(&o, "after a step of 0.5 s");
     // The sea folds everywhere: whitecaps must show, not an empty sea.
-    assert!(o.foam_coverage().active > 0.0, "{:?}", o.foam_coverage());
+    assert!(
+        o.foam_view().coverage().active > 0.0,
+        "{:?}",
+        o.foam_view().coverage()
+    );
 }
 
 /// The second report: α = 1e21 at N = 16 with the default lengths.
@@ -106,8 +111,12 @@ fn issue_21_peak_far_beyond_the_tiles_keeps_residual_foam_bounded() {
     o.set_spectrum_unfitted(s, 0.0).unwrap();
     o.step(0.5).unwrap();
     assert_foam_finite(&o, "after a step of 0.5 s");
-    let residual = f64::from(o.foam_coverage().residual);
-    assert!(residual <= 0.5 / tau, "{:?}", o.foam_coverage());
+    let residual = f64::from(o.foam_view().coverage().residual);
+    assert!(residual <= 0.5 / tau, "{:?}", o.foam_view().coverage());
     // And whitecaps still form (the calibration aims at half the surface for this wind).
-    assert!(o.foam_coverage().active > 0.01, "{:?}", o.foam_coverage());
+    assert!(
+        o.foam_view().coverage().active > 0.01,
+        "{:?}",
+        o.foam_view().coverage()
+    );
 }

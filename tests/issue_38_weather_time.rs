@@ -34,7 +34,7 @@ fn fingerprint(ocean: &OceanState) -> Vec<(String, Vec<u64>)> {
             ],
         ));
     }
-    let calibration = ocean.foam_calibration();
+    let calibration = ocean.foam_view().calibration();
     all.push((
         "foam calibration".into(),
         bits(&[
@@ -51,7 +51,10 @@ fn fingerprint(ocean: &OceanState) -> Vec<(String, Vec<u64>)> {
         "time and weight".into(),
         vec![
             ocean.time().to_bits(),
-            ocean.transition_progress().map_or(u64::MAX, f64::to_bits),
+            ocean
+                .diagnostics()
+                .transition_progress()
+                .map_or(u64::MAX, f64::to_bits),
         ],
     ));
     all
@@ -145,7 +148,7 @@ fn the_sea_is_a_function_of_time_whatever_the_frame_rate() {
     }
     // After the change: the new sea itself.
     for (k, &t) in CHECKS.iter().enumerate() {
-        if t < CALL + OceanState::TRANSITION_LAG + DURATION {
+        if t < CALL + ocean_fft::limits::TRANSITION_LAG + DURATION {
             continue;
         }
         let mut fresh = OceanState::new(wind.clone(), OceanConfig::default()).unwrap();
@@ -210,7 +213,11 @@ fn set_time_into_a_change_shows_the_sea_of_that_time() {
         }
     }
     assert_eq!(ocean.time(), 4.0);
-    assert_eq!(ocean.transition_progress(), None, "over at 4 s");
+    assert_eq!(
+        ocean.diagnostics().transition_progress(),
+        None,
+        "over at 4 s"
+    );
 }
 
 /// A slider dragged for 300 frames at 60 fps (a new spectrum over 0.5 s every frame), then
@@ -232,7 +239,11 @@ fn a_dragged_slider_ends_on_the_last_spectrum() {
     let last = last.unwrap();
     // The last call was at 299/60 s, before the last step.
     ocean.step_to(299.0 / 60.0 + 1.0).unwrap();
-    assert_eq!(ocean.transition_progress(), None, "over a second after");
+    assert_eq!(
+        ocean.diagnostics().transition_progress(),
+        None,
+        "over a second after"
+    );
     let mut fresh = OceanState::new(last, config).unwrap();
     fresh.set_time(ocean.time()).unwrap();
     assert_same(

@@ -7,7 +7,7 @@
 //! - the residual foam's correlation length (the first lag at which its autocorrelation falls
 //!   below 1/e; the windows cap it at 64 m) at most 3 m across the wind and at least three
 //!   times that along it;
-//! - the mean of the samples within 30 % of `foam_coverage().total`;
+//! - the mean of the samples within 30 % of `foam_view().coverage().total`;
 //! - at most half of the foamy samples (total > 0.05) fractions in (0.05, 0.95).
 //!
 //! 0.3's foam (the coarse fraction interpolated bilinearly) gives 0.2 % and 0.0 % of the
@@ -107,7 +107,7 @@ fn measure(sea: SeaState) -> Measured {
     let spectrum = spectrum.with_wind_direction(0.0).unwrap();
     let mut ocean = OceanState::new(spectrum, config).unwrap();
     ocean.pre_roll(60.0, 1.0 / 30.0).unwrap();
-    let coverage = f64::from(ocean.foam_coverage().total);
+    let coverage = f64::from(ocean.foam_view().coverage().total);
     let (mut fine, mut all) = (0.0, 0.0);
     let (mut sum, mut samples, mut foamy, mut fractional) = (0.0, 0.0, 0.0, 0.0);
     let mut along = (vec![0.0; MAX_LAG + 1], vec![0.0; MAX_LAG + 1]);
@@ -121,7 +121,7 @@ fn measure(sea: SeaState) -> Measured {
             for i in 0..SIDE {
                 let x = x0 + i as f64 * SPACING;
                 let z = z0 + j as f64 * SPACING;
-                let foam = ocean.foam_at(x, z).unwrap();
+                let foam = ocean.foam_view().foam_at(x, z).unwrap();
                 let t = f64::from(foam.total);
                 total[j * SIDE + i] = t;
                 residual[j * SIDE + i] = f64::from(foam.residual);
@@ -194,6 +194,7 @@ fn foam_at_has_the_same_bits_on_any_thread_count() {
                 (0..4000)
                     .map(|k| {
                         let foam = ocean
+                            .foam_view()
                             .foam_at(f64::from(k) * 0.37 - 90.0, f64::from(k % 37) * 1.9)
                             .unwrap();
                         [foam.active, foam.residual, foam.total].map(f32::to_bits)
@@ -224,7 +225,7 @@ fn a_restored_ocean_shows_the_same_foam() {
     let foam = |ocean: &OceanState| {
         (0..2000)
             .map(|k| {
-                let f = ocean.foam_at(f64::from(k) * 0.61, 3.0).unwrap();
+                let f = ocean.foam_view().foam_at(f64::from(k) * 0.61, 3.0).unwrap();
                 [f.active, f.residual, f.total].map(f32::to_bits)
             })
             .collect::<Vec<_>>()

@@ -121,17 +121,31 @@ fn issue_8_foam_settings_that_made_nan_are_refused() {
         config.choppiness = 3.0;
         config.foam = foam;
         let mut ocean = OceanState::new(spectrum, config).unwrap();
-        for dt in [0.0, 1.0 / 60.0, 0.0, OceanState::MAX_STEP, 1.0 / 60.0] {
+        for dt in [
+            0.0,
+            1.0 / 60.0,
+            0.0,
+            ocean_fft::limits::MAX_STEP,
+            1.0 / 60.0,
+        ] {
             ocean.step(dt).unwrap();
-            for buffer in [ocean.foam(), ocean.active_foam(), ocean.residual_foam()] {
+            for buffer in [
+                ocean.foam(),
+                ocean.foam_view().active(),
+                ocean.foam_view().residual(),
+            ] {
                 assert!(buffer.iter().all(|f| (0.0..=1.0).contains(f)), "dt {dt}");
             }
-            assert!(ocean.breaking().iter().all(|s| s.is_finite() && *s >= 0.0));
-            let coverage = ocean.foam_coverage();
+            assert!(ocean
+                .foam_view()
+                .breaking()
+                .iter()
+                .all(|s| s.is_finite() && *s >= 0.0));
+            let coverage = ocean.foam_view().coverage();
             for c in [coverage.active, coverage.residual, coverage.total] {
                 assert!((0.0..=1.0).contains(&c), "{coverage:?}");
             }
-            let s = ocean.surface_at(10.0, -3.0).unwrap();
+            let s = ocean.water().surface_at(10.0, -3.0).unwrap();
             assert!(s.foam.is_finite() && s.height.is_finite(), "{s:?}");
         }
     }
@@ -349,12 +363,12 @@ fn issue_8_errors_report_the_limits_the_checks_use() {
     )
     .unwrap();
     assert_eq!(
-        ocean.step(OceanState::MAX_STEP * 2.0),
+        ocean.step(ocean_fft::limits::MAX_STEP * 2.0),
         Err(Error::OutOfRange {
             name: "dt",
-            value: OceanState::MAX_STEP * 2.0,
+            value: ocean_fft::limits::MAX_STEP * 2.0,
             min: Bound::Included(0.0),
-            max: Bound::Included(OceanState::MAX_STEP),
+            max: Bound::Included(ocean_fft::limits::MAX_STEP),
         })
     );
     ocean.set_time(Cascade::MAX_TIME).unwrap();
@@ -367,7 +381,7 @@ fn issue_8_errors_report_the_limits_the_checks_use() {
     ));
     assert_eq!(ocean.time(), Cascade::MAX_TIME);
     assert_eq!(
-        ocean.pack_texels(3, TexelLayout::Normal, &mut []),
+        ocean.textures().pack(3, TexelLayout::Normal, &mut []),
         Err(Error::IndexOutOfRange {
             name: "cascade",
             index: 3,

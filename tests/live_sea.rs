@@ -67,8 +67,8 @@ fn assert_same_sea(ocean: &OceanState, fresh: &OceanState, what: &str) {
         );
     }
     assert_eq!(
-        ocean.foam_calibration(),
-        fresh.foam_calibration(),
+        ocean.foam_view().calibration(),
+        fresh.foam_view().calibration(),
         "{what}: calibration"
     );
     assert_eq!(ocean.spectrum(), fresh.spectrum(), "{what}: spectrum");
@@ -77,7 +77,7 @@ fn assert_same_sea(ocean: &OceanState, fresh: &OceanState, what: &str) {
 /// Steps `ocean` by `dt` until its change of weather is over (at most `limit` steps).
 fn finish_change(ocean: &mut OceanState, dt: f64, limit: usize) {
     for _ in 0..limit {
-        if ocean.transition_progress().is_none() {
+        if ocean.diagnostics().transition_progress().is_none() {
             return;
         }
         ocean.step(dt).unwrap();
@@ -134,11 +134,11 @@ fn the_sea_after_a_change_is_the_new_sea_bit_for_bit() {
                 }
                 ocean.set_spectrum(to.clone(), duration).unwrap();
                 assert_eq!(ocean.spectrum(), to);
-                assert!(ocean.transition_progress().is_some());
+                assert!(ocean.diagnostics().transition_progress().is_some());
                 if duration == 0.0 {
                     // At once: the next step shows the new sea.
                     ocean.step(0.1).unwrap();
-                    assert_eq!(ocean.transition_progress(), None);
+                    assert_eq!(ocean.diagnostics().transition_progress(), None);
                 }
                 finish_change(&mut ocean, 1.0 / 30.0, 400);
                 let mut fresh = OceanState::new(to.clone(), config.clone()).unwrap();
@@ -161,7 +161,7 @@ fn the_sea_after_a_change_is_the_new_sea_bit_for_bit() {
     for _ in 0..60 {
         ocean.step(1.0 / 30.0).unwrap();
     }
-    let w = ocean.transition_progress().unwrap();
+    let w = ocean.diagnostics().transition_progress().unwrap();
     assert!(w > 0.05 && w < 0.95, "half way: {w}");
     ocean.set_spectrum(swell.clone(), 1.0).unwrap();
     finish_change(&mut ocean, 1.0 / 30.0, 400);
@@ -233,14 +233,17 @@ fn a_change_moves_the_sea_no_faster_than_the_sea_moves_itself() {
             OceanState::new(from.clone(), config.clone()).unwrap(),
             OceanState::new(to.clone(), config.clone()).unwrap(),
         ];
-        let (v_from, v_to) = (alone[0].expected_variance(), alone[1].expected_variance());
+        let (v_from, v_to) = (
+            alone[0].diagnostics().expected_variance(),
+            alone[1].diagnostics().expected_variance(),
+        );
         let slowest = from.peak_omega().min(to.peak_omega()) as f64;
         let allowed = (1.0 + 3.0 / (slowest * duration).powi(2)).sqrt();
         ocean.set_spectrum(to.clone(), duration).unwrap();
-        let mut previous_variance = ocean.expected_variance();
+        let mut previous_variance = ocean.diagnostics().expected_variance();
         let mut worst: f64 = 0.0;
         let mut frames = 0;
-        while ocean.transition_progress().is_some() {
+        while ocean.diagnostics().transition_progress().is_some() {
             let before = heights(&ocean);
             let before_alone = [heights(&alone[0]), heights(&alone[1])];
             ocean.step(dt).unwrap();
@@ -251,7 +254,7 @@ fn a_change_moves_the_sea_no_faster_than_the_sea_moves_itself() {
                 fastest = fastest.max(rms_change(before, sea));
             }
             worst = worst.max(own / fastest);
-            let variance = ocean.expected_variance();
+            let variance = ocean.diagnostics().expected_variance();
             // Monotonic, within the rounding of a sum over the grid (1e-12 relative).
             let slack = 1e-12 * variance.max(previous_variance);
             if v_to > v_from {
@@ -283,7 +286,7 @@ fn mean_active(ocean: &mut OceanState, seconds: f64, dt: f64) -> f64 {
     let mut sum = 0.0;
     for _ in 0..steps {
         ocean.step(dt).unwrap();
-        sum += f64::from(ocean.foam_coverage().active);
+        sum += f64::from(ocean.foam_view().coverage().active);
     }
     sum / steps as f64
 }
@@ -306,17 +309,17 @@ fn the_whitecaps_follow_the_new_wind() {
             OceanState::new(Spectrum::pierson_moskowitz(from).unwrap(), config.clone()).unwrap();
         ocean.set_time(500.0).unwrap();
         ocean.pre_roll(20.0, dt).unwrap();
-        let before = ocean.foam_coverage().total;
+        let before = ocean.foam_view().coverage().total;
         assert!(before > 0.0);
         ocean
             .set_spectrum(Spectrum::pierson_moskowitz(to).unwrap(), 10.0)
             .unwrap();
         ocean.step(dt).unwrap();
         assert!(
-            ocean.foam_coverage().total > 0.5 * before,
+            ocean.foam_view().coverage().total > 0.5 * before,
             "the foam was kept"
         );
-        while ocean.transition_progress().is_some() {
+        while ocean.diagnostics().transition_progress().is_some() {
             ocean.step(dt).unwrap();
         }
         let _ = mean_active(&mut ocean, 20.0, dt);
@@ -380,7 +383,7 @@ fn bad_changes_are_errors_that_change_nothing() {
         ..FoamConfig::default()
     };
     assert!(ocean.set_foam_config(bad_foam).is_err());
-    assert_eq!(ocean.transition_progress(), None);
+    assert_eq!(ocean.diagnostics().transition_progress(), None);
     assert_same_sea(&ocean, &reference, "after refused changes");
     assert_eq!(ocean.foam(), reference.foam());
     assert_eq!(ocean.config(), reference.config());
@@ -401,7 +404,7 @@ fn foam_settings_are_live() {
     let mut ocean = OceanState::new(spectrum.clone(), config.clone()).unwrap();
     ocean.pre_roll(10.0, 0.1).unwrap();
     let foam = ocean.foam().to_vec();
-    let target = ocean.foam_calibration().target;
+    let target = ocean.foam_view().calibration().target;
     let doubled = FoamConfig {
         coverage: 2.0,
         streak_length: 2.0,
@@ -409,7 +412,7 @@ fn foam_settings_are_live() {
     };
     ocean.set_foam_config(doubled).unwrap();
     assert_eq!(ocean.foam(), &foam[..], "the foam is kept");
-    assert!((ocean.foam_calibration().target / target - 2.0).abs() < 1e-5);
+    assert!((ocean.foam_view().calibration().target / target - 2.0).abs() < 1e-5);
     assert_eq!(ocean.config().foam, doubled);
     let built = OceanState::new(
         spectrum,
@@ -419,5 +422,8 @@ fn foam_settings_are_live() {
         },
     )
     .unwrap();
-    assert_eq!(ocean.foam_calibration(), built.foam_calibration());
+    assert_eq!(
+        ocean.foam_view().calibration(),
+        built.foam_view().calibration()
+    );
 }

@@ -56,7 +56,7 @@ fn a_four_second_loop_of_the_default_sea_freezes_nothing() {
         }
     }
     assert_eq!(frozen, 0.0, "frozen share {}", frozen / energy);
-    let error = ocean.loop_error().unwrap();
+    let error = ocean.diagnostics().loop_error().unwrap();
     // Δk in f32 and ω in f32 here against the crate's f64: 1e-6 relative agreement.
     assert!(
         (error.max_relative / worst - 1.0).abs() < 1e-5,
@@ -82,7 +82,13 @@ fn a_four_second_loop_of_the_default_sea_freezes_nothing() {
 fn longer_loops_cost_less_and_no_loop_costs_nothing() {
     let errors: Vec<f64> = [4.0, 16.0, 64.0, 256.0]
         .iter()
-        .map(|&t| looping_ocean(t, 64).loop_error().unwrap().mean_relative)
+        .map(|&t| {
+            looping_ocean(t, 64)
+                .diagnostics()
+                .loop_error()
+                .unwrap()
+                .mean_relative
+        })
         .collect();
     for pair in errors.windows(2) {
         assert!(pair[1] < pair[0], "{errors:?}");
@@ -125,7 +131,7 @@ fn longer_loops_cost_less_and_no_loop_costs_nothing() {
         },
     )
     .unwrap();
-    assert!(plain.loop_error().is_none());
+    assert!(plain.diagnostics().loop_error().is_none());
 }
 
 #[test]

@@ -54,7 +54,7 @@ fn observed_mean_level(ocean: &mut OceanState, frames: usize) -> (f64, f64) {
     for _ in 0..frames {
         // 13.7 s apart: longer than the peak periods, so the frames' wave phases differ.
         ocean.step(13.7).unwrap();
-        ocean.heights_at(&points, &mut heights).unwrap();
+        ocean.water().heights_at(&points, &mut heights).unwrap();
         means.push(heights.iter().map(|&h| f64::from(h)).sum::<f64>() / heights.len() as f64);
     }
     let f = frames as f64;
@@ -93,7 +93,7 @@ fn the_observed_mean_level_is_still_water_for_any_choppiness() {
                 ..config.clone()
             };
             let mut ocean = OceanState::new(spectrum.clone(), config).unwrap();
-            let offset = f64::from(ocean.mean_level_offset());
+            let offset = f64::from(ocean.diagnostics().mean_level_offset());
             let (expected, sd) = expected_level_per_choppiness(&ocean);
             let (mean, se) = observed_mean_level(&mut ocean, 24);
             println!(

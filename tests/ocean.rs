@@ -79,7 +79,7 @@ fn cascades_split_the_band_without_gaps_or_overlap_and_keep_all_the_energy() {
         // (Simpson in ln k, independent of any grid). The difference is the grids' Riemann
         // error: measured 0.05 % at N = 256 and 0.9 % at N = 64; the issue allows 2 %.
         let whole = f64::from(spectrum.band_variance(bands[0].0, bands[2].1));
-        let sum = ocean.expected_variance();
+        let sum = ocean.diagnostics().expected_variance();
         let ratio = sum / whole;
         println!("N = {size}: Σ S Δk² / ∫ S = {ratio}");
         assert!((ratio - 1.0).abs() < 0.02, "N = {size}: ratio {ratio}");
@@ -204,7 +204,7 @@ fn sample_is_the_sum_of_cubic_spline_cascades_through_the_grid_values() {
         (1.6, 3.2),
     ];
     for &(x, z) in &points {
-        let s = state.sample(x, z).unwrap();
+        let s = state.water().at_rest(x, z).unwrap();
         let reference = |field: usize| -> f64 {
             state
                 .cascades()
@@ -225,7 +225,7 @@ fn sample_is_the_sum_of_cubic_spline_cascades_through_the_grid_values() {
     }
     // Through the grid values: at a grid point of every cascade (the origin) the sample is
     // the sum of the buffers.
-    let s = state.sample(0.0, 0.0).unwrap();
+    let s = state.water().at_rest(0.0, 0.0).unwrap();
     let at_nodes: f32 = state.cascades().iter().map(|c| c.height()[0]).sum();
     assert!((s.height - at_nodes).abs() < 1e-5);
 }
@@ -244,7 +244,7 @@ fn sample_is_the_sum_of_bilinear_cascades_and_wraps_at_any_coordinate() {
         (5.1e5, -7.3e5),
     ];
     for &(x, z) in &points {
-        let s = state.sample(x, z).unwrap();
+        let s = state.water().at_rest(x, z).unwrap();
         let reference: f64 = state
             .cascades()
             .iter()
@@ -259,9 +259,9 @@ fn sample_is_the_sum_of_bilinear_cascades_and_wraps_at_any_coordinate() {
     // than half the smallest cascade's 0.2 m grid spacing — and on the negative side too.
     let period = 1_173_000.0;
     for &(x, z) in &points[..4] {
-        let base = state.sample(x, z).unwrap();
+        let base = state.water().at_rest(x, z).unwrap();
         for (ox, oz) in [(period, 0.0), (0.0, -period), (-period, period)] {
-            let far = state.sample(x + ox, z + oz).unwrap();
+            let far = state.water().at_rest(x + ox, z + oz).unwrap();
             assert!(
                 (far.height - base.height).abs() < 1e-5,
                 "({x}+{ox}, {z}+{oz})"
@@ -272,9 +272,10 @@ fn sample_is_the_sum_of_bilinear_cascades_and_wraps_at_any_coordinate() {
     }
     // Small waves survive far away: a 2 cm move at x ≈ 1e6 m changes the height as it
     // does near the origin (in f32 coordinates both samples would land in the same spot).
-    let near = state.sample(3.0, 4.0).unwrap().height - state.sample(3.02, 4.0).unwrap().height;
-    let far = state.sample(3.0 + period, 4.0).unwrap().height
-        - state.sample(3.02 + period, 4.0).unwrap().height;
+    let near = state.water().at_rest(3.0, 4.0).unwrap().height
+        - state.water().at_rest(3.02, 4.0).unwrap().height;
+    let far = state.water().at_rest(3.0 + period, 4.0).unwrap().height
+        - state.water().at_rest(3.02 + period, 4.0).unwrap().height;
     assert!(near != 0.0);
     assert!((near - far).abs() < 1e-5, "near {near} far {far}");
 }
@@ -291,8 +292,8 @@ fn height_at_inverts_the_displacement_like_a_brute_force_search() {
     let mut worst = 0.0f32;
     let mut moved = 0.0f32;
     for &(px, pz) in &[(3.0, 4.0), (-250.5, 77.7), (640.0, -1000.2), (1.0e6, 3.3)] {
-        let y = state.height_at(px, pz).unwrap();
-        let found = state.locate(px, pz).unwrap();
+        let y = state.water().height_at(px, pz).unwrap();
+        let found = state.water().locate(px, pz).unwrap();
         let (x0, miss) = (found.undisplaced, found.miss);
         assert!(
             found.converged,
@@ -306,7 +307,7 @@ fn height_at_inverts_the_displacement_like_a_brute_force_search() {
         for a in -reach..=reach {
             for b in -reach..=reach {
                 let (x, z) = (px + f64::from(a) * step, pz + f64::from(b) * step);
-                let s = state.sample(x, z).unwrap();
+                let s = state.water().at_rest(x, z).unwrap();
                 let landed = (
                     x + f64::from(s.displacement[0]),
                     z + f64::from(s.displacement[1]),
@@ -352,7 +353,7 @@ fn searches_on_the_default_sea_mostly_end_after_one_newton_step() {
     };
     let mut steps = [0usize; 4];
     for _ in 0..2000 {
-        let found = state.locate(next(), next()).unwrap();
+        let found = state.water().locate(next(), next()).unwrap();
         assert!(found.converged, "miss {} m", found.miss);
         assert!(found.iterations <= 3, "{} steps", found.iterations);
         steps[found.iterations] += 1;
@@ -404,7 +405,7 @@ fn batch_queries_equal_single_queries() {
         state.step(2.0).unwrap();
         if let Some(iterations) = iterations {
             for p in &points {
-                let location = state.locate(p[0], p[1]).unwrap();
+                let location = state.water().locate(p[0], p[1]).unwrap();
                 assert_eq!(location.iterations, iterations, "{p:?}");
             }
         }
@@ -419,13 +420,16 @@ fn batch_equals_single(state: &OceanState, points: &[[f64; 2]]) {
         let mut heights = vec![0.0; count];
         let mut samples = vec![SurfaceSample::default(); count];
         let mut surfaces = vec![SurfaceSample::default(); count];
-        state.heights_at(points, &mut heights).unwrap();
-        state.sample_many(points, &mut samples).unwrap();
-        state.surfaces_at(points, &mut surfaces).unwrap();
+        state.water().heights_at(points, &mut heights).unwrap();
+        state.water().at_rest_many(points, &mut samples).unwrap();
+        state.water().surfaces_at(points, &mut surfaces).unwrap();
         for (((p, h), s), w) in points.iter().zip(&heights).zip(&samples).zip(&surfaces) {
-            assert_eq!(h.to_bits(), state.height_at(p[0], p[1]).unwrap().to_bits());
-            assert_eq!(*s, state.sample(p[0], p[1]).unwrap());
-            assert_eq!(*w, state.surface_at(p[0], p[1]).unwrap());
+            assert_eq!(
+                h.to_bits(),
+                state.water().height_at(p[0], p[1]).unwrap().to_bits()
+            );
+            assert_eq!(*s, state.water().at_rest(p[0], p[1]).unwrap());
+            assert_eq!(*w, state.water().surface_at(p[0], p[1]).unwrap());
         }
     }
 }
@@ -450,7 +454,7 @@ fn parallel_and_sequential_cascade_updates_agree_bit_for_bit() {
         assert_eq!(bits(ca.jacobian()), bits(cb.jacobian()));
     }
     assert_eq!(a.foam(), b.foam());
-    assert_eq!(a.breaking(), b.breaking());
+    assert_eq!(a.foam_view().breaking(), b.foam_view().breaking());
 }
 
 #[test]
@@ -478,7 +482,7 @@ fn presets_build_and_grow_with_the_wind() {
         let hs = spectrum.significant_wave_height();
         let state = OceanState::new(spectrum, config).unwrap();
         // The cascades hold the sea's energy: 4√(Σ S Δk²) within 3 % of the quadrature Hs.
-        let simulated = 4.0 * state.expected_variance().sqrt() as f32;
+        let simulated = 4.0 * state.diagnostics().expected_variance().sqrt() as f32;
         assert!(
             (simulated / hs - 1.0).abs() < 0.03,
             "{}: {simulated} vs {hs}",
@@ -636,11 +640,11 @@ fn bad_input_is_an_error_and_leaves_the_state_alone() {
     assert!(state.set_choppiness(f32::NAN).is_err());
     assert_eq!(state.time(), 1.0);
     assert_eq!(state.cascades()[0].height(), &before[..]);
-    assert!(state.sample(f64::NAN, 0.0).is_err());
-    assert!(state.height_at(0.0, f64::INFINITY).is_err());
+    assert!(state.water().at_rest(f64::NAN, 0.0).is_err());
+    assert!(state.water().height_at(0.0, f64::INFINITY).is_err());
     let mut out = vec![0.0; 2];
     assert_eq!(
-        state.heights_at(&[[0.0, 0.0]], &mut out),
+        state.water().heights_at(&[[0.0, 0.0]], &mut out),
         Err(Error::LengthMismatch {
             name: "out",
             expected: 1,
@@ -648,6 +652,7 @@ fn bad_input_is_an_error_and_leaves_the_state_alone() {
         })
     );
     assert!(state
+        .water()
         .heights_at(&[[0.0, 0.0], [f64::NAN, 1.0]], &mut out)
         .is_err());
     assert_eq!(out, vec![0.0, 0.0]);
@@ -687,7 +692,7 @@ fn outputs_stay_finite_in_a_folding_storm() {
         assert!(c.normal().iter().flatten().all(|v| v.is_finite()));
     }
     assert!(state.foam().iter().all(|v| (0.0..=1.0).contains(v)));
-    let y = state.height_at(100.0, 100.0).unwrap();
+    let y = state.water().height_at(100.0, 100.0).unwrap();
     assert!(y.is_finite());
 }
 
@@ -700,13 +705,13 @@ fn ocean_state_can_be_shared_between_threads() {
     let mut state = ocean(small_config());
     state.step(1.5).unwrap();
     let here: Vec<f32> = (0..4)
-        .map(|i| state.height_at(f64::from(i) * 10.0, 5.0).unwrap())
+        .map(|i| state.water().height_at(f64::from(i) * 10.0, 5.0).unwrap())
         .collect();
     let there: Vec<f32> = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..4)
             .map(|i| {
                 let state = &state;
-                scope.spawn(move || state.height_at(f64::from(i) * 10.0, 5.0).unwrap())
+                scope.spawn(move || state.water().height_at(f64::from(i) * 10.0, 5.0).unwrap())
             })
             .collect();
         handles.into_iter().map(|h| h.join().unwrap()).collect()
@@ -762,11 +767,11 @@ fn sampling_a_subset_of_cascades_adds_up_to_the_whole() {
     let mut state = ocean(small_config());
     state.step(3.3).unwrap();
     for &(x, z) in &[(1.0, 2.0), (-345.6, 789.1), (2.5e5, -1.0e5)] {
-        let whole = state.sample(x, z).unwrap();
+        let whole = state.water().at_rest(x, z).unwrap();
         let parts = [
-            state.sample_cascades(x, z, 0..1).unwrap(),
-            state.sample_cascades(x, z, 1..2).unwrap(),
-            state.sample_cascades(x, z, 2..3).unwrap(),
+            state.water().at_rest_cascades(x, z, 0..1).unwrap(),
+            state.water().at_rest_cascades(x, z, 1..2).unwrap(),
+            state.water().at_rest_cascades(x, z, 2..3).unwrap(),
         ];
         // Height, displacement and slope are sums over cascades: the parts add up to the
         // whole up to f32 rounding of the ~1 m values.
@@ -774,13 +779,13 @@ fn sampling_a_subset_of_cascades_adds_up_to_the_whole() {
         assert!((height - whole.height).abs() < 1e-5);
         let slope = add2(add2(parts[0].slope, parts[1].slope), parts[2].slope);
         assert!(distance2(slope, whole.slope) < 1e-5);
-        assert_eq!(state.sample_cascades(x, z, 0..3).unwrap(), whole);
-        let flat = state.sample_cascades(x, z, 1..1).unwrap();
+        assert_eq!(state.water().at_rest_cascades(x, z, 0..3).unwrap(), whole);
+        let flat = state.water().at_rest_cascades(x, z, 1..1).unwrap();
         assert_eq!(flat.height, 0.0);
         assert_eq!(flat.normal, [0.0, 1.0, 0.0]);
     }
     assert_eq!(
-        state.sample_cascades(0.0, 0.0, 0..4),
+        state.water().at_rest_cascades(0.0, 0.0, 0..4),
         Err(Error::CountOutOfRange {
             name: "cascades.end",
             count: 4,
@@ -791,7 +796,7 @@ fn sampling_a_subset_of_cascades_adds_up_to_the_whole() {
     // A range must not end before it starts.
     let (start, end) = (2, 1);
     assert_eq!(
-        state.sample_cascades(0.0, 0.0, start..end),
+        state.water().at_rest_cascades(0.0, 0.0, start..end),
         Err(Error::CountOutOfRange {
             name: "cascades.end",
             count: 1,
@@ -799,5 +804,5 @@ fn sampling_a_subset_of_cascades_adds_up_to_the_whole() {
             max: 3
         })
     );
-    assert!(state.sample_cascades(f64::NAN, 0.0, 0..1).is_err());
+    assert!(state.water().at_rest_cascades(f64::NAN, 0.0, 0..1).is_err());
 }

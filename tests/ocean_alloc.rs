@@ -50,20 +50,20 @@ fn stepping_and_querying_allocate_nothing() {
             // Warm-up: the first parallel calls size the workers' queues.
             for _ in 0..3 {
                 ocean.step(1.0 / 60.0).unwrap();
-                ocean.heights_at(&points, &mut heights).unwrap();
+                ocean.water().heights_at(&points, &mut heights).unwrap();
             }
             let before = count();
             for frame in 0..200 {
                 ocean.step(1.0 / 60.0).unwrap();
-                ocean.heights_at(&points, &mut heights).unwrap();
-                let _ = ocean.sample(3.0, 4.0).unwrap();
-                let _ = ocean.locate(3.0, 4.0).unwrap();
-                let _ = ocean.breaking_at(3.0, 4.0).unwrap();
-                let _ = ocean.foam_coverage();
+                ocean.water().heights_at(&points, &mut heights).unwrap();
+                let _ = ocean.water().at_rest(3.0, 4.0).unwrap();
+                let _ = ocean.water().locate(3.0, 4.0).unwrap();
+                let _ = ocean.foam_view().breaking_at(3.0, 4.0).unwrap();
+                let _ = ocean.foam_view().coverage();
                 // A networked game: follow a given clock, keep snapshots, roll back.
                 let t = ocean.time();
                 ocean.step_to(t + 0.01).unwrap();
-                ocean.snapshot_into(&mut snapshot);
+                snapshot.capture(&ocean);
                 if frame % 50 == 49 {
                     ocean.restore(&snapshot).unwrap();
                 }

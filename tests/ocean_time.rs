@@ -25,13 +25,13 @@ fn bits(ocean: &OceanState) -> Vec<u32> {
     ];
     for buffer in [
         ocean.foam(),
-        ocean.active_foam(),
-        ocean.residual_foam(),
-        ocean.breaking(),
+        ocean.foam_view().active(),
+        ocean.foam_view().residual(),
+        ocean.foam_view().breaking(),
     ] {
         out.extend(buffer.iter().map(|v| v.to_bits()));
     }
-    let c = ocean.foam_coverage();
+    let c = ocean.foam_view().coverage();
     out.extend([c.active, c.residual, c.total].map(f32::to_bits));
     for cascade in ocean.cascades() {
         out.extend(cascade.height().iter().map(|v| v.to_bits()));
@@ -91,11 +91,11 @@ fn step_to_refuses_going_back_or_too_far_and_changes_nothing() {
             name: "t",
             value: 1.5,
             min: Bound::Included(2.0),
-            max: Bound::Included(2.0 + OceanState::MAX_STEP),
+            max: Bound::Included(2.0 + ocean_fft::limits::MAX_STEP),
         })
     );
     assert!(matches!(
-        ocean.step_to(2.0 + OceanState::MAX_STEP * 2.0),
+        ocean.step_to(2.0 + ocean_fft::limits::MAX_STEP * 2.0),
         Err(Error::OutOfRange { name: "t", .. })
     ));
     assert_eq!(ocean.step_to(f64::NAN), Err(Error::NonFinite { name: "t" }));
@@ -158,9 +158,9 @@ fn a_restored_snapshot_steps_to_the_same_bits() {
     clone.step(0.1).unwrap();
     assert_eq!(bits(&clone), bits(&original));
 
-    // snapshot_into refills an existing snapshot to the same value.
+    // capture refills an existing snapshot to the same value.
     let mut reused = snapshot.clone();
-    original.snapshot_into(&mut reused);
+    reused.capture(&original);
     assert_eq!(reused, original.snapshot());
     assert_eq!(reused.time(), original.time());
 }
@@ -188,10 +188,11 @@ fn locate_reports_convergence_honestly() {
     let gentle = ocean(64, 1.0);
     for i in 0..200 {
         let (x, z) = (f64::from(i) * 3.7 - 300.0, f64::from(i) * 1.3);
-        let found = gentle.locate(x, z).unwrap();
+        let found = gentle.water().locate(x, z).unwrap();
         assert!(found.converged && found.miss < 1e-4, "{found:?}");
         let water = gentle
-            .sample(found.undisplaced[0], found.undisplaced[1])
+            .water()
+            .at_rest(found.undisplaced[0], found.undisplaced[1])
             .unwrap();
         let landed = [
             found.undisplaced[0] + f64::from(water.displacement[0]),
@@ -202,7 +203,7 @@ fn locate_reports_convergence_honestly() {
             (miss - f64::from(found.miss)).abs() < 1e-6,
             "{miss} vs {found:?}"
         );
-        assert_eq!(gentle.height_at(x, z).unwrap(), water.height);
+        assert_eq!(gentle.water().height_at(x, z).unwrap(), water.height);
     }
 
     // At the largest choppiness the ocean accepts (the surface folded on about half its area),
@@ -217,13 +218,16 @@ fn locate_reports_convergence_honestly() {
         ..QueryConfig::default()
     };
     let mut folded = OceanState::new(spectrum, config).unwrap();
-    folded.set_choppiness(folded.max_choppiness()).unwrap();
+    folded
+        .set_choppiness(folded.diagnostics().max_choppiness())
+        .unwrap();
     let mut failures = 0;
     for i in 0..200 {
         let (x, z) = (f64::from(i) * 3.7 - 300.0, f64::from(i) * 1.3);
-        let found = folded.locate(x, z).unwrap();
+        let found = folded.water().locate(x, z).unwrap();
         let water = folded
-            .sample(found.undisplaced[0], found.undisplaced[1])
+            .water()
+            .at_rest(found.undisplaced[0], found.undisplaced[1])
             .unwrap();
         let miss = (found.undisplaced[0] + f64::from(water.displacement[0]) - x)
             .hypot(found.undisplaced[1] + f64::from(water.displacement[1]) - z);
@@ -251,11 +255,13 @@ fn relaxed_iteration_converges_where_the_plain_one_overshoots() {
         ..QueryConfig::default()
     };
     let mut ocean = OceanState::new(spectrum, config).unwrap();
-    ocean.set_choppiness(ocean.max_choppiness()).unwrap();
+    ocean
+        .set_choppiness(ocean.diagnostics().max_choppiness())
+        .unwrap();
     let converged = (0..1000)
         .filter(|&i| {
             let (x, z) = (f64::from(i) * 7.31 % 900.0, f64::from(i) * 13.7 % 700.0);
-            ocean.locate(x, z).unwrap().converged
+            ocean.water().locate(x, z).unwrap().converged
         })
         .count();
     assert!(converged >= 500, "{converged} of 1000");
@@ -269,7 +275,8 @@ fn sample_grid_is_sample_on_a_grid() {
     let spacing = 3.25;
     let mut grid = vec![SurfaceSample::default(); columns * rows];
     ocean
-        .sample_grid(origin, spacing, [columns, rows], &mut grid)
+        .water()
+        .at_rest_grid(origin, spacing, [columns, rows], &mut grid)
         .unwrap();
     for r in 0..rows {
         for c in 0..columns {
@@ -277,7 +284,7 @@ fn sample_grid_is_sample_on_a_grid() {
             let z = origin[1] + r as f64 * spacing;
             assert_eq!(
                 grid[r * columns + c],
-                ocean.sample(x, z).unwrap(),
+                ocean.water().at_rest(x, z).unwrap(),
                 "({c}, {r})"
             );
         }
@@ -289,23 +296,40 @@ fn sample_grid_is_sample_on_a_grid() {
     };
     let mut out = vec![sentinel; 12];
     let cases = [
-        (ocean.sample_grid(origin, spacing, [4, 4], &mut out), "out"),
-        (ocean.sample_grid(origin, 0.0, [4, 3], &mut out), "spacing"),
         (
-            ocean.sample_grid(origin, f64::NAN, [4, 3], &mut out),
+            ocean
+                .water()
+                .at_rest_grid(origin, spacing, [4, 4], &mut out),
+            "out",
+        ),
+        (
+            ocean.water().at_rest_grid(origin, 0.0, [4, 3], &mut out),
             "spacing",
         ),
         (
-            ocean.sample_grid(origin, 1e308, [4, 3], &mut out),
+            ocean
+                .water()
+                .at_rest_grid(origin, f64::NAN, [4, 3], &mut out),
             "spacing",
         ),
         (
-            ocean.sample_grid([f64::INFINITY, 0.0], 1.0, [4, 3], &mut out),
+            ocean.water().at_rest_grid(origin, 1e308, [4, 3], &mut out),
+            "spacing",
+        ),
+        (
+            ocean
+                .water()
+                .at_rest_grid([f64::INFINITY, 0.0], 1.0, [4, 3], &mut out),
             "x",
         ),
-        (ocean.sample_grid(origin, 1.0, [0, 3], &mut out), "columns"),
         (
-            ocean.sample_grid(origin, 1.0, [usize::MAX, 3], &mut out),
+            ocean.water().at_rest_grid(origin, 1.0, [0, 3], &mut out),
+            "columns",
+        ),
+        (
+            ocean
+                .water()
+                .at_rest_grid(origin, 1.0, [usize::MAX, 3], &mut out),
             "rows",
         ),
     ];

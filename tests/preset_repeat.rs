@@ -64,7 +64,8 @@ fn largest_repeat(state: SeaState, seed: u64, m: usize) -> f64 {
     let mut base = vec![SurfaceSample::default(); m * m];
     let mut shifted = base.clone();
     ocean
-        .sample_grid([0.0, 0.0], spacing, [m, m], &mut base)
+        .water()
+        .at_rest_grid([0.0, 0.0], spacing, [m, m], &mut base)
         .unwrap();
     let mut largest = f64::NEG_INFINITY;
     for cascade in ocean.cascades() {
@@ -80,7 +81,8 @@ fn largest_repeat(state: SeaState, seed: u64, m: usize) -> f64 {
                 [0.0, length]
             };
             ocean
-                .sample_grid(origin, spacing, [m, m], &mut shifted)
+                .water()
+                .at_rest_grid(origin, spacing, [m, m], &mut shifted)
                 .unwrap();
             let keep = |p: &usize| (if axis == 0 { p % m } else { p / m }) < inside;
             let a: Vec<f64> = (0..m * m)
@@ -136,10 +138,12 @@ fn a_window_larger_than_the_largest_cascade_repeats() {
     let mut base = vec![SurfaceSample::default(); m * m];
     let mut shifted = base.clone();
     ocean
-        .sample_grid([0.0, 0.0], spacing, [m, m], &mut base)
+        .water()
+        .at_rest_grid([0.0, 0.0], spacing, [m, m], &mut base)
         .unwrap();
     ocean
-        .sample_grid([length, 0.0], spacing, [m, m], &mut shifted)
+        .water()
+        .at_rest_grid([length, 0.0], spacing, [m, m], &mut shifted)
         .unwrap();
     let a: Vec<f64> = base.iter().map(|s| f64::from(s.height)).collect();
     let b: Vec<f64> = shifted.iter().map(|s| f64::from(s.height)).collect();

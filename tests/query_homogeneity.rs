@@ -85,7 +85,7 @@ fn measured_transfer(ocean: &OceanState, fractions: &[f64]) -> f64 {
     let mut sum = 0.0;
     for cell in 0..16 {
         for &f in fractions {
-            let h = f64::from(ocean.sample(cell as f64 + f, 0.3).unwrap().height);
+            let h = f64::from(ocean.water().at_rest(cell as f64 + f, 0.3).unwrap().height);
             sum += h * h;
         }
     }
@@ -160,7 +160,7 @@ fn cascade_stats(ocean: &OceanState, c: usize, points: usize, rng: &mut Rng) -> 
     for _ in 0..points {
         // Anywhere in a 50-tile square: the tile is periodic, so this is uniform over it.
         let (x, z) = (50.0 * length * rng.next(), 50.0 * length * rng.next());
-        let s = ocean.sample_cascades(x, z, c..c + 1).unwrap();
+        let s = ocean.water().at_rest_cascades(x, z, c..c + 1).unwrap();
         let h = (f64::from(s.height) - offset).powi(2);
         let q = f64::from(s.slope[0]).powi(2) + f64::from(s.slope[1]).powi(2);
         h1 += h;

@@ -245,7 +245,7 @@ fn buoys(ocean: &mut OceanState, dt: f64, frames: usize) -> (f64, f64, f64, f64,
     let mut heights = vec![0.0f32; points.len()];
     for _ in 0..frames {
         ocean.step(dt).unwrap();
-        ocean.heights_at(&points, &mut heights).unwrap();
+        ocean.water().heights_at(&points, &mut heights).unwrap();
         for (s, &h) in series.iter_mut().zip(&heights) {
             s.push(f64::from(h));
         }
@@ -619,7 +619,7 @@ fn eulerian_against_theory(spectrum: Spectrum, length: f32, t: f64) -> [f64; 3] 
     };
     let measured = |ocean: &OceanState| {
         let mut heights = vec![0.0f32; points.len()];
-        ocean.heights_at(&points, &mut heights).unwrap();
+        ocean.water().heights_at(&points, &mut heights).unwrap();
         centred(
             heights
                 .iter()

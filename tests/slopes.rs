@@ -143,12 +143,13 @@ fn sub_grid_slope_variance_is_the_spectrum_above_the_band() {
         assert!(close(got, expected, 5e-3), "cascade {c}");
         let mut texels = vec![[0.0f32; 4]; 64 * 64];
         ocean
-            .pack_texels(c, ocean_fft::gpu::TexelLayout::Normal, &mut texels)
+            .textures()
+            .pack(c, ocean_fft::gpu::TexelLayout::Normal, &mut texels)
             .unwrap();
         assert!(texels.iter().all(|t| t[3] == got.total()));
     }
     assert_eq!(
-        ocean.subgrid_slope_variance(),
+        ocean.textures().subgrid_slope_variance(),
         ocean.cascades()[2].subgrid_slope_variance()
     );
     // The grid plus the sub-grid part is the whole spectrum up to the cut-off.
@@ -159,7 +160,7 @@ fn sub_grid_slope_variance_is_the_spectrum_above_the_band() {
     let whole = spectrum
         .slope_variance(0.0, SlopeVariance::DEFAULT_CUTOFF)
         .total();
-    let sum = resolved + ocean.subgrid_slope_variance().total();
+    let sum = resolved + ocean.textures().subgrid_slope_variance().total();
     assert!((sum / whole - 1.0).abs() < 1e-3, "{sum} vs {whole}");
 }
 

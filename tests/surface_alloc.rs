@@ -31,7 +31,7 @@ fn stepping_with_a_surface_handle_in_use_allocates_nothing() {
         for _ in 0..4 {
             ocean.step(1.0 / 60.0).unwrap();
             let surface = ocean.surface();
-            surface.heights_at(&points, &mut heights).unwrap();
+            surface.water().heights_at(&points, &mut heights).unwrap();
             held = Some(surface);
         }
         let before = count();
@@ -39,9 +39,9 @@ fn stepping_with_a_surface_handle_in_use_allocates_nothing() {
             // The handle of the frame before is still held while this step runs.
             ocean.step(1.0 / 60.0).unwrap();
             let surface = ocean.surface();
-            surface.heights_at(&points, &mut heights).unwrap();
-            let _ = surface.height_at(3.0, 4.0).unwrap();
-            let _ = held.as_ref().map(|old| old.height_at(3.0, 4.0));
+            surface.water().heights_at(&points, &mut heights).unwrap();
+            let _ = surface.water().height_at(3.0, 4.0).unwrap();
+            let _ = held.as_ref().map(|old| old.water().height_at(3.0, 4.0));
             held = Some(surface);
         }
         (before, count())

@@ -44,7 +44,7 @@ fn reference(points: &[[f64; 2]]) -> Vec<(f64, Vec<f32>)> {
         }
         let heights = points
             .iter()
-            .map(|&[x, z]| ocean.height_at(x, z).unwrap())
+            .map(|&[x, z]| ocean.water().height_at(x, z).unwrap())
             .collect();
         frames.push((ocean.time(), heights));
     }
@@ -75,10 +75,13 @@ fn a_physics_thread_sees_whole_frames_while_the_ocean_steps() {
                     .expect("the handle's time is one frame's");
                 // A batch (spread over the pool) and single queries one by one, while the
                 // main thread may be stepping: all the bits of that one frame.
-                surface.heights_at(&points, &mut heights).unwrap();
+                surface.water().heights_at(&points, &mut heights).unwrap();
                 assert_eq!(bits(&heights), bits(&expected[frame].1), "frame {frame}");
                 for (&[x, z], &y) in points.iter().zip(&expected[frame].1) {
-                    assert_eq!(surface.height_at(x, z).unwrap().to_bits(), y.to_bits());
+                    assert_eq!(
+                        surface.water().height_at(x, z).unwrap().to_bits(),
+                        y.to_bits()
+                    );
                 }
                 seen[frame] += 1;
                 if finished {
@@ -91,7 +94,7 @@ fn a_physics_thread_sees_whole_frames_while_the_ocean_steps() {
             // The ocean's own answers between steps are that frame's too.
             let own: Vec<f32> = points
                 .iter()
-                .map(|&[x, z]| ocean.height_at(x, z).unwrap())
+                .map(|&[x, z]| ocean.water().height_at(x, z).unwrap())
                 .collect();
             assert_eq!(bits(&own), bits(heights), "frame {frame}");
             *latest.lock().unwrap() = ocean.surface();
@@ -127,7 +130,7 @@ fn handles_kept_across_steps_keep_their_frame() {
         }
         for (k, handle) in &kept {
             let mut heights = vec![0.0f32; points.len()];
-            handle.heights_at(&points, &mut heights).unwrap();
+            handle.water().heights_at(&points, &mut heights).unwrap();
             assert_eq!(
                 bits(&heights),
                 bits(&expected[*k].1),
@@ -148,25 +151,31 @@ fn a_handle_answers_every_query_as_the_ocean_does() {
     let points = points();
     let mut a = vec![SurfaceSample::default(); points.len()];
     let mut b = a.clone();
-    ocean.surfaces_at(&points, &mut a).unwrap();
-    surface.surfaces_at(&points, &mut b).unwrap();
+    ocean.water().surfaces_at(&points, &mut a).unwrap();
+    surface.water().surfaces_at(&points, &mut b).unwrap();
     assert_eq!(a, b);
-    ocean.sample_many(&points, &mut a).unwrap();
-    surface.sample_many(&points, &mut b).unwrap();
+    ocean.water().at_rest_many(&points, &mut a).unwrap();
+    surface.water().at_rest_many(&points, &mut b).unwrap();
     assert_eq!(a, b);
     for &[x, z] in &points {
-        assert_eq!(ocean.sample(x, z), surface.sample(x, z));
-        assert_eq!(ocean.locate(x, z), surface.locate(x, z));
-        assert_eq!(ocean.surface_at(x, z), surface.surface_at(x, z));
+        assert_eq!(ocean.water().at_rest(x, z), surface.water().at_rest(x, z));
+        assert_eq!(ocean.water().locate(x, z), surface.water().locate(x, z));
+        assert_eq!(
+            ocean.water().surface_at(x, z),
+            surface.water().surface_at(x, z)
+        );
     }
     // After clear_foam the ocean's foam is gone, the handle keeps what it saw.
-    let before = surface.sample(10.0, 20.0).unwrap();
+    let before = surface.water().at_rest(10.0, 20.0).unwrap();
     ocean.clear_foam();
-    assert_eq!(surface.sample(10.0, 20.0).unwrap(), before);
-    assert_eq!(ocean.surface().sample(10.0, 20.0), ocean.sample(10.0, 20.0));
-    assert!(surface.height_at(f64::NAN, 0.0).is_err());
+    assert_eq!(surface.water().at_rest(10.0, 20.0).unwrap(), before);
+    assert_eq!(
+        ocean.surface().water().at_rest(10.0, 20.0),
+        ocean.water().at_rest(10.0, 20.0)
+    );
+    assert!(surface.water().height_at(f64::NAN, 0.0).is_err());
     let mut short = vec![0.0f32; 1];
-    assert!(surface.heights_at(&points, &mut short).is_err());
+    assert!(surface.water().heights_at(&points, &mut short).is_err());
 }
 
 #[test]

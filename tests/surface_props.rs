@@ -175,7 +175,7 @@ fn any_f64() -> impl Strategy<Value = f64> {
         2 => prop::sample::select(EDGES_F64.to_vec()),
         1 => any::<f64>(),
         2 => (
-            prop::sample::select(vec![Cascade::MAX_TIME, -Cascade::MAX_TIME, OceanState::MAX_STEP]),
+            prop::sample::select(vec![Cascade::MAX_TIME, -Cascade::MAX_TIME, ocean_fft::limits::MAX_STEP]),
             -2i32..=2
         )
             .prop_map(|(limit, ulps)| {
@@ -306,18 +306,23 @@ fn ocean_bits(ocean: &OceanState) -> Vec<u64> {
     }
     for buffer in [
         ocean.foam(),
-        ocean.active_foam(),
-        ocean.residual_foam(),
-        ocean.breaking(),
+        ocean.foam_view().active(),
+        ocean.foam_view().residual(),
+        ocean.foam_view().breaking(),
     ] {
         bits.extend(buffer.iter().map(|x| x.to_bits() as u64));
     }
-    let c = ocean.foam_coverage();
+    let c = ocean.foam_view().coverage();
     bits.extend([c.active, c.residual, c.total].map(|x| x.to_bits() as u64));
     // What a change of weather or of the foam settings moves.
-    bits.push(ocean.expected_variance().to_bits());
-    bits.push(ocean.transition_progress().map_or(u64::MAX, f64::to_bits));
-    bits.push(ocean.foam_calibration().threshold.to_bits() as u64);
+    bits.push(ocean.diagnostics().expected_variance().to_bits());
+    bits.push(
+        ocean
+            .diagnostics()
+            .transition_progress()
+            .map_or(u64::MAX, f64::to_bits),
+    );
+    bits.push(ocean.foam_view().calibration().threshold.to_bits() as u64);
     bits
 }
 
@@ -331,16 +336,24 @@ fn cascade_finite(cascade: &Cascade) -> bool {
 
 fn ocean_finite(ocean: &OceanState) -> bool {
     let unit = |v: &f32| (0.0..=1.0).contains(v);
-    let c = ocean.foam_coverage();
-    let subgrid = ocean.subgrid_slope_variance();
+    let c = ocean.foam_view().coverage();
+    let subgrid = ocean.textures().subgrid_slope_variance();
     ocean.cascades().iter().all(cascade_finite)
-        && ocean.mean_level_offset().is_finite()
+        && ocean.diagnostics().mean_level_offset().is_finite()
         && subgrid.along.is_finite()
         && subgrid.across.is_finite()
-        && [ocean.foam(), ocean.active_foam(), ocean.residual_foam()]
+        && [
+            ocean.foam(),
+            ocean.foam_view().active(),
+            ocean.foam_view().residual(),
+        ]
+        .iter()
+        .all(|buffer| buffer.iter().all(unit))
+        && ocean
+            .foam_view()
+            .breaking()
             .iter()
-            .all(|buffer| buffer.iter().all(unit))
-        && ocean.breaking().iter().all(|s| s.is_finite() && *s >= 0.0)
+            .all(|s| s.is_finite() && *s >= 0.0)
         && [c.active, c.residual, c.total].iter().all(unit)
 }
 
@@ -901,7 +914,7 @@ fn any_ocean_op() -> impl Strategy<Value = OceanOp> {
             prop_oneof![3 => 0f64..1.0, 1 => prop::sample::select(vec![-1.0, f64::NAN, f64::INFINITY, 1e300, 0.0])],
             prop_oneof![
                 3 => 0.05f64..0.5,
-                1 => prop::sample::select(vec![0.0, -0.1, 1e-300, f64::NAN, f64::INFINITY, OceanState::MAX_STEP, OceanState::MAX_STEP * (1.0 + 1e-15)]),
+                1 => prop::sample::select(vec![0.0, -0.1, 1e-300, f64::NAN, f64::INFINITY, ocean_fft::limits::MAX_STEP, ocean_fft::limits::MAX_STEP * (1.0 + 1e-15)]),
             ],
         )
             .prop_map(|(seconds, dt)| OceanOp::PreRoll(seconds, dt)),
@@ -912,16 +925,22 @@ fn any_ocean_op() -> impl Strategy<Value = OceanOp> {
 fn query(ocean: &OceanState, op: &OceanOp) -> Result<(), Error> {
     match *op {
         OceanOp::Sample(x, z) => ocean
-            .sample(x, z)
+            .water()
+            .at_rest(x, z)
             .map(|s| assert!(finite_sample(&s), "{s:?}")),
         OceanOp::SampleCascades(x, z, a, b) => ocean
-            .sample_cascades(x, z, a..b)
+            .water()
+            .at_rest_cascades(x, z, a..b)
             .map(|s| assert!(finite_sample(&s), "{s:?}")),
-        OceanOp::HeightAt(x, z) => ocean.height_at(x, z).map(|y| assert!(y.is_finite())),
+        OceanOp::HeightAt(x, z) => ocean
+            .water()
+            .height_at(x, z)
+            .map(|y| assert!(y.is_finite())),
         OceanOp::SurfaceAt(x, z) => ocean
+            .water()
             .surface_at(x, z)
             .map(|s| assert!(finite_sample(&s), "{s:?}")),
-        OceanOp::Locate(x, z) => ocean.locate(x, z).map(|found| {
+        OceanOp::Locate(x, z) => ocean.water().locate(x, z).map(|found| {
             let p = found.undisplaced;
             assert!(p[0].is_finite() && p[1].is_finite() && !found.miss.is_nan());
             assert_eq!(found.converged, found.miss < ocean.config().query.tolerance);
@@ -931,14 +950,16 @@ fn query(ocean: &OceanState, op: &OceanOp) -> Result<(), Error> {
             // the length check (or before).
             let len = columns.saturating_mul(rows).min(1 << 12) + extra;
             let mut out = vec![SurfaceSample::default(); len];
-            let result = ocean.sample_grid(origin, spacing, [columns, rows], &mut out);
+            let result = ocean
+                .water()
+                .at_rest_grid(origin, spacing, [columns, rows], &mut out);
             if result.is_ok() {
                 assert!(out.iter().all(finite_sample));
                 // A grid point is `sample` there (the first, a middle and the last).
                 for i in [0, out.len() / 2, out.len() - 1] {
                     let x = origin[0] + (i % columns) as f64 * spacing;
                     let z = origin[1] + (i / columns) as f64 * spacing;
-                    assert_eq!(ocean.sample(x, z), Ok(out[i]), "grid point {i}");
+                    assert_eq!(ocean.water().at_rest(x, z), Ok(out[i]), "grid point {i}");
                 }
             } else {
                 assert!(
@@ -951,7 +972,7 @@ fn query(ocean: &OceanState, op: &OceanOp) -> Result<(), Error> {
         OceanOp::Batch(ref points, extra) => {
             let mut heights = vec![f32::NAN; points.len() + extra];
             let mut surfaces = vec![SurfaceSample::default(); points.len() + extra];
-            let a = ocean.heights_at(points, &mut heights);
+            let a = ocean.water().heights_at(points, &mut heights);
             if a.is_err() {
                 assert!(
                     heights.iter().all(|h| h.is_nan()),
@@ -960,8 +981,8 @@ fn query(ocean: &OceanState, op: &OceanOp) -> Result<(), Error> {
             } else {
                 assert!(finite(&heights));
             }
-            let b = ocean.surfaces_at(points, &mut surfaces);
-            let c = ocean.sample_many(points, &mut surfaces);
+            let b = ocean.water().surfaces_at(points, &mut surfaces);
+            let c = ocean.water().at_rest_many(points, &mut surfaces);
             if b.is_ok() && c.is_ok() {
                 assert!(surfaces.iter().all(finite_sample));
             }
@@ -969,10 +990,10 @@ fn query(ocean: &OceanState, op: &OceanOp) -> Result<(), Error> {
             assert_eq!(b.is_ok(), c.is_ok());
             a
         }
-        OceanOp::BreakingAt(x, z) => ocean.breaking_at(x, z).map(|s| {
+        OceanOp::BreakingAt(x, z) => ocean.foam_view().breaking_at(x, z).map(|s| {
             assert!(s.is_finite() && s >= 0.0, "{s}");
         }),
-        OceanOp::FoamAt(x, z) => ocean.foam_at(x, z).map(|c| {
+        OceanOp::FoamAt(x, z) => ocean.foam_view().foam_at(x, z).map(|c| {
             for v in [c.active, c.residual, c.total] {
                 assert!((0.0..=1.0).contains(&v), "{c:?}");
             }
@@ -1013,9 +1034,9 @@ proptest! {
             Ok(ocean) => ocean,
         };
         prop_assert!(ocean_finite(&ocean));
-        check_fit(&ocean.fit());
-        prop_assert!(ocean.fit().held >= OceanState::MIN_BUILD_SHARE);
-        prop_assert!(ocean.config().choppiness <= ocean.max_choppiness());
+        check_fit(&ocean.diagnostics().fit());
+        prop_assert!(ocean.diagnostics().fit().held >= ocean_fft::limits::MIN_BUILD_SHARE);
+        prop_assert!(ocean.config().choppiness <= ocean.diagnostics().max_choppiness());
         let mut saved = ocean.snapshot();
         // Handles taken by `OceanOp::Surface`, with the answers they gave then.
         let mut handles: Vec<Held> = Vec::new();
@@ -1061,7 +1082,7 @@ proptest! {
                     .map(|()| {
                         assert_eq!(ocean.spectrum(), spectrum);
                         // Accepted only if the grids hold the share.
-                        assert!(ocean.fit().held >= OceanState::MIN_CHANGE_SHARE);
+                        assert!(ocean.diagnostics().fit().held >= ocean_fft::limits::MIN_CHANGE_SHARE);
                     }),
                 OceanOp::SetSpectrumUnfitted(ref spectrum, duration) => ocean
                     .set_spectrum_unfitted(spectrum.clone(), duration)
@@ -1075,34 +1096,34 @@ proptest! {
                     // Every query of the handle: the ocean's answer, or the same error.
                     let answers: Vec<_> = points
                         .iter()
-                        .map(|&[x, z]| surface.surface_at(x, z))
+                        .map(|&[x, z]| surface.water().surface_at(x, z))
                         .collect();
                     for (&[x, z], answer) in points.iter().zip(&answers) {
-                        prop_assert_eq!(answer, &ocean.surface_at(x, z));
-                        prop_assert_eq!(surface.sample(x, z), ocean.sample(x, z));
-                        prop_assert_eq!(surface.locate(x, z), ocean.locate(x, z));
+                        prop_assert_eq!(answer, &ocean.water().surface_at(x, z));
+                        prop_assert_eq!(surface.water().at_rest(x, z), ocean.water().at_rest(x, z));
+                        prop_assert_eq!(surface.water().locate(x, z), ocean.water().locate(x, z));
                         prop_assert_eq!(
-                            surface.height_at(x, z).map(f32::to_bits),
-                            ocean.height_at(x, z).map(f32::to_bits)
+                            surface.water().height_at(x, z).map(f32::to_bits),
+                            ocean.water().height_at(x, z).map(f32::to_bits)
                         );
                     }
                     let mut a = vec![0.0f32; points.len()];
                     let mut b = vec![0.0f32; points.len()];
                     prop_assert_eq!(
-                        surface.heights_at(points, &mut a),
-                        ocean.heights_at(points, &mut b)
+                        surface.water().heights_at(points, &mut a),
+                        ocean.water().heights_at(points, &mut b)
                     );
                     prop_assert_eq!(bits_of(&a), bits_of(&b));
                     let mut a = vec![SurfaceSample::default(); points.len()];
                     let mut b = a.clone();
                     prop_assert_eq!(
-                        surface.surfaces_at(points, &mut a),
-                        ocean.surfaces_at(points, &mut b)
+                        surface.water().surfaces_at(points, &mut a),
+                        ocean.water().surfaces_at(points, &mut b)
                     );
                     prop_assert_eq!(&a, &b);
                     prop_assert_eq!(
-                        surface.sample_many(points, &mut a),
-                        ocean.sample_many(points, &mut b)
+                        surface.water().at_rest_many(points, &mut a),
+                        ocean.water().at_rest_many(points, &mut b)
                     );
                     prop_assert_eq!(&a, &b);
                     handles.push((surface, points.clone(), answers));
@@ -1125,8 +1146,8 @@ proptest! {
                 }
             }
         }
-        check_fit(&ocean.fit());
-        prop_assert!(ocean.max_choppiness() > 0.0);
+        check_fit(&ocean.diagnostics().fit());
+        prop_assert!(ocean.diagnostics().max_choppiness() > 0.0);
         // The last choppiness set shows at the next step.
         if ocean.step(0.0).is_ok() {
             prop_assert!(ocean_finite(&ocean));
@@ -1134,7 +1155,7 @@ proptest! {
         // Whatever happened to the ocean since, a handle answers as it did when taken.
         for (surface, points, answers) in &handles {
             for (&[x, z], answer) in points.iter().zip(answers) {
-                prop_assert_eq!(&surface.surface_at(x, z), answer);
+                prop_assert_eq!(&surface.water().surface_at(x, z), answer);
             }
         }
     }
@@ -1247,7 +1268,7 @@ proptest! {
             prop_oneof![3 => 0f32..=1.0, 1 => prop::sample::select(vec![0.0f32, 1.0, 1.0000001, -0.0, f32::NAN])],
         ),
         steps in prop::collection::vec(
-            prop::sample::select(vec![0.0, 1e-300, 1.0 / 60.0, 0.5, 60.0, OceanState::MAX_STEP]),
+            prop::sample::select(vec![0.0, 1e-300, 1.0 / 60.0, 0.5, 60.0, ocean_fft::limits::MAX_STEP]),
             1..6,
         ),
     ) {
@@ -1275,16 +1296,16 @@ proptest! {
             Ok(ocean) => ocean,
         };
         prop_assert!(accepted.is_ok());
-        let calibration = ocean.foam_calibration();
+        let calibration = ocean.foam_view().calibration();
         prop_assert!(!calibration.threshold.is_nan() && calibration.threshold < 1.5);
         prop_assert!((0.0..=0.5).contains(&calibration.target));
         for dt in steps {
             ocean.step(dt).unwrap();
             prop_assert!(ocean_finite(&ocean), "foam {:?} after a step of {} s", foam, dt);
             for (x, z) in [(0.0, 0.0), (17.3, -120.9), (1e6, 3.5)] {
-                prop_assert!(finite_sample(&ocean.sample(x, z).unwrap()));
-                prop_assert!(finite_sample(&ocean.surface_at(x, z).unwrap()));
-                let s = ocean.breaking_at(x, z).unwrap();
+                prop_assert!(finite_sample(&ocean.water().at_rest(x, z).unwrap()));
+                prop_assert!(finite_sample(&ocean.water().surface_at(x, z).unwrap()));
+                let s = ocean.foam_view().breaking_at(x, z).unwrap();
                 prop_assert!(s.is_finite() && s >= 0.0);
             }
         }
@@ -1302,7 +1323,7 @@ fn every_preset_builds_and_steps() {
         let mut ocean = OceanState::new(spectrum, config).unwrap();
         ocean.step(1.0 / 30.0).unwrap();
         assert!(ocean_finite(&ocean), "{state:?}");
-        assert!(finite_sample(&ocean.surface_at(3.0, -7.0).unwrap()));
+        assert!(finite_sample(&ocean.water().surface_at(3.0, -7.0).unwrap()));
     }
 }
 
@@ -1432,7 +1453,7 @@ proptest! {
                 for &dt in &steps {
                     ocean.step(dt).unwrap();
                     bits.extend(ocean_bits(&ocean));
-                    let s = ocean.surface_at(31.7, -250.2).unwrap();
+                    let s = ocean.water().surface_at(31.7, -250.2).unwrap();
                     bits.extend([s.height, s.foam].iter().chain(&s.normal).map(|v| u64::from(v.to_bits())));
                 }
                 Some(bits)

@@ -216,7 +216,7 @@ pub(crate) fn float_bodies(
     }
     heights.clear();
     heights.resize(points.len(), 0.0);
-    if ocean.heights_at(&points, &mut heights).is_err() {
+    if ocean.water().heights_at(&points, &mut heights).is_err() {
         return;
     }
     let mut start = 0;

@@ -8,28 +8,30 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 use std::time::Instant;
 
-use bevy::asset::{uuid_handle, RenderAssetUsages};
+use bevy::asset::uuid_handle;
 use bevy::camera::visibility::NoFrustumCulling;
-use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::light::{NotShadowCaster, NotShadowReceiver};
-use bevy::mesh::{Indices, MeshVertexBufferLayoutRef, PrimitiveTopology};
+use bevy::mesh::MeshVertexBufferLayoutRef;
 use bevy::pbr::{MaterialPipeline, MaterialPipelineKey, MaterialPlugin};
 use bevy::prelude::*;
 use bevy::render::render_asset::RenderAssets;
 use bevy::render::render_resource::{
     AsBindGroup, Extent3d, Origin3d, RenderPipelineDescriptor, ShaderType,
     SpecializedMeshPipelineError, TexelCopyBufferLayout, TexelCopyTextureInfo, TextureAspect,
-    TextureDimension, TextureFormat, TextureUsages, TextureViewDescriptor, TextureViewDimension,
 };
 use bevy::render::renderer::RenderQueue;
 use bevy::render::texture::GpuImage;
 use bevy::render::{Extract, ExtractSchedule, Render, RenderApp, RenderSystems};
 use bevy::shader::{Shader, ShaderRef};
 
-use ocean_fft_render::clipmap::{grid_indices, grid_point, rings, Ring, HOLES, MAX_RINGS};
-use ocean_fft_render::{mip_levels, Light, OceanInfo, OceanUniforms, Tiling};
+use ocean_fft_render::clipmap::{rings, Ring, HOLES, MAX_RINGS};
+use ocean_fft_render::{Light, OceanInfo, OceanUniforms, Tiling};
 
 use crate::sim::{OceanTexels, PackedFrame};
+
+use assets::{cascade_image, ring_mesh};
+
+mod assets;
 
 const COMMON_SHADER: Handle<Shader> = uuid_handle!("5b0e3c52-8f0b-4d6e-9a51-0c8f1f5a7e31");
 const WATER_SHADER: Handle<Shader> = uuid_handle!("0b7a2f41-6c3d-4e8a-b1f2-7d9e5c4a3b20");
@@ -319,54 +321,6 @@ struct RingHalfCells(u32);
 
 #[derive(Resource)]
 struct Anisotropy(u16);
-
-/// A ring's mesh: vertex (i, j) at (i − m, 0, j − m), in cells from the centre.
-fn ring_mesh(m: u32, hole: Option<(u32, u32)>) -> Mesh {
-    let side = 2 * m + 1;
-    let positions: Vec<[f32; 3]> = (0..side * side)
-        .map(|v| {
-            let [x, z] = grid_point(m, v);
-            [x, 0.0, z]
-        })
-        .collect();
-    Mesh::new(
-        PrimitiveTopology::TriangleList,
-        RenderAssetUsages::RENDER_WORLD,
-    )
-    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, positions)
-    .with_inserted_indices(Indices::U32(grid_indices(m, hole)))
-}
-
-/// An RGBA16F 2D array image of `layers` layers of n×n texels with their mip chains, its
-/// contents uploaded by the render world.
-fn cascade_image(n: usize, layers: usize, anisotropy: u16) -> Image {
-    let mut image = Image::new_uninit(
-        Extent3d {
-            width: n as u32,
-            height: n as u32,
-            depth_or_array_layers: layers.max(1) as u32,
-        },
-        TextureDimension::D2,
-        TextureFormat::Rgba16Float,
-        RenderAssetUsages::RENDER_WORLD,
-    );
-    image.texture_descriptor.mip_level_count = mip_levels(n) as u32;
-    image.texture_descriptor.usage = TextureUsages::TEXTURE_BINDING | TextureUsages::COPY_DST;
-    image.texture_view_descriptor = Some(TextureViewDescriptor {
-        dimension: Some(TextureViewDimension::D2Array),
-        ..Default::default()
-    });
-    image.sampler = ImageSampler::Descriptor(ImageSamplerDescriptor {
-        address_mode_u: ImageAddressMode::Repeat,
-        address_mode_v: ImageAddressMode::Repeat,
-        mag_filter: ImageFilterMode::Linear,
-        min_filter: ImageFilterMode::Linear,
-        mipmap_filter: ImageFilterMode::Linear,
-        anisotropy_clamp: anisotropy,
-        ..Default::default()
-    });
-    image
-}
 
 fn setup(
     mut commands: Commands,

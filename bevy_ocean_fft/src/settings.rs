@@ -16,7 +16,7 @@ use ocean_fft_render::SeaSettings;
 /// - new `config.foam` settings with [`OceanState::set_foam_config`];
 /// - anything else in `config` (the grids: lengths, size, seed, band limits…), a spectrum
 ///   with another water depth, or a spectrum the grids cannot hold (a storm on a calm
-///   sea's grids: below [`OceanState::MIN_CHANGE_SHARE`] of its variance), which a running
+///   sea's grids: below [`limits::MIN_CHANGE_SHARE`] of its variance), which a running
 ///   ocean cannot take, builds a new ocean off the main thread (its foam spun up; for a
 ///   sea the grids cannot hold, on grids fitted to it, `SeaSettings::grids`) and swaps
 ///   it in when it is ready; the old one runs until then (`SeaSettings::plan` decides).
@@ -27,7 +27,7 @@ use ocean_fft_render::SeaSettings;
 /// [`OceanState::set_spectrum`]: ocean_fft::OceanState::set_spectrum
 /// [`OceanState::set_choppiness`]: ocean_fft::OceanState::set_choppiness
 /// [`OceanState::set_foam_config`]: ocean_fft::OceanState::set_foam_config
-/// [`OceanState::MIN_CHANGE_SHARE`]: ocean_fft::OceanState::MIN_CHANGE_SHARE
+/// [`limits::MIN_CHANGE_SHARE`]: ocean_fft::limits::MIN_CHANGE_SHARE
 #[derive(Resource, Debug, Clone, PartialEq, Default, Deref, DerefMut)]
 pub struct OceanSettings(pub SeaSettings);
 

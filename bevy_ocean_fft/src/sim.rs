@@ -173,7 +173,7 @@ pub(crate) fn collect(
     if let Some(ocean) = &sim.ocean {
         status.ready = true;
         status.time = ocean.time();
-        status.transition_progress = ocean.transition_progress();
+        status.transition_progress = ocean.diagnostics().transition_progress();
         status.spectrum = Some(ocean.spectrum().clone());
     }
 }

@@ -34,8 +34,8 @@ pub struct Water<'w> {
 }
 
 impl Water<'_> {
-    /// The ocean itself, for the crate's whole query API (`surfaces_at` for many points at
-    /// once, `foam_at`, …).
+    /// The ocean itself, for the crate's whole query API (`water().surfaces_at` for many
+    /// points at once, `foam_view().foam_at`, …).
     pub fn ocean(&self) -> Option<&OceanState> {
         self.sim.ocean()
     }
@@ -43,7 +43,10 @@ impl Water<'_> {
     /// Height of the water surface (m) above world point (x, z) (m): the displaced surface
     /// that lies over that point, not the water displaced from it.
     pub fn height(&self, x: f32, z: f32) -> Option<f32> {
-        self.ocean()?.height_at(f64::from(x), f64::from(z)).ok()
+        self.ocean()?
+            .water()
+            .height_at(f64::from(x), f64::from(z))
+            .ok()
     }
 
     /// Unit normal of the water surface above world point (x, z) (m), y up.
@@ -53,7 +56,10 @@ impl Water<'_> {
 
     /// Everything about the surface above (x, z): height, displacement, slope, normal, foam.
     pub fn surface(&self, x: f32, z: f32) -> Option<SurfaceSample> {
-        self.ocean()?.surface_at(f64::from(x), f64::from(z)).ok()
+        self.ocean()?
+            .water()
+            .surface_at(f64::from(x), f64::from(z))
+            .ok()
     }
 
     /// Sea time of the water, s.

@@ -126,7 +126,7 @@ fn a_change_of_weather_is_a_transition_and_a_new_grid_a_rebuild() {
     let mut fresh = OceanState::new(target.spectrum.clone(), target.config.clone()).unwrap();
     fresh.set_time(time).unwrap();
     for (&[x, z], height) in probe.points.iter().zip(seen) {
-        let expected = fresh.height_at(f64::from(x), f64::from(z)).unwrap();
+        let expected = fresh.water().height_at(f64::from(x), f64::from(z)).unwrap();
         assert_eq!(height, expected, "at ({x}, {z}), t = {time}");
     }
 
@@ -194,7 +194,7 @@ fn a_change_of_weather_looks_the_same_at_any_frame_rate() {
     let mut fresh = OceanState::new(target.spectrum.clone(), target.config.clone()).unwrap();
     fresh.set_time(time).unwrap();
     for (&[x, z], height) in points.iter().zip(seen) {
-        let expected = fresh.height_at(f64::from(x), f64::from(z)).unwrap();
+        let expected = fresh.water().height_at(f64::from(x), f64::from(z)).unwrap();
         assert_eq!(height, expected, "at ({x}, {z}), t = {time}");
     }
 }
@@ -234,7 +234,7 @@ fn float(sea: &OceanSettings, body: &Buoyancy) -> Vec<(f32, f32)> {
         reference.set_time(status(&app).time).unwrap();
         let points = columns(body, &transform);
         let mut heights = vec![0.0; points.len()];
-        reference.heights_at(&points, &mut heights).unwrap();
+        reference.water().heights_at(&points, &mut heights).unwrap();
         let water = heights.iter().sum::<f32>() / heights.len() as f32;
         samples.push((transform.translation.y, water));
     }
@@ -383,7 +383,10 @@ fn forces_for_a_physics_engine_are_archimedes() {
         let mut expected_torque = Vec3::ZERO;
         for point in &body.points {
             let p = transform.transform_point(point.offset);
-            let h = reference.height_at(f64::from(p.x), f64::from(p.z)).unwrap();
+            let h = reference
+                .water()
+                .height_at(f64::from(p.x), f64::from(p.z))
+                .unwrap();
             let depth = (h - (p.y - 0.5 * point.height)).clamp(0.0, point.height);
             let up = Vec3::Y * SEA_WATER_DENSITY * GRAVITY * point.volume * depth / point.height;
             expected_force += up;

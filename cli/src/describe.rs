@@ -107,7 +107,7 @@ fn engines() -> Vec<Value> {
 /// `--config` file (its keys "spectrum" and "config").
 pub fn sidecar(sea: &Sea, format: Format, ocean: &OceanState, scales: &[PngScale]) -> String {
     let looping = sea.looping.map(|l| {
-        let error = ocean.loop_error();
+        let error = ocean.diagnostics().loop_error();
         json!({
             "period_s": l.period,
             "frames": l.frames,
@@ -229,7 +229,7 @@ pub fn info(sea: &Sea, ocean: &OceanState, convergence: Option<LoopConvergence>)
         s,
         "  Hs {:.3} m (spectrum), {:.3} m (the cascades' bands); Tp {:.2} s",
         spectrum.significant_wave_height(),
-        4.0 * ocean.expected_variance().sqrt(),
+        4.0 * ocean.diagnostics().expected_variance().sqrt(),
         spectrum.peak_period()
     );
     let _ = writeln!(
@@ -237,7 +237,7 @@ pub fn info(sea: &Sea, ocean: &OceanState, convergence: Option<LoopConvergence>)
         "  choppiness {}, seed {}, foam: coverage ×{}, active decay τ_A = {} s, residual decay τ_R = {} s",
         config.choppiness, config.seed, config.foam.coverage, config.foam.active_decay, config.foam.residual_decay
     );
-    let calibration = ocean.foam_calibration();
+    let calibration = ocean.foam_view().calibration();
     let _ = writeln!(
         s,
         "  whitecaps: {:.2} % of the surface at U10 = {} m/s (Monahan & O'Muircheartaigh 1980)",
@@ -292,7 +292,7 @@ pub fn info(sea: &Sea, ocean: &OceanState, convergence: Option<LoopConvergence>)
     match sea.looping {
         Some(l) => {
             let _ = writeln!(s, "loop: {} s = {} frames", l.period, l.frames);
-            if let Some(e) = ocean.loop_error() {
+            if let Some(e) = ocean.diagnostics().loop_error() {
                 let _ = writeln!(
                     s,
                     "  frequency error of the loop: largest {:.2} %, mean {:.3} % (weighted by wave energy); every wave keeps ≥ 1 cycle per loop",

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use ocean_fft::{CascadeConfig, OceanConfig, SeaState, Spectrum};
+use ocean_fft::{CascadeConfig, OceanConfig, SeaState, Spectrum, SpectrumKind};
 
 use crate::args::{self, SeaArgs, FPS_RANGE, TOLERANCE_RANGE};
 use crate::error::CliError;
@@ -104,11 +104,12 @@ fn flag<T>(
     r.map_err(|e| CliError::usage(format!("{flag} {value}: {e}")))
 }
 
-/// The spectrum with the overrides applied.
+/// The spectrum with the overrides applied: `--wind` and `--fetch` make it a JONSWAP of that
+/// fetch law, every other parameter as the base spectrum had it.
 fn override_spectrum(base: Spectrum, args: &SeaArgs) -> Result<Spectrum, CliError> {
     let mut spectrum = base.clone();
     if args.wind.is_some() || args.fetch.is_some() {
-        let wind = args.wind.unwrap_or(base.wind_speed());
+        let mut params = base.params();
         let fetch = match (args.fetch, base.fetch()) {
             (Some(f), _) | (None, Some(f)) => f,
             (None, None) => {
@@ -121,24 +122,14 @@ fn override_spectrum(base: Spectrum, args: &SeaArgs) -> Result<Spectrum, CliErro
             Some(w) => ("--wind", w),
             None => ("--fetch", fetch),
         };
-        if base.gamma().is_none() {
+        let Some(gamma) = base.gamma() else {
             return Err(CliError::usage(format!(
                 "{name} {value}: the spectrum is a Phillips spectrum, which has no fetch law"
             )));
-        }
-        spectrum = flag(name, value, Spectrum::jonswap(wind, fetch))?;
-        // Everything else as the base spectrum had it.
-        let keep = |s: Spectrum| -> Result<Spectrum, ocean_fft::Error> {
-            s.with_gamma(base.gamma().unwrap_or(Spectrum::DEFAULT_GAMMA))?
-                .with_wind_direction(base.wind_direction())?
-                .with_spreading(base.spreading_kind())?
-                .with_swell(base.swell())?
-                .with_spread_blend(base.spread_blend())?
-                .with_short_wave_length(base.short_wave_length())?
-                .with_dispersion(base.dispersion())?
-                .with_depth_factor(base.depth_factor())
         };
-        spectrum = flag(name, value, keep(spectrum))?;
+        params.wind_speed = args.wind.unwrap_or(params.wind_speed);
+        params.kind = SpectrumKind::Jonswap { fetch, gamma };
+        spectrum = flag(name, value, Spectrum::from_params(&params))?;
     }
     if let Some(depth) = args.depth {
         spectrum = flag("--depth", depth, spectrum.with_depth(depth))?;

@@ -29,8 +29,10 @@ use ocean_fft::{OceanSnapshot, OceanState};
 use crate::error::CliError;
 use crate::setup::Sea;
 
-/// A texel component the library packs: f32 ([`OceanState::pack_texels`]) or f16
-/// ([`OceanState::pack_texels_f16`], which rounds to nearest and saturates to ±65504).
+/// A texel component the library packs: f32
+/// ([`Textures::pack`](ocean_fft::gpu::Textures::pack)) or f16
+/// ([`Textures::pack_f16`](ocean_fft::gpu::Textures::pack_f16), which rounds to nearest and
+/// saturates to ±65504).
 pub trait Component: Copy + Default + Send + 'static {
     /// Packs cascade `cascade` of `ocean` in `layout` into `out` (N² texels).
     ///
@@ -51,7 +53,7 @@ impl Component for f32 {
         layout: TexelLayout,
         out: &mut [[f32; 4]],
     ) -> Result<(), ocean_fft::Error> {
-        ocean.pack_texels(cascade, layout, out)
+        ocean.textures().pack(cascade, layout, out)
     }
 }
 
@@ -62,7 +64,7 @@ impl Component for f16 {
         layout: TexelLayout,
         out: &mut [[f16; 4]],
     ) -> Result<(), ocean_fft::Error> {
-        ocean.pack_texels_f16(cascade, layout, out)
+        ocean.textures().pack_f16(cascade, layout, out)
     }
 }
 

@@ -97,7 +97,7 @@ fn check_loop(sea: &Sea, ocean: &OceanState) -> Option<Warning> {
         wanted.min(f64::from(CascadeConfig::MAX_REPEAT_PERIOD)),
         sea.fps,
     );
-    let error = ocean.loop_error().map_or(String::new(), |e| {
+    let error = ocean.diagnostics().loop_error().map_or(String::new(), |e| {
         format!(
             ": the loop moves the waves' frequencies by {:.0} % on average (largest {:.0} %)",
             100.0 * e.mean_relative,

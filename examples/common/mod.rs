@@ -480,7 +480,7 @@ pub fn sample_window(
 ) -> Result<Vec<SurfaceSample>> {
     let spacing = window / fine as f64;
     let mut samples = vec![SurfaceSample::default(); fine * fine];
-    ocean.sample_grid(
+    ocean.water().at_rest_grid(
         [0.5 * spacing, 0.5 * spacing],
         spacing,
         [fine, fine],

@@ -95,14 +95,14 @@ impl OceanInfo {
         self.size = config.size;
         self.mip_levels = crate::mip_levels(config.size);
         self.wind = spectrum.wind_vector();
-        let subgrid = ocean.subgrid_slope_variance();
+        let subgrid = ocean.textures().subgrid_slope_variance();
         self.subgrid = [subgrid.along, subgrid.across];
-        self.height_sd = ocean.expected_variance().sqrt() as f32;
+        self.height_sd = ocean.diagnostics().expected_variance().sqrt() as f32;
         self.slope_table = table;
         self.significant_wave_height = spectrum.significant_wave_height();
         let peak_k = spectrum.peak_omega().powi(2) / ocean_fft::GRAVITY;
         self.peak_wavelength = std::f32::consts::TAU / peak_k;
-        self.foam_total = ocean.foam_coverage().total;
+        self.foam_total = ocean.foam_view().coverage().total;
         Ok(())
     }
 }

@@ -72,12 +72,12 @@ impl SeaSettings {
         self.config.foam = config.foam;
     }
 
-    /// Whether the grids of `config` hold at least `OceanState::MIN_CHANGE_SHARE` of the
+    /// Whether the grids of `config` hold at least `limits::MIN_CHANGE_SHARE` of the
     /// spectrum's variance.
     pub fn fits(&self) -> bool {
         self.config
             .fit(&self.spectrum)
-            .is_ok_and(|fit| fit.held >= OceanState::MIN_CHANGE_SHARE)
+            .is_ok_and(|fit| fit.held >= ocean_fft::limits::MIN_CHANGE_SHARE)
     }
 
     /// The config an ocean of these settings is built with: `config` itself if its grids
@@ -97,7 +97,7 @@ impl SeaSettings {
     /// What taking `self` to an ocean that runs `ocean` (built or last changed to `running`)
     /// needs: a new ocean when the grids differ in anything but the choppiness and the foam,
     /// when the water depth changes (`set_spectrum` keeps the dispersion), or when the
-    /// running grids hold less than `OceanState::MIN_CHANGE_SHARE` of the new sea (they may
+    /// running grids hold less than `limits::MIN_CHANGE_SHARE` of the new sea (they may
     /// be fitted to an earlier one); live changes otherwise, the choppiness first (so that a
     /// calmer sea at a higher choppiness is checked with the choppiness it will run with).
     pub fn plan(&self, running: &SeaSettings, ocean: &OceanState) -> Plan {
@@ -114,7 +114,7 @@ impl SeaSettings {
                 && ocean
                     .config()
                     .fit(&self.spectrum)
-                    .is_ok_and(|fit| fit.held >= OceanState::MIN_CHANGE_SHARE);
+                    .is_ok_and(|fit| fit.held >= ocean_fft::limits::MIN_CHANGE_SHARE);
         if !same_grids || !holds {
             return Plan::Rebuild(self.grids());
         }
@@ -160,13 +160,13 @@ pub fn build(spectrum: Spectrum, config: OceanConfig, time: f64) -> Result<Ocean
 }
 
 /// Moves `ocean` to sea time `t`: a step with the foam evolving, or a jump for a clock that
-/// went back or leapt ahead by more than `OceanState::MAX_STEP` (the foam is kept as it is).
+/// went back or leapt ahead by more than `limits::MAX_STEP` (the foam is kept as it is).
 ///
 /// # Errors
 /// The crate's, for a time it refuses (not finite).
 pub fn follow_clock(ocean: &mut OceanState, t: f64) -> Result<(), Error> {
     let now = ocean.time();
-    if t >= now && t - now <= OceanState::MAX_STEP {
+    if t >= now && t - now <= ocean_fft::limits::MAX_STEP {
         ocean.step_to(t)
     } else {
         ocean.set_time(t)
@@ -226,7 +226,7 @@ mod tests {
             panic!("a storm on calm grids must rebuild");
         };
         let fit = config.fit(&storm.spectrum).unwrap();
-        assert!(fit.held >= OceanState::MIN_CHANGE_SHARE, "{fit:?}");
+        assert!(fit.held >= ocean_fft::limits::MIN_CHANGE_SHARE, "{fit:?}");
         assert_eq!(config.size, 32);
     }
 }

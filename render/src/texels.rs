@@ -89,7 +89,7 @@ impl Texels {
                 TexelLayout::SlopeJacobianFoam,
             ] {
                 let chain = &mut self.scratch;
-                ocean.pack_texels(c, layout, &mut chain[..n * n])?;
+                ocean.textures().pack(c, layout, &mut chain[..n * n])?;
                 if layout == TexelLayout::SlopeJacobianFoam {
                     jacobian_variance += channel_variance(&chain[..n * n], 2);
                 }
@@ -241,7 +241,7 @@ mod tests {
                 (TexelLayout::DisplacementFoam, &texels.displacement),
                 (TexelLayout::SlopeJacobianFoam, &texels.slope),
             ] {
-                ocean.pack_texels_f16(c, layout, &mut expected).unwrap();
+                ocean.textures().pack_f16(c, layout, &mut expected).unwrap();
                 let level = texels
                     .levels(buffer)
                     .find(|l| l.layer == c && l.level == 0)

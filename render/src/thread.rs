@@ -244,7 +244,7 @@ impl Worker {
         let Frame {
             queries, samples, ..
         } = frame;
-        self.ocean.surfaces_at(queries, samples)?;
+        self.ocean.water().surfaces_at(queries, samples)?;
         frame.times.query = start.elapsed().as_secs_f64() * 1e3;
         Ok(())
     }

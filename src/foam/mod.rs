@@ -16,10 +16,12 @@ mod state;
 #[cfg(test)]
 mod tests;
 mod transport;
+mod view;
 
 pub use calibration::FoamCalibration;
 pub use config::FoamConfig;
 pub(crate) use state::{memory_bytes, Foam};
+pub use view::FoamView;
 
 /// How much of the surface is covered by foam: area fractions in [0, 1], each grid point
 /// counted with the fraction of it that is covered (the foam value there), summed in a fixed
@@ -27,8 +29,8 @@ pub(crate) use state::{memory_bytes, Foam};
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct FoamCoverage {
     /// Active whitecaps: foam of waves breaking now or within about the active lifetime τ_A
-    /// ([`FoamConfig::active_decay`]) — the mean of [`OceanState::active_foam`](crate::OceanState::active_foam). The
-    /// whitecap fraction the calibration aims at.
+    /// ([`FoamConfig::active_decay`]) — the mean of [`FoamView::active`]. The whitecap
+    /// fraction the calibration aims at.
     pub active: f32,
     /// Residual foam not under active foam: the mean of r·(1 − a), older foam and streaks
     /// that photographs of whitecaps leave out.

@@ -157,7 +157,7 @@ fn every_simd_level_and_thread_count_gives_the_same_foam() {
                 for buffer in [&foam.active, &foam.residual, &foam.total, &foam.breaking] {
                     bits.extend(buffer.iter().map(|v| v.to_bits()));
                 }
-                let c = ocean.foam_coverage();
+                let c = ocean.foam_view().coverage();
                 bits.extend([c.active, c.residual, c.total].map(f32::to_bits));
             };
             for _ in 0..40 {
@@ -168,7 +168,7 @@ fn every_simd_level_and_thread_count_gives_the_same_foam() {
             record(&ocean);
             ocean.pre_roll(3.0, 1.0 / 30.0).unwrap();
             record(&ocean);
-            let coverage = ocean.foam_coverage();
+            let coverage = ocean.foam_view().coverage();
             assert!(
                 coverage.active > 1e-3 && coverage.residual > 1e-4,
                 "the test needs foam: {coverage:?}"

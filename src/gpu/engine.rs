@@ -149,7 +149,7 @@ impl Engine {
 
     /// A position in the engine's frame and units, in metres in the crate's frame: the
     /// inverse of [`position`](Self::position) (for querying the ocean under an engine
-    /// object: [`OceanState::height_at`](crate::OceanState::height_at) takes the crate's x and z).
+    /// object: [`Water::height_at`](crate::Water::height_at) takes the crate's x and z).
     pub fn position_to_crate(self, p: [f64; 3]) -> [f64; 3] {
         let m = self.mapping();
         let mut out = [0.0; 3];

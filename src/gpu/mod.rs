@@ -1,5 +1,5 @@
 //! The end of the data flow, what a renderer needs: the layouts of the RGBA texels that
-//! [`Cascade::pack_texels`] and [`OceanState::pack_texels`] interleave a cascade's buffers into
+//! [`Cascade::pack_texels`] and [`Textures::pack`] interleave a cascade's buffers into
 //! (f32, and f16 with the `half` feature), the [`Vertex`] of a cascade mesh with its triangle
 //! indices, the green channel of tangent-space normal maps ([`NormalMapGreen`]), and each engine's
 //! axes and units ([`Engine`]).
@@ -10,13 +10,16 @@
 //! nothing is allocated inside a pool.
 
 mod engine;
+mod ocean;
 
 use rayon::prelude::*;
 
 pub use engine::Engine;
+pub use ocean::Textures;
 
 use crate::cascade::Cascade;
 use crate::error::{self, Error};
+#[cfg(doc)]
 use crate::ocean::OceanState;
 
 /// What the four channels of a packed RGBA texel hold. Texel (i, j) (index `j * N + i`)
@@ -35,7 +38,7 @@ use crate::ocean::OceanState;
 /// | [`Normal`](Self::Normal) | n_x | n_y | n_z | σ² sub-grid | yes |
 ///
 /// The layouts with foam take the foam an [`OceanState`] holds, so they are packed with
-/// [`OceanState::pack_texels`]; [`Cascade::pack_texels`] refuses them with
+/// [`Textures::pack`]; [`Cascade::pack_texels`] refuses them with
 /// [`Error::NotApplicable`] naming `layout`. The foam is one field for the whole ocean on
 /// cascade 0's grid: cascade 0's texels carry it, the other cascades' foam channel is 0.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -46,12 +49,12 @@ pub enum TexelLayout {
     /// Jacobian J (dimensionless, < 0 where the surface folds).
     DisplacementJacobian,
     /// `[D_x, η, D_z, foam]`: RGB as in [`DisplacementJacobian`](Self::DisplacementJacobian),
-    /// A the foam coverage in [0, 1]. Only through [`OceanState::pack_texels`].
+    /// A the foam coverage in [0, 1]. Only through [`Textures::pack`] ([`OceanState::textures`]).
     DisplacementFoam,
     /// `[∂y/∂x, ∂y/∂z, J, foam]`: the slope of the displaced surface (dimensionless), the
     /// Jacobian J and the foam coverage in [0, 1]. Slopes of cascades add, so a shader may
     /// sum the RG of every cascade and take the normal of the sum as
-    /// normalize(−s_x, 1, −s_z). Only through [`OceanState::pack_texels`].
+    /// normalize(−s_x, 1, −s_z). Only through [`Textures::pack`] ([`OceanState::textures`]).
     SlopeJacobianFoam,
     /// `[n_x, n_y, n_z, σ²]`: the unit normal of the displaced surface (y up; n_y < 0 where
     /// the surface folds), and in alpha the **sub-grid mean-square slope** σ² (dimensionless,
@@ -77,7 +80,7 @@ impl TexelLayout {
     ];
 
     /// Whether the layout holds foam, and so can be packed only through
-    /// [`OceanState::pack_texels`].
+    /// [`Textures::pack`].
     pub fn has_foam(self) -> bool {
         matches!(
             self,
@@ -270,7 +273,8 @@ fn check_cascade_layout(layout: TexelLayout) -> Result<(), Error> {
     if layout.has_foam() {
         return Err(Error::NotApplicable {
             name: "layout",
-            reason: "a bare Cascade holds no foam: pack this layout with OceanState::pack_texels",
+            reason:
+                "a bare Cascade holds no foam: pack this layout with OceanState::textures().pack",
         });
     }
     Ok(())
@@ -323,7 +327,7 @@ impl Cascade {
     ///
     /// # Errors
     /// [`Error::NotApplicable`] naming `layout` for a layout with foam (a bare cascade has
-    /// none: use [`OceanState::pack_texels`]); [`Error::LengthMismatch`] naming `out` unless
+    /// none: use [`Textures::pack`]); [`Error::LengthMismatch`] naming `out` unless
     /// `out.len()` is N². Nothing is written then.
     pub fn pack_texels(&self, layout: TexelLayout, out: &mut [[f32; 4]]) -> Result<(), Error> {
         check_cascade_layout(layout)?;
@@ -461,59 +465,6 @@ impl Cascade {
 
     fn n_squared(&self) -> usize {
         self.size() * self.size()
-    }
-}
-
-impl OceanState {
-    /// Packs cascade `cascade` (0 the largest) into interleaved RGBA32F texels of `layout`
-    /// (see [`TexelLayout`]), texel (i, j) of that cascade's N×N grid at `out[j * N + i]`.
-    /// The ocean's one foam field lives on cascade 0's grid ([`OceanState::foam`]), so the
-    /// layouts with foam carry it in cascade 0's texels and 0 in every other cascade's (a
-    /// shader that sums the foam channels, or combines them as 1 − Π(1 − f), gets the foam).
-    /// Copies the values bit for bit. Row blocks in
-    /// parallel; allocates nothing inside a rayon pool; the result does not depend on the
-    /// number of threads.
-    ///
-    /// # Errors
-    /// [`Error::IndexOutOfRange`] naming `cascade` unless it is below the number of cascades;
-    /// [`Error::LengthMismatch`] naming `out` unless `out.len()` is that cascade's N².
-    /// Nothing is written then.
-    pub fn pack_texels(
-        &self,
-        cascade: usize,
-        layout: TexelLayout,
-        out: &mut [[f32; 4]],
-    ) -> Result<(), Error> {
-        let (sources, n) = self.pack_sources(cascade, out.len())?;
-        sources.pack_f32(n, layout, out);
-        Ok(())
-    }
-
-    /// [`OceanState::pack_texels`] into RGBA16F texels (with the `half` feature), rounded and
-    /// saturated as [`Cascade::pack_texels_f16`] says: nearest f16, ties to even, ±65504
-    /// beyond the f16 range (never ±∞ or NaN).
-    ///
-    /// # Errors
-    /// As [`OceanState::pack_texels`]; nothing is written then.
-    #[cfg(feature = "half")]
-    pub fn pack_texels_f16(
-        &self,
-        cascade: usize,
-        layout: TexelLayout,
-        out: &mut [[half::f16; 4]],
-    ) -> Result<(), Error> {
-        let (sources, n) = self.pack_sources(cascade, out.len())?;
-        sources.pack_f16(n, layout, out);
-        Ok(())
-    }
-
-    /// Checks a pack of cascade `cascade` into a buffer of `len` texels; its sources and N.
-    fn pack_sources(&self, cascade: usize, len: usize) -> Result<(Sources<'_>, usize), Error> {
-        error::index("cascade", cascade, self.cascades().len())?;
-        let c = &self.cascades()[cascade];
-        error::length("out", len, c.size() * c.size())?;
-        let foam = (cascade == 0).then(|| self.foam());
-        Ok((Sources::new(c, foam), c.size()))
     }
 }
 

@@ -55,7 +55,7 @@
 /// for tick in 1..=3 {
 ///     ocean.step_to(f64::from(tick) / 30.0)?;      // the same f64 times on every peer
 /// }
-/// let y = ocean.height_at(12.0, -3.5)?;             // m: the same bits on every machine
+/// let y = ocean.water().height_at(12.0, -3.5)?;             // m: the same bits on every machine
 /// assert!(y.is_finite());
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```

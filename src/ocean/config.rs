@@ -79,7 +79,7 @@ pub struct OceanConfig {
     /// each (default: `true`, faster for three 256² cascades on 2 cores in the
     /// `ocean_parallel_cascades` bench). The results are bit-identical either way.
     pub parallel_cascades: bool,
-    /// How [`OceanState::height_at`](crate::OceanState::height_at) and the queries built on
+    /// How [`Water::height_at`](crate::Water::height_at) and the queries built on
     /// it invert the horizontal displacement.
     #[cfg_attr(feature = "serde", serde(default))]
     pub query: QueryConfig,

@@ -50,7 +50,7 @@ impl SeaFit {
 impl OceanConfig {
     /// The largest tile of [`fitted`](Self::fitted) grids, in peak wavelengths: enough that
     /// the waves longer than it hold far below 1 % of any sea here, and that a view of a few
-    /// wavelengths shows no repeat (the presets' hand-chosen tiles are 9 to 14).
+    /// wavelengths shows no repeat (0.3's hand-chosen preset tiles were 9 to 14).
     pub const FIT_PEAK_WAVELENGTHS: f32 = 12.0;
 
     /// The share of a spectrum's variance that [`fitted`](Self::fitted) grids hold at least
@@ -210,51 +210,37 @@ impl SeaFit {
 }
 
 impl OceanState {
-    /// The share of a new spectrum's variance that the grids must hold for
-    /// [`set_spectrum`](Self::set_spectrum) to accept it (H_s at least 89 % of the sea's);
-    /// [`set_spectrum_unfitted`](Self::set_spectrum_unfitted) takes any.
-    pub const MIN_CHANGE_SHARE: f64 = 0.8;
+    #[deprecated(since = "0.4.0", note = "use `ocean_fft::limits::MIN_CHANGE_SHARE`")]
+    #[doc(hidden)]
+    pub const MIN_CHANGE_SHARE: f64 = super::limits::MIN_CHANGE_SHARE;
 
-    /// The share of the spectrum's variance (in the config's band) that the grids must hold
-    /// for [`OceanState::new`] to build the ocean: below it the simulated H_s is under half
-    /// the sea's, another sea than the one asked for.
-    pub const MIN_BUILD_SHARE: f64 = 0.25;
+    #[deprecated(since = "0.4.0", note = "use `ocean_fft::limits::MIN_BUILD_SHARE`")]
+    #[doc(hidden)]
+    pub const MIN_BUILD_SHARE: f64 = super::limits::MIN_BUILD_SHARE;
 
-    /// λ_max·σ at the largest choppiness λ_max, σ² the mean-square slope the grids hold:
-    /// about 53 % of a Gaussian sea's surface folds there. See
-    /// [`max_choppiness`](Self::max_choppiness).
-    pub const MAX_FOLD_SCALE: f32 = 4.0;
+    #[deprecated(since = "0.4.0", note = "use `ocean_fft::limits::MAX_FOLD_SCALE`")]
+    #[doc(hidden)]
+    pub const MAX_FOLD_SCALE: f32 = super::limits::MAX_FOLD_SCALE;
 
-    /// What the grids hold of the current spectrum (see [`SeaFit`]; during a change of
-    /// weather, of the new one). Costs a few quadratures, about half a millisecond.
+    /// Deprecated: [`Diagnostics::fit`](super::Diagnostics::fit) through
+    /// [`OceanState::diagnostics`].
+    #[deprecated(since = "0.4.0", note = "use `ocean.diagnostics().fit()`")]
+    #[doc(hidden)]
     pub fn fit(&self) -> SeaFit {
-        self.config
-            .fit_bands(&self.spectrum, &self.config.bands_unchecked())
+        self.diagnostics().fit()
     }
 
-    /// The largest choppiness [`set_choppiness`](Self::set_choppiness) and
-    /// [`OceanState::new`] accept for this spectrum and these grids,
-    /// [`MAX_FOLD_SCALE`](Self::MAX_FOLD_SCALE)/σ, with σ² the mean-square slope the
-    /// cascades' bands hold ([`Spectrum::slope_variance`] summed over them: a quadrature of
-    /// about a millisecond, which [`set_choppiness`](Self::set_choppiness) pays too).
-    ///
-    /// Why: the Jacobian of the horizontal displacement is J = (1 + λD_xx)(1 + λD_zz) −
-    /// λ²D_xz², and D_xx + D_zz (multiplier −|k|) has the variance of the slope, σ². For a
-    /// Gaussian sea (an isotropic one; a wind sea's spreading changes these little) the
-    /// surface folds, J < 0, on 0.3 % of its area at λσ = 0.5 (the presets sit below it),
-    /// 41 % at λσ = 2, 53 % at λσ = 4 and never more than 58 % at any λ (where
-    /// D_xx·D_zz < D_xz²). Beyond λσ = 4 more choppiness folds at most a few percent more
-    /// of a surface already folded nearly everywhere it can, and the world queries'
-    /// inversion of the displacement stops converging. Their heights stay those of the sea
-    /// even then: the inversion's iterate is a point of the surface, and the mean-level
-    /// correction λ∫k S d²k is at most λσ·√m0 = H_s here (Cauchy–Schwarz).
+    /// Deprecated: [`Diagnostics::max_choppiness`](super::Diagnostics::max_choppiness)
+    /// through [`OceanState::diagnostics`].
+    #[deprecated(since = "0.4.0", note = "use `ocean.diagnostics().max_choppiness()`")]
+    #[doc(hidden)]
     pub fn max_choppiness(&self) -> f32 {
-        max_choppiness(&self.spectrum, &self.config.bands_unchecked())
+        self.diagnostics().max_choppiness()
     }
 
     /// [`set_spectrum`](Self::set_spectrum) for a sea the grids may hold less than
-    /// [`MIN_CHANGE_SHARE`](Self::MIN_CHANGE_SHARE) of: the caller accepts a sea whose
-    /// simulated H_s falls short of the spectrum's (see [`fit`](Self::fit) after the call).
+    /// [`limits::MIN_CHANGE_SHARE`](crate::limits::MIN_CHANGE_SHARE) of: the caller accepts a sea whose
+    /// simulated H_s falls short of the spectrum's (see [`Diagnostics::fit`](super::Diagnostics::fit) after the call).
     ///
     /// # Errors
     /// Those of [`set_spectrum`](Self::set_spectrum) but [`Error::SeaDoesNotFit`]; nothing
@@ -269,19 +255,19 @@ impl OceanState {
     }
 
     /// Refuses a new spectrum the grids hold less than
-    /// [`MIN_CHANGE_SHARE`](Self::MIN_CHANGE_SHARE) of.
+    /// [`limits::MIN_CHANGE_SHARE`](crate::limits::MIN_CHANGE_SHARE) of.
     pub(super) fn check_change_fit(&self, spectrum: &Spectrum) -> Result<(), Error> {
         let fit = self
             .config
             .fit_bands(spectrum, &self.config.bands_unchecked());
-        if fit.held < Self::MIN_CHANGE_SHARE {
-            return Err(fit.error("spectrum", &self.config, Self::MIN_CHANGE_SHARE));
+        if fit.held < super::limits::MIN_CHANGE_SHARE {
+            return Err(fit.error("spectrum", &self.config, super::limits::MIN_CHANGE_SHARE));
         }
         Ok(())
     }
 
     /// Refuses a new spectrum too steep for the current choppiness (its
-    /// [`max_choppiness`](Self::max_choppiness) below it).
+    /// [`max_choppiness`](super::Diagnostics::max_choppiness) below it).
     pub(super) fn check_change_choppiness(&self, spectrum: &Spectrum) -> Result<(), Error> {
         let bands = self.config.bands_unchecked();
         if self.config.choppiness > max_choppiness(spectrum, &bands) {
@@ -289,21 +275,21 @@ impl OceanState {
                 name: "spectrum",
                 reason: "the new sea is so steep that the current choppiness would fold it \
                          nearly everywhere: lower the choppiness first (see \
-                         `OceanState::max_choppiness`)",
+                         `Diagnostics::max_choppiness`)",
             });
         }
         Ok(())
     }
 }
 
-/// [`OceanState::max_choppiness`] for a spectrum and bands.
+/// [`Diagnostics::max_choppiness`](super::Diagnostics::max_choppiness) for a spectrum and bands.
 pub(super) fn max_choppiness(spectrum: &Spectrum, bands: &[(f32, f32)]) -> f32 {
     let slope: f64 = bands
         .iter()
         .map(|&(lo, hi)| f64::from(spectrum.slope_variance(lo, hi).total()))
         .sum();
     if slope > 0.0 {
-        error::saturate(f64::from(OceanState::MAX_FOLD_SCALE) / slope.sqrt())
+        error::saturate(f64::from(super::limits::MAX_FOLD_SCALE) / slope.sqrt())
     } else {
         f32::MAX
     }
@@ -319,15 +305,15 @@ pub(super) fn check_choppiness(
     error::in_range("choppiness", choppiness, Included(0.0), Included(limit))
 }
 
-/// Checks that the grids hold at least [`OceanState::MIN_BUILD_SHARE`] of the sea.
+/// Checks that the grids hold at least [`limits::MIN_BUILD_SHARE`](crate::limits::MIN_BUILD_SHARE) of the sea.
 pub(super) fn check_build_fit(
     spectrum: &Spectrum,
     config: &OceanConfig,
     bands: &[(f32, f32)],
 ) -> Result<(), Error> {
     let fit = config.fit_bands(spectrum, bands);
-    if fit.held < OceanState::MIN_BUILD_SHARE {
-        return Err(fit.error("spectrum", config, OceanState::MIN_BUILD_SHARE));
+    if fit.held < super::limits::MIN_BUILD_SHARE {
+        return Err(fit.error("spectrum", config, super::limits::MIN_BUILD_SHARE));
     }
     Ok(())
 }

@@ -3,7 +3,6 @@
 
 use std::ops::Bound::Included;
 
-use crate::cascade::Cascade;
 use crate::error::{self, Error};
 use crate::math::determinism::with_math;
 use crate::spectrum::Spectrum;
@@ -23,7 +22,7 @@ pub(crate) struct Change {
     called: f64,
     /// The blend's length in seconds of simulated time.
     duration: f64,
-    /// The time the blend begins: `called` + [`OceanState::TRANSITION_LAG`] (`called` for a
+    /// The time the blend begins: `called` + [`limits::TRANSITION_LAG`](crate::limits::TRANSITION_LAG) (`called` for a
     /// change at once).
     start: f64,
     /// The work that prepares the new sea in wave vectors drawn (see
@@ -33,7 +32,7 @@ pub(crate) struct Change {
     /// Whether every piece is done.
     prepared: bool,
     /// The new sea's weight at the last update (what the cascades and the foam show).
-    weight: f64,
+    pub(super) weight: f64,
 }
 
 impl Change {
@@ -68,14 +67,13 @@ impl Change {
 }
 
 impl OceanState {
-    /// Longest accepted `duration` of [`set_spectrum`](Self::set_spectrum), in seconds (as
-    /// long as the ocean's time can run).
-    pub const MAX_TRANSITION: f64 = Cascade::MAX_TIME;
+    #[deprecated(since = "0.4.0", note = "use `ocean_fft::limits::MAX_TRANSITION`")]
+    #[doc(hidden)]
+    pub const MAX_TRANSITION: f64 = super::limits::MAX_TRANSITION;
 
-    /// Delay in seconds of simulated time between a call of
-    /// [`set_spectrum`](Self::set_spectrum) with a positive duration and the start of its
-    /// blend, over which the new sea is prepared a piece at a time.
-    pub const TRANSITION_LAG: f64 = 0.45;
+    #[deprecated(since = "0.4.0", note = "use `ocean_fft::limits::TRANSITION_LAG`")]
+    #[doc(hidden)]
+    pub const TRANSITION_LAG: f64 = super::limits::TRANSITION_LAG;
 
     /// Changes the weather: from the current time the sea turns into `spectrum` over
     /// `duration` seconds of simulated time, every wave keeping its phase, the foam kept.
@@ -106,10 +104,10 @@ impl OceanState {
     /// never dip (a wind that turns 90° moves energy from one lobe to the other; an amplitude
     /// blend would halve the sea half way). The weight w rises from 0 to 1 as the smoothstep
     /// 3τ² − 2τ³ of the elapsed fraction τ of `duration`, so waves that appear or vanish do so
-    /// smoothly; [`expected_variance`](Self::expected_variance) moves monotonically.
+    /// smoothly; [`expected_variance`](super::Diagnostics::expected_variance) moves monotonically.
     ///
     /// **When.** With a positive `duration` the blend begins
-    /// [`TRANSITION_LAG`](Self::TRANSITION_LAG) seconds of simulated time after the call and
+    /// [`limits::TRANSITION_LAG`](crate::limits::TRANSITION_LAG) seconds of simulated time after the call and
     /// `duration` counts from there. Over the lag the new sea is prepared in pieces of up to
     /// about half a plain step (new amplitudes drawn a few rows at a time, the foam's
     /// calibrations), each step doing the share of the work that the share of the lag
@@ -123,19 +121,20 @@ impl OceanState {
     ///
     /// **A function of time.** The waves are a function of the calls, the simulated times
     /// they were made at and the current time, never of the steps between: every cascade
-    /// buffer, [`Cascade::h0`], the statistics and the [foam calibration](Self::foam_calibration)
-    /// have the same bits at the same time whether the ocean stepped at 30 or 144 fps, took
-    /// one step across the change or jumped into it with [`set_time`](Self::set_time) (before
-    /// the blend's start the old sea, during it the blend of that time, after its end the new
+    /// buffer, [`Cascade::h0`](crate::Cascade::h0), the statistics and the
+    /// [foam calibration](crate::FoamView::calibration) have the same bits at the same time
+    /// whether the ocean stepped at 30 or 144 fps, took one step across the change or jumped
+    /// into it with [`set_time`](Self::set_time) (before the blend's start the old sea, during it the blend of that time, after its end the new
     /// sea, and the change is over: a later jump back shows the new sea). A new call during a
     /// change starts from the sea as it is at the current time. The foam on the water is
     /// not a function of time: it is integrated over the steps taken, as always.
     ///
     /// **What the getters say.** [`spectrum`](Self::spectrum) returns `spectrum` from this call
-    /// on; [`transition_progress`](Self::transition_progress) the new sea's weight w at the
+    /// on; [`Diagnostics::transition_progress`](super::Diagnostics::transition_progress)
+    /// the new sea's weight w at the
     /// last update while the change lasts (0 before the blend begins); the cascades'
-    /// buffers, [`Cascade::h0`], the expected variance and the
-    /// [foam calibration](Self::foam_calibration) the sea as blended at the last update.
+    /// buffers, [`Cascade::h0`](crate::Cascade::h0), the expected variance and the
+    /// [foam calibration](crate::FoamView::calibration) the sea as blended at the last update.
     ///
     /// **Foam.** The foam is kept; its breaking threshold follows the blended sea (calibrated
     /// afresh at w = 0, 1/8, …, 1 and interpolated between, so a function of w), its drift
@@ -148,14 +147,14 @@ impl OceanState {
     ///
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for a negative, NaN or infinite
-    /// `duration` or one above [`MAX_TRANSITION`](Self::MAX_TRANSITION);
+    /// `duration` or one above [`limits::MAX_TRANSITION`](crate::limits::MAX_TRANSITION);
     /// [`Error::SeaDoesNotFit`] naming `spectrum` if the grids hold less than
-    /// [`MIN_CHANGE_SHARE`](Self::MIN_CHANGE_SHARE) of its variance (build the ocean for the
+    /// [`limits::MIN_CHANGE_SHARE`](crate::limits::MIN_CHANGE_SHARE) of its variance (build the ocean for the
     /// roughest sea it will change to, with [`OceanConfig::fitted`](crate::OceanConfig::fitted),
     /// or accept the loss with [`set_spectrum_unfitted`](Self::set_spectrum_unfitted));
     /// [`Error::NotApplicable`] naming `spectrum.dispersion` for another dispersion, or
     /// naming `spectrum` for a sea so steep that the current choppiness is above its
-    /// [`max_choppiness`](Self::max_choppiness);
+    /// [`max_choppiness`](super::Diagnostics::max_choppiness);
     /// [`Error::AmplitudeTooLarge`] if the new sea is too strong for the grids at the
     /// current choppiness (as [`OceanState::new`] would refuse it); [`Error::OutOfMemory`] if
     /// the system refuses the change's buffers (16 bytes a grid point, once). Nothing
@@ -176,7 +175,7 @@ impl OceanState {
             "duration",
             duration,
             Included(0.0),
-            Included(Self::MAX_TRANSITION),
+            Included(super::limits::MAX_TRANSITION),
         )?;
         if spectrum.dispersion() != self.spectrum.dispersion() {
             return Err(Error::NotApplicable {
@@ -204,7 +203,7 @@ impl OceanState {
         let lag = if duration == 0.0 {
             0.0
         } else {
-            Self::TRANSITION_LAG
+            super::limits::TRANSITION_LAG
         };
         self.change = Some(Change {
             called,
@@ -221,12 +220,13 @@ impl OceanState {
         Ok(())
     }
 
-    /// The weight w in [0, 1] of the new sea in a change of weather at the last update
-    /// (`None` when no change is in progress): 0 until the blend begins
-    /// ([`TRANSITION_LAG`](Self::TRANSITION_LAG) after the call), then rising to 1 over the
-    /// change's duration (see [`set_spectrum`](Self::set_spectrum)).
+    #[deprecated(
+        since = "0.4.0",
+        note = "use `ocean.diagnostics().transition_progress()`"
+    )]
+    #[doc(hidden)]
     pub fn transition_progress(&self) -> Option<f64> {
-        self.change.map(|change| change.weight)
+        self.diagnostics().transition_progress()
     }
 
     /// Changes the foam's settings while the ocean runs: the whitecaps are calibrated afresh

@@ -4,8 +4,10 @@
 //! its snapshots.
 
 mod config;
+mod diagnostics;
 mod fit;
 mod foam_api;
+pub mod limits;
 mod live;
 mod query_api;
 mod snapshot;
@@ -15,23 +17,49 @@ use crate::cascade::{Cascade, LoopError};
 use crate::error::{self, Error};
 use crate::foam::Foam;
 use crate::query::frame::{Frame, Frames};
-use crate::spectrum::{SlopeVariance, Spectrum};
+use crate::spectrum::Spectrum;
 
 pub use config::OceanConfig;
+pub use diagnostics::Diagnostics;
 pub use fit::SeaFit;
 pub use snapshot::OceanSnapshot;
 
 /// An ocean: cascades of one spectrum over disjoint wave-number bands, the time, and foam.
+///
+/// What it does, by group:
+///
+/// - **Stepping**: [`new`](Self::new), [`step`](Self::step), [`step_to`](Self::step_to),
+///   [`set_time`](Self::set_time), [`pre_roll`](Self::pre_roll), [`time`](Self::time).
+/// - **Weather**: [`set_spectrum`](Self::set_spectrum) (a change over simulated time),
+///   [`set_spectrum_unfitted`](Self::set_spectrum_unfitted),
+///   [`set_choppiness`](Self::set_choppiness), [`set_foam_config`](Self::set_foam_config),
+///   [`spectrum`](Self::spectrum), [`config`](Self::config).
+/// - **Queries**: [`water`](Self::water) for the world queries (heights and surfaces at world
+///   points, samples at rest points, batches, grids), [`surface`](Self::surface) for a handle
+///   other threads query while the ocean steps.
+/// - **Foam**: [`foam`](Self::foam) (the field), [`foam_view`](Self::foam_view) (its parts,
+///   breaking, values at a point, coverage, calibration), [`clear_foam`](Self::clear_foam).
+/// - **Buffers and textures**: [`cascades`](Self::cascades) (each cascade's buffers),
+///   [`textures`](Self::textures) (texels with the foam, the sub-grid slope variance).
+/// - **Snapshots**: [`snapshot`](Self::snapshot), [`restore`](Self::restore) (and
+///   [`OceanSnapshot::capture`] to refill one without allocating).
+/// - **Diagnostics**: [`diagnostics`](Self::diagnostics) (what the grids hold of the sea, the
+///   progress of a change of weather, the largest choppiness, the loop error, the mean level,
+///   the expected variance).
+///
+/// The limits its calls check (the longest step, the share of a sea the grids must hold, …)
+/// are constants of the [`limits`] module.
 ///
 /// ```
 /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
 /// let spectrum = Spectrum::jonswap(10.0, 100_000.0)?;
 /// let config = OceanConfig { size: 64, ..OceanConfig::default() };
 /// let mut ocean = OceanState::new(spectrum, config)?;
-/// ocean.step(1.0 / 60.0)?;                       // s
-/// let s = ocean.sample(12.0, -40.0)?;            // world x, z in m
-/// let y = ocean.height_at(12.0, -40.0)?;         // water height at that point, m
-/// assert!(s.height.is_finite() && y.is_finite());
+/// ocean.step(1.0 / 60.0)?;                              // s
+/// let water = ocean.water();
+/// let y = water.height_at(12.0, -40.0)?;                // m, water height at world (x, z)
+/// let s = water.at_rest(12.0, -40.0)?;                  // the water resting at (x0, z0), m
+/// assert!(y.is_finite() && s.height.is_finite());
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```
 ///
@@ -56,20 +84,21 @@ pub struct OceanState {
 }
 
 impl OceanState {
-    /// Largest accepted time step of [`OceanState::step`], in seconds.
-    pub const MAX_STEP: f64 = 3600.0;
+    #[deprecated(since = "0.4.0", note = "use `ocean_fft::limits::MAX_STEP`")]
+    #[doc(hidden)]
+    pub const MAX_STEP: f64 = limits::MAX_STEP;
 
     /// Builds the cascades (h0 of each drawn once) on the bands of
     /// [`OceanConfig::bands`], at t = 0 with no foam, and calibrates the whitecaps (the
-    /// breaking threshold, [`foam_calibration`](Self::foam_calibration)).
+    /// breaking threshold, [`calibration`](crate::FoamView::calibration)).
     ///
     /// # Errors
     /// Those of [`OceanConfig::validate`] and of [`Cascade::new`] for each cascade;
     /// [`Error::SeaDoesNotFit`] naming `spectrum` if the grids hold less than
-    /// [`MIN_BUILD_SHARE`](Self::MIN_BUILD_SHARE) of its variance (the message says whether
+    /// [`limits::MIN_BUILD_SHARE`] of its variance (the message says whether
     /// the largest tile or the finest cell is at fault; [`OceanConfig::fitted`] gives grids
     /// that hold it); [`Error::OutOfRange`] naming `choppiness` above
-    /// [`max_choppiness`](Self::max_choppiness);
+    /// [`max_choppiness`](super::Diagnostics::max_choppiness);
     /// [`Error::AmplitudeTooLarge`] also if, with [`OceanConfig::second_order`], the
     /// second-order terms could overflow f32; [`Error::OutOfMemory`] if the system refuses the
     /// foam's or the second order's buffers.
@@ -137,7 +166,7 @@ impl OceanState {
     ///
     /// # Errors
     /// [`Error::OutOfRange`] naming `choppiness` above
-    /// [`max_choppiness`](Self::max_choppiness), where the surface folds nearly everywhere
+    /// [`max_choppiness`](super::Diagnostics::max_choppiness), where the surface folds nearly everywhere
     /// it can; as [`Cascade::set_choppiness`], for any cascade; no cascade changes then.
     /// (The check costs a slope quadrature, about a millisecond: set it when it changes, not
     /// every frame.)
@@ -166,37 +195,30 @@ impl OceanState {
         self.config.choppiness = choppiness;
     }
 
-    /// How far the repeat period moved the waves' frequencies, over every cascade (`None`
-    /// without one): the largest relative error, and the mean weighted by each wave's share
-    /// of the height variance.
+    /// Deprecated: [`Diagnostics::loop_error`] through [`OceanState::diagnostics`].
+    #[deprecated(since = "0.4.0", note = "use `ocean.diagnostics().loop_error()`")]
+    #[doc(hidden)]
     pub fn loop_error(&self) -> Option<LoopError> {
-        LoopError::combine(self.cascades.iter().filter_map(Cascade::loop_error))
+        self.diagnostics().loop_error()
     }
 
-    /// The mean-level correction in metres in the summed height: the sum of every cascade's
-    /// [`Cascade::mean_level_offset`], λ·2 Σ_k |k| |h0(k)|² over all of them. With it the
-    /// Eulerian mean of the displaced surface is still water (y = 0) for any choppiness;
-    /// without it the sea would sit about λ ∫ k S(k) d²k lower (about 4.8 cm for the
-    /// default sea at λ = 1, 34 cm for the storm preset at its λ = 1.2).
+    /// Deprecated: [`Diagnostics::mean_level_offset`] through [`OceanState::diagnostics`].
+    #[deprecated(
+        since = "0.4.0",
+        note = "use `ocean.diagnostics().mean_level_offset()`"
+    )]
+    #[doc(hidden)]
     pub fn mean_level_offset(&self) -> f32 {
-        self.cascades.iter().map(Cascade::mean_level_offset).sum()
+        self.diagnostics().mean_level_offset()
     }
 
-    /// Slope variance along and across the wind that the spectrum holds above the finest
-    /// cascade's band, up to [`SlopeVariance::DEFAULT_CUTOFF`]: the roughness the grids
-    /// cannot show (the last cascade's [`Cascade::subgrid_slope_variance`]; a cascade `c`
-    /// reports what lies above its own band). For another cut-off use
-    /// [`Spectrum::slope_variance`] from the top of the last band.
-    pub fn subgrid_slope_variance(&self) -> SlopeVariance {
-        self.cascades
-            .last()
-            .map(Cascade::subgrid_slope_variance)
-            .unwrap_or_default()
-    }
-
-    /// Expected variance of the summed height in m²: the sum over cascades of
-    /// [`Cascade::expected_variance`]; 4√ of it is the expected H_s of the simulated sea.
+    /// Deprecated: [`Diagnostics::expected_variance`] through [`OceanState::diagnostics`].
+    #[deprecated(
+        since = "0.4.0",
+        note = "use `ocean.diagnostics().expected_variance()`"
+    )]
+    #[doc(hidden)]
     pub fn expected_variance(&self) -> f64 {
-        self.cascades.iter().map(Cascade::expected_variance).sum()
+        self.diagnostics().expected_variance()
     }
 }

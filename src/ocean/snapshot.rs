@@ -13,12 +13,12 @@ use super::OceanState;
 /// follows from these, so [`OceanState::restore`] brings an ocean back to exactly the bits it
 /// had when the snapshot was taken, and it then steps to the same bits as the original did.
 ///
-/// A snapshot holds 8 bytes per point of the foam grid (cascade 0's N×N) and the drift of the foam's streaks. Take one with
-/// [`OceanState::snapshot`], or refill one without allocating with
-/// [`OceanState::snapshot_into`]. With the `serde` feature it can be saved and loaded; a
-/// loaded snapshot is checked when it is restored. For a restore that is bit-exact, the format
-/// must read numbers back exactly: binary formats do, and so does `serde_json` with its
-/// `float_roundtrip` feature (its default parser may be one ulp off).
+/// A snapshot holds 8 bytes per point of the foam grid (cascade 0's N×N) and the drift of
+/// the foam's streaks. Take one with [`OceanState::snapshot`], or refill one without
+/// allocating with [`capture`](Self::capture). With the `serde` feature it can be saved and
+/// loaded; a loaded snapshot is checked when it is restored. For a restore that is bit-exact,
+/// the format must read numbers back exactly: binary formats do, and so does `serde_json`
+/// with its `float_roundtrip` feature (its default parser may be one ulp off).
 ///
 /// ```
 /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
@@ -28,11 +28,11 @@ use super::OceanState;
 /// ocean.step(0.5)?;
 /// let saved = ocean.snapshot();
 /// ocean.step(0.25)?;
-/// let later = ocean.height_at(3.0, 4.0)?;
+/// let later = ocean.water().height_at(3.0, 4.0)?;
 ///
 /// ocean.restore(&saved)?;                  // back to t = 0.5 s, foam and all
 /// ocean.step(0.25)?;
-/// assert_eq!(ocean.height_at(3.0, 4.0)?, later);
+/// assert_eq!(ocean.water().height_at(3.0, 4.0)?, later);
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```
 #[derive(Debug, Clone, PartialEq)]
@@ -58,11 +58,25 @@ impl OceanSnapshot {
     pub fn time(&self) -> f64 {
         self.time
     }
+
+    /// Overwrites this snapshot with `ocean`'s state. Allocates nothing when the snapshot was
+    /// taken from an ocean of the same config (its foam buffers are reused), so a game can keep
+    /// a ring of snapshots for rollback.
+    pub fn capture(&mut self, ocean: &OceanState) {
+        self.time = ocean.time;
+        self.choppiness = ocean.config.choppiness;
+        self.applied_choppiness = ocean.applied_choppiness;
+        self.active.clear();
+        self.active.extend_from_slice(ocean.foam.active());
+        self.residual.clear();
+        self.residual.extend_from_slice(ocean.foam.residual());
+        self.foam_drift = ocean.foam.drift_offset();
+    }
 }
 
 impl OceanState {
     /// The state that cannot be recomputed: time, choppiness and foam (allocates the foam's
-    /// copy; see [`snapshot_into`](Self::snapshot_into) to reuse one).
+    /// copy; see [`OceanSnapshot::capture`] to reuse one).
     pub fn snapshot(&self) -> OceanSnapshot {
         let mut snapshot = OceanSnapshot {
             time: 0.0,
@@ -72,22 +86,14 @@ impl OceanState {
             residual: Vec::new(),
             foam_drift: [0.0; 2],
         };
-        self.snapshot_into(&mut snapshot);
+        snapshot.capture(self);
         snapshot
     }
 
-    /// Overwrites `snapshot` with this ocean's state. Allocates nothing when `snapshot` was
-    /// taken from an ocean of the same config (its foam buffer is reused), so a game can keep a
-    /// ring of snapshots for rollback.
+    #[deprecated(since = "0.4.0", note = "use `snapshot.capture(&ocean)`")]
+    #[doc(hidden)]
     pub fn snapshot_into(&self, snapshot: &mut OceanSnapshot) {
-        snapshot.time = self.time;
-        snapshot.choppiness = self.config.choppiness;
-        snapshot.applied_choppiness = self.applied_choppiness;
-        snapshot.active.clear();
-        snapshot.active.extend_from_slice(self.foam.active());
-        snapshot.residual.clear();
-        snapshot.residual.extend_from_slice(self.foam.residual());
-        snapshot.foam_drift = self.foam.drift_offset();
+        snapshot.capture(self);
     }
 
     /// Brings the ocean back to the state `snapshot` holds: its time, choppiness and foam, and

@@ -34,17 +34,18 @@ pub(super) enum Scope {
 }
 
 impl OceanState {
-    /// Most steps [`pre_roll`](Self::pre_roll) takes.
-    pub const MAX_PRE_ROLL_STEPS: usize = 1_000_000;
+    #[deprecated(since = "0.4.0", note = "use `ocean_fft::limits::MAX_PRE_ROLL_STEPS`")]
+    #[doc(hidden)]
+    pub const MAX_PRE_ROLL_STEPS: usize = super::limits::MAX_PRE_ROLL_STEPS;
 
-    /// Advances the time by `dt` seconds (0 ≤ dt ≤ [`MAX_STEP`](Self::MAX_STEP)), updates
+    /// Advances the time by `dt` seconds (0 ≤ dt ≤ [`limits::MAX_STEP`](crate::limits::MAX_STEP)), updates
     /// every cascade and the foam. Allocates nothing inside a rayon pool.
     ///
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `dt`, or for the new time
     /// (`time + dt`) beyond [`Cascade::MAX_TIME`]. Nothing changes then.
     pub fn step(&mut self, dt: f64) -> Result<(), Error> {
-        error::in_range_f64("dt", dt, Included(0.0), Included(Self::MAX_STEP))?;
+        error::in_range_f64("dt", dt, Included(0.0), Included(super::limits::MAX_STEP))?;
         let t = check_time("time + dt", self.time + dt)?;
         self.advance(t, FoamMotion::Integrate(dt), Scope::All);
         Ok(())
@@ -77,7 +78,7 @@ impl OceanState {
     /// then.
     pub fn step_to(&mut self, t: f64) -> Result<(), Error> {
         let t = check_time("t", t)?;
-        let max = (self.time + Self::MAX_STEP).min(Cascade::MAX_TIME);
+        let max = (self.time + super::limits::MAX_STEP).min(Cascade::MAX_TIME);
         error::in_range_f64("t", t, Included(self.time), Included(max))?;
         self.advance(t, FoamMotion::Integrate(t - self.time), Scope::All);
         Ok(())
@@ -127,12 +128,12 @@ impl OceanState {
     ///
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `dt` outside
-    /// (0, [`MAX_STEP`](Self::MAX_STEP)], for `seconds` below 0 or above
-    /// [`MAX_PRE_ROLL_STEPS`](Self::MAX_PRE_ROLL_STEPS)·`dt`, or (naming `time - seconds`) for
+    /// (0, [`limits::MAX_STEP`](crate::limits::MAX_STEP)], for `seconds` below 0 or above
+    /// [`limits::MAX_PRE_ROLL_STEPS`](crate::limits::MAX_PRE_ROLL_STEPS)·`dt`, or (naming `time - seconds`) for
     /// a start before −[`Cascade::MAX_TIME`]. Nothing changes then.
     pub fn pre_roll(&mut self, seconds: f64, dt: f64) -> Result<(), Error> {
-        error::in_range_f64("dt", dt, Excluded(0.0), Included(Self::MAX_STEP))?;
-        let longest = dt * Self::MAX_PRE_ROLL_STEPS as f64;
+        error::in_range_f64("dt", dt, Excluded(0.0), Included(super::limits::MAX_STEP))?;
+        let longest = dt * super::limits::MAX_PRE_ROLL_STEPS as f64;
         error::in_range_f64("seconds", seconds, Included(0.0), Included(longest))?;
         let end = self.time;
         let start = check_time("time - seconds", end - seconds)?;

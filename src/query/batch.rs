@@ -32,8 +32,8 @@ impl<K: ShuffledKernel, S: Shuffle> Kernel for Shuffled<K, S> {
     }
 }
 
-/// `kernel` at SIMD level `simd`, with that level's [`Shuffle`] (AVX2's on AVX-512
-/// machines too: the lanes are eight `f32`).
+/// `kernel` at SIMD level `simd`, with that level's [`Shuffle`] (AVX2's, and the AVX2 level,
+/// on AVX-512 machines too: the lanes are eight `f32`).
 #[inline(always)]
 fn run_shuffled<K: ShuffledKernel>(simd: Simd, kernel: K) {
     match simd {
@@ -43,8 +43,10 @@ fn run_shuffled<K: ShuffledKernel>(simd: Simd, kernel: K) {
             kernel,
             shuffle: v3,
         }),
+        // The lanes are eight `f32` wide: AVX-512 machines run the AVX2 build of them, no
+        // slower, where a build of their own would be the largest code to compile.
         #[cfg(target_arch = "x86_64")]
-        Simd::Avx512(v4) => simd.run_kernel(Shuffled {
+        Simd::Avx512(v4) => Simd::Avx2(*v4).run_kernel(Shuffled {
             kernel,
             shuffle: *v4,
         }),
@@ -89,36 +91,11 @@ fn run_batch<Q: PointQuery>(
     );
 }
 
-/// One row of [`OceanState::sample_grid`](crate::OceanState::sample_grid), as a
-/// [`ShuffledKernel`]: its points eight at a time, as
-/// [`OceanState::sample_many`](crate::OceanState::sample_many) samples them.
-struct GridRow<'a> {
-    fields: &'a Fields<'a>,
-    /// The row's first point `[x, z]`, in metres.
-    start: [f64; 2],
-    spacing: f64,
-    row: &'a mut [SurfaceSample],
-    cascades: &'a std::ops::Range<usize>,
-}
-
-impl ShuffledKernel for GridRow<'_> {
-    #[inline(always)]
-    fn run<S: Shuffle>(self, shuffle: S) {
-        let [x, z] = self.start;
-        let query = Sample(self.cascades.clone());
-        for (chunk, out) in self.row.chunks_mut(lanes::LANES).enumerate() {
-            let first = chunk * lanes::LANES;
-            let points: [[f64; 2]; lanes::LANES] =
-                std::array::from_fn(|c| [x + (first + c) as f64 * self.spacing, z]);
-            query.batch(shuffle, self.fields, &points[..out.len()], out);
-        }
-    }
-}
-
-/// The samples of [`OceanState::sample_grid`](crate::OceanState::sample_grid) once its
+/// The samples of [`Water::at_rest_grid`](crate::Water::at_rest_grid) once its
 /// arguments are checked: a grid of rows `columns` long, sample (c, r) at
 /// `origin` + (c, r)·`spacing` summed over cascades `cascades`, rows in parallel at the
-/// frame's SIMD level, into `out`.
+/// frame's SIMD level, into `out`. Each row's points are batches of [`Sample`], so that the
+/// grid shares [`Water::at_rest_many`](crate::Water::at_rest_many)'s compiled lanes.
 pub(crate) fn sample_rows(
     fields: &Fields<'_>,
     origin: [f64; 2],
@@ -128,19 +105,18 @@ pub(crate) fn sample_rows(
     out: &mut [SurfaceSample],
 ) {
     let simd = fields.frame().simd;
+    let query = Sample(cascades);
     out.par_chunks_mut(columns)
         .enumerate()
         .for_each(|(r, row)| {
-            run_shuffled(
-                simd,
-                GridRow {
-                    fields,
-                    start: [origin[0], origin[1] + r as f64 * spacing],
-                    spacing,
-                    row,
-                    cascades: &cascades,
-                },
-            );
+            let [x, z] = [origin[0], origin[1] + r as f64 * spacing];
+            // Eight points at a time, as the lanes take them (no allocation).
+            for (chunk, out) in row.chunks_mut(lanes::LANES).enumerate() {
+                let first = chunk * lanes::LANES;
+                let points: [[f64; 2]; lanes::LANES] =
+                    std::array::from_fn(|c| [x + (first + c) as f64 * spacing, z]);
+                run_batch(simd, fields, &points[..out.len()], out, &query);
+            }
         });
 }
 

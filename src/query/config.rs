@@ -3,7 +3,7 @@
 
 use crate::error::{self, Error};
 
-/// How the world queries ([`OceanState::sample`](crate::OceanState::sample) and everything
+/// How the world queries ([`Water::at_rest`](crate::Water::at_rest) and everything
 /// built on it) interpolate each cascade's grid between its points.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]

@@ -242,7 +242,7 @@ pub(super) fn first_guess(fields: &Fields<'_>, x: f64, z: f64) -> [f64; 2] {
 
 /// One point's search for the undisplaced point whose water lands on it, by Newton's
 /// method on x₀ + D(x₀) = p from [`first_guess`] (see
-/// [`OceanState::locate`](crate::OceanState::locate)): the iterate to evaluate next and what
+/// [`Water::locate`](crate::Water::locate)): the iterate to evaluate next and what
 /// the evaluations so far found.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Search {
@@ -332,7 +332,7 @@ impl Search {
 
 /// The undisplaced point whose water lands on world (x, z), by Newton's method on
 /// x₀ + D(x₀) = p from [`first_guess`] (see
-/// [`OceanState::locate`](crate::OceanState::locate)), and the summed displacement there.
+/// [`Water::locate`](crate::Water::locate)), and the summed displacement there.
 #[inline(always)]
 pub(super) fn locate(fields: &Fields<'_>, x: f64, z: f64) -> (Location, [f32; 2]) {
     let frame = fields.frame();

@@ -25,10 +25,10 @@ pub struct SurfaceSample {
     pub normal: [f32; 3],
     /// Foam coverage in [0, 1]: the ocean's one foam field
     /// ([`OceanState::foam`](crate::OceanState::foam), on cascade 0's grid) interpolated
-    /// bilinearly, the fraction of the sea around the point that foam covers (the foam
-    /// itself, patterned at the breaking scale, is
-    /// [`OceanState::foam_at`](crate::OceanState::foam_at)); 0 from a range of cascades without cascade 0
-    /// ([`OceanState::sample_cascades`](crate::OceanState::sample_cascades)), as cascade 0's
+    /// bilinearly, the fraction of the sea around the point that foam covers (the expectation
+    /// of the foam itself, which [`FoamView::foam_at`](crate::FoamView::foam_at) gives
+    /// patterned at the breaking scale); 0 from a range of cascades without cascade 0
+    /// ([`Water::at_rest_cascades`](crate::Water::at_rest_cascades)), as cascade 0's
     /// textures carry the foam.
     pub foam: f32,
 }
@@ -48,7 +48,7 @@ impl Default for SurfaceSample {
 }
 
 /// Where the water at a world point comes from: the result of
-/// [`OceanState::locate`](crate::OceanState::locate).
+/// [`Water::locate`](crate::Water::locate).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Location {
     /// The undisplaced world point `[x, z]` in metres whose water lands on the query point

@@ -1,20 +1,19 @@
-//! A handle on the water of one frame, [`Surface`]: the world queries from any thread while
-//! the ocean steps on, with the bits the ocean's own queries give.
+//! A handle on the water of one frame, [`Surface`]: the world queries ([`Water`]) from any
+//! thread while the ocean steps on, with the bits the ocean's own queries give.
 
 use std::sync::Arc;
 
-use super::batch::{check_batch, for_each_point};
 use super::frame::{Fields, Frame, Frames};
-use super::point::{check_point, run, HeightAt, Locate, Sample, SurfaceAt};
 use super::results::{Location, SurfaceSample};
+use super::water::Water;
 use crate::cascade::Cascade;
 use crate::error::Error;
 use crate::foam::Foam;
 
 /// A handle on the water of one frame: the ocean's fields at the time
-/// [`OceanState::surface`](crate::OceanState::surface) was called, answering the same world queries
-/// as the ocean ([`Surface::height_at`], [`Surface::heights_at`], …) with the same bits, from any
-/// thread and while the ocean steps on.
+/// [`OceanState::surface`](crate::OceanState::surface) was called, answering the same world
+/// queries as the ocean (its [`water`](Surface::water): [`Water::height_at`],
+/// [`Water::heights_at`], …) with the same bits, from any thread and while the ocean steps on.
 ///
 /// `Send + Sync + Clone` (an [`Arc`]: cloning costs an atomic increment). The ocean keeps
 /// two frames: a step writes the one no handle reads and makes it current, so taking a
@@ -29,8 +28,8 @@ use crate::foam::Foam;
 /// let mut ocean = OceanState::new(spectrum, OceanConfig { size: 32, ..Default::default() })?;
 /// ocean.step(1.0 / 60.0)?;
 /// let surface = ocean.surface();                  // the water at t = 1/60 s
-/// let physics = std::thread::spawn(move || surface.height_at(3.0, 4.0));
-/// let y = ocean.height_at(3.0, 4.0)?;             // m
+/// let physics = std::thread::spawn(move || surface.water().height_at(3.0, 4.0));
+/// let y = ocean.water().height_at(3.0, 4.0)?;     // m
 /// ocean.step(1.0 / 60.0)?;                        // the handle still answers about 1/60 s
 /// assert_eq!(physics.join().unwrap()?, y);
 /// # Ok::<(), ocean_fft::Error>(())
@@ -53,83 +52,90 @@ impl Surface {
         self.0.time
     }
 
-    /// As [`OceanState::sample`](crate::OceanState::sample), for this frame.
+    /// The world queries of this frame: the same [`Water`] an ocean's
+    /// [`OceanState::water`](crate::OceanState::water) gives, answering with the same bits.
+    #[inline]
+    pub fn water(&self) -> Water<'_> {
+        Water::new(Fields::Frame(&self.0))
+    }
+
+    /// Deprecated: [`Water::at_rest`] through [`Surface::water`].
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
+    /// As [`Water::at_rest`].
+    #[deprecated(since = "0.4.0", note = "use `surface.water().at_rest(x0, z0)`")]
+    #[doc(hidden)]
     pub fn sample(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
-        check_point(x, z)?;
-        Ok(run(
-            &Fields::Frame(&self.0),
-            Sample(0..self.0.grids.len()),
-            x,
-            z,
-        ))
+        self.water().at_rest(x, z)
     }
 
-    /// As [`OceanState::locate`](crate::OceanState::locate), for this frame.
+    /// Deprecated: [`Water::locate`] through [`Surface::water`].
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
+    /// As [`Water::locate`].
+    #[deprecated(since = "0.4.0", note = "use `surface.water().locate(x, z)`")]
+    #[doc(hidden)]
     pub fn locate(&self, x: f64, z: f64) -> Result<Location, Error> {
-        check_point(x, z)?;
-        Ok(run(&Fields::Frame(&self.0), Locate, x, z))
+        self.water().locate(x, z)
     }
 
-    /// As [`OceanState::surface_at`](crate::OceanState::surface_at), for this frame.
+    /// Deprecated: [`Water::surface_at`] through [`Surface::water`].
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
+    /// As [`Water::surface_at`].
+    #[deprecated(since = "0.4.0", note = "use `surface.water().surface_at(x, z)`")]
+    #[doc(hidden)]
     pub fn surface_at(&self, x: f64, z: f64) -> Result<SurfaceSample, Error> {
-        check_point(x, z)?;
-        Ok(run(&Fields::Frame(&self.0), SurfaceAt, x, z))
+        self.water().surface_at(x, z)
     }
 
-    /// Water height y in metres at world point (`x`, `z`) after horizontal displacement, as
-    /// [`OceanState::height_at`](crate::OceanState::height_at), for this frame.
+    /// Deprecated: [`Water::height_at`] through [`Surface::water`].
     ///
     /// # Errors
-    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
+    /// As [`Water::height_at`].
+    #[deprecated(since = "0.4.0", note = "use `surface.water().height_at(x, z)`")]
+    #[doc(hidden)]
     pub fn height_at(&self, x: f64, z: f64) -> Result<f32, Error> {
-        check_point(x, z)?;
-        Ok(run(&Fields::Frame(&self.0), HeightAt, x, z))
+        self.water().height_at(x, z)
     }
 
-    /// As [`OceanState::heights_at`](crate::OceanState::heights_at), for this frame: water heights
-    /// in metres at world points (x, z), into `out`.
+    /// Deprecated: [`Water::heights_at`] through [`Surface::water`].
     ///
     /// # Errors
-    /// [`Error::LengthMismatch`] unless `out` is as long as `points`; [`Error::NonFinite`]
-    /// for a NaN or infinite coordinate. Nothing is written then.
+    /// As [`Water::heights_at`].
+    #[deprecated(
+        since = "0.4.0",
+        note = "use `surface.water().heights_at(points, out)`"
+    )]
+    #[doc(hidden)]
     pub fn heights_at(&self, points: &[[f64; 2]], out: &mut [f32]) -> Result<(), Error> {
-        check_batch(points, out.len())?;
-        for_each_point(&Fields::Frame(&self.0), points, out, HeightAt);
-        Ok(())
+        self.water().heights_at(points, out)
     }
 
-    /// As [`OceanState::surfaces_at`](crate::OceanState::surfaces_at), for this frame.
+    /// Deprecated: [`Water::surfaces_at`] through [`Surface::water`].
     ///
     /// # Errors
-    /// As [`Surface::heights_at`].
+    /// As [`Water::surfaces_at`].
+    #[deprecated(
+        since = "0.4.0",
+        note = "use `surface.water().surfaces_at(points, out)`"
+    )]
+    #[doc(hidden)]
     pub fn surfaces_at(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
-        check_batch(points, out.len())?;
-        for_each_point(&Fields::Frame(&self.0), points, out, SurfaceAt);
-        Ok(())
+        self.water().surfaces_at(points, out)
     }
 
-    /// As [`OceanState::sample_many`](crate::OceanState::sample_many), for this frame.
+    /// Deprecated: [`Water::at_rest_many`] through [`Surface::water`].
     ///
     /// # Errors
-    /// As [`Surface::heights_at`].
+    /// As [`Water::at_rest_many`].
+    #[deprecated(
+        since = "0.4.0",
+        note = "use `surface.water().at_rest_many(points, out)`"
+    )]
+    #[doc(hidden)]
     pub fn sample_many(&self, points: &[[f64; 2]], out: &mut [SurfaceSample]) -> Result<(), Error> {
-        check_batch(points, out.len())?;
-        for_each_point(
-            &Fields::Frame(&self.0),
-            points,
-            out,
-            Sample(0..self.0.grids.len()),
-        );
-        Ok(())
+        self.water().at_rest_many(points, out)
     }
 }
 

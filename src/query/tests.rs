@@ -38,23 +38,27 @@ fn queries_give_the_same_bits_at_every_level_and_thread_count() {
                 ocean.step(3.0).unwrap();
                 let mut heights = vec![0.0f32; points.len()];
                 let mut surfaces = vec![SurfaceSample::default(); points.len()];
-                ocean.heights_at(&points, &mut heights).unwrap();
-                ocean.surfaces_at(&points, &mut surfaces).unwrap();
+                ocean.water().heights_at(&points, &mut heights).unwrap();
+                ocean.water().surfaces_at(&points, &mut surfaces).unwrap();
                 let singles: Vec<f32> = points
                     .iter()
-                    .map(|&[x, z]| ocean.height_at(x, z).unwrap())
+                    .map(|&[x, z]| ocean.water().height_at(x, z).unwrap())
                     .collect();
                 let mut handle = vec![0.0f32; points.len()];
-                ocean.surface().heights_at(&points, &mut handle).unwrap();
+                ocean
+                    .surface()
+                    .water()
+                    .heights_at(&points, &mut handle)
+                    .unwrap();
                 // The other batches against their single queries too (groups of points
                 // interleaved, the last one partial).
                 for (&[x, z], batch) in points.iter().zip(&surfaces) {
-                    assert_eq!(ocean.surface_at(x, z).unwrap(), *batch);
+                    assert_eq!(ocean.water().surface_at(x, z).unwrap(), *batch);
                 }
                 let mut samples = vec![SurfaceSample::default(); points.len()];
-                ocean.sample_many(&points, &mut samples).unwrap();
+                ocean.water().at_rest_many(&points, &mut samples).unwrap();
                 for (&[x, z], batch) in points.iter().zip(&samples) {
-                    assert_eq!(ocean.sample(x, z).unwrap(), *batch);
+                    assert_eq!(ocean.water().at_rest(x, z).unwrap(), *batch);
                 }
                 // Grids in lanes too, rows ending in a partial group of eight, one far
                 // out where the wrap takes its other path.
@@ -67,12 +71,17 @@ fn queries_give_the_same_bits_at_every_level_and_thread_count() {
                 for (origin, spacing, [columns, rows]) in grids {
                     let mut grid = vec![SurfaceSample::default(); columns * rows];
                     ocean
-                        .sample_grid(origin, spacing, [columns, rows], &mut grid)
+                        .water()
+                        .at_rest_grid(origin, spacing, [columns, rows], &mut grid)
                         .unwrap();
                     for (i, sample) in grid.iter().enumerate() {
                         let x = origin[0] + (i % columns) as f64 * spacing;
                         let z = origin[1] + (i / columns) as f64 * spacing;
-                        assert_eq!(ocean.sample(x, z).unwrap(), *sample, "grid point {i}");
+                        assert_eq!(
+                            ocean.water().at_rest(x, z).unwrap(),
+                            *sample,
+                            "grid point {i}"
+                        );
                     }
                 }
                 // Batches too small for lanes (queried one point at a time) and the
@@ -82,14 +91,20 @@ fn queries_give_the_same_bits_at_every_level_and_thread_count() {
                     let mut small = vec![0.0f32; n];
                     let mut small_surfaces = vec![SurfaceSample::default(); n];
                     let mut small_samples = vec![SurfaceSample::default(); n];
-                    ocean.heights_at(points, &mut small).unwrap();
-                    ocean.surfaces_at(points, &mut small_surfaces).unwrap();
-                    ocean.sample_many(points, &mut small_samples).unwrap();
+                    ocean.water().heights_at(points, &mut small).unwrap();
+                    ocean
+                        .water()
+                        .surfaces_at(points, &mut small_surfaces)
+                        .unwrap();
+                    ocean
+                        .water()
+                        .at_rest_many(points, &mut small_samples)
+                        .unwrap();
                     for (i, &[x, z]) in points.iter().enumerate() {
-                        let height = ocean.height_at(x, z).unwrap();
+                        let height = ocean.water().height_at(x, z).unwrap();
                         assert_eq!(small[i].to_bits(), height.to_bits(), "{n} points");
-                        assert_eq!(small_surfaces[i], ocean.surface_at(x, z).unwrap());
-                        assert_eq!(small_samples[i], ocean.sample(x, z).unwrap());
+                        assert_eq!(small_surfaces[i], ocean.water().surface_at(x, z).unwrap());
+                        assert_eq!(small_samples[i], ocean.water().at_rest(x, z).unwrap());
                     }
                 }
                 (heights, surfaces, singles, handle)

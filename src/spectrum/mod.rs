@@ -6,6 +6,7 @@ mod density;
 pub(crate) mod dispersion;
 mod elfouhaily;
 mod omega;
+mod params;
 #[cfg(feature = "serde")]
 mod serde_data;
 mod setters;
@@ -20,6 +21,7 @@ use crate::error::{self, Error};
 use crate::math::determinism::{Libm, Math, Std};
 use crate::spectrum::dispersion::Dispersion;
 
+pub use params::{SpectrumKind, SpectrumParams};
 pub use slope::SlopeVariance;
 pub use spreading::Spreading;
 

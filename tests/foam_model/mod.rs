@@ -92,7 +92,7 @@ pub fn breaking_intensities(ocean: &OceanState) -> Vec<Expected> {
     }
     let first = &ocean.cascades()[0];
     let g0 = fields.map(|f| inspect::field(first, f));
-    let calibration = ocean.foam_calibration();
+    let calibration = ocean.foam_view().calibration();
     let threshold = f64::from(calibration.threshold);
     let floor = (0.05 * f64::from(calibration.compression_std)).powi(2);
     let tau = f64::from(ocean.config().foam.active_decay);

@@ -3,11 +3,16 @@
 //! screenshot).
 
 use bytemuck::{Pod, Zeroable};
-use glam::{Mat4, Vec3};
+use glam::Vec3;
 use wgpu::util::DeviceExt;
 
-use ocean_fft_render::clipmap::{grid_indices, rings, Ring, HOLES, MAX_RINGS};
-use ocean_fft_render::{Frame, Light, OceanInfo, OceanUniforms, Tiling};
+use ocean_fft_render::clipmap::{grid_indices, HOLES, MAX_RINGS};
+use ocean_fft_render::{Frame, OceanUniforms, Tiling};
+
+use meshes::{boat, buoy, BodyVertex};
+
+mod meshes;
+mod uniforms;
 
 /// The reference shader: the shading functions, then the viewer's bindings and entry points.
 pub const SHADER: &str = concat!(
@@ -40,13 +45,6 @@ pub struct Globals {
 pub struct BodyInstance {
     pub model: [[f32; 4]; 4],
     pub colour: [f32; 4],
-}
-
-#[repr(C)]
-#[derive(Debug, Clone, Copy, Pod, Zeroable)]
-struct BodyVertex {
-    position: [f32; 3],
-    normal: [f32; 3],
 }
 
 /// A camera for one frame.
@@ -470,52 +468,6 @@ impl Renderer {
         }
     }
 
-    /// The uniforms of a frame seen from `view` at `size` pixels, in `light` with `exposure`.
-    pub fn globals(
-        &mut self,
-        info: &OceanInfo,
-        view: &View,
-        (light, exposure): (&Light, f32),
-        settings: &RenderSettings,
-        size: (u32, u32),
-    ) -> Globals {
-        let aspect = size.0 as f32 / size.1.max(1) as f32;
-        let projection = Mat4::perspective_infinite_reverse_rh(view.fov_y, aspect, 0.1);
-        let look = Mat4::look_to_rh(view.eye, view.forward, Vec3::Y);
-        let view_proj = projection * look;
-        let mut g = Globals::zeroed();
-        g.view_proj = view_proj.to_cols_array_2d();
-        g.inverse_view_proj = view_proj.inverse().to_cols_array_2d();
-        g.eye = [view.eye.x, view.eye.y, view.eye.z, info.time as f32];
-        g.ocean.set_light(light, 1.0, exposure);
-        let tiling = Tiling {
-            strength: settings.tiling,
-            scale: settings.tiling_scale,
-            ..Tiling::default()
-        };
-        g.ocean.set_ocean(info, [view.eye.x, view.eye.z], &tiling);
-        let mut ring_list = [Ring::default(); MAX_RINGS];
-        let count = rings(
-            [view.eye.x, view.eye.z],
-            view.height_above_water,
-            self.half_cells,
-            &mut ring_list,
-        );
-        for (level, ring) in g.levels.iter_mut().zip(&ring_list[..count]) {
-            *level = [
-                ring.centre[0],
-                ring.centre[1],
-                ring.spacing,
-                self.half_cells as f32,
-            ];
-        }
-        self.ring_meshes = ring_list.map(|r| r.hole);
-        g.ocean.tiling[3] = count as f32;
-        let side = (2 * self.half_cells + 1) as usize;
-        self.rings_drawn = (count, count * side * side);
-        g
-    }
-
     fn targets(&mut self, device: &wgpu::Device, size: (u32, u32)) {
         if self.targets.as_ref().is_some_and(|t| t.size == size) {
             return;
@@ -639,158 +591,4 @@ impl Renderer {
             pass.draw_indexed(0..mesh.2, 0, range);
         }
     }
-}
-
-fn push_quad(vertices: &mut Vec<BodyVertex>, indices: &mut Vec<u32>, corners: [Vec3; 4]) {
-    let normal = (corners[1] - corners[0])
-        .cross(corners[2] - corners[0])
-        .normalize_or(Vec3::Y);
-    let base = vertices.len() as u32;
-    for c in corners {
-        vertices.push(BodyVertex {
-            position: c.to_array(),
-            normal: normal.to_array(),
-        });
-    }
-    indices.extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
-}
-
-/// A box from `min` to `max`.
-fn push_box(vertices: &mut Vec<BodyVertex>, indices: &mut Vec<u32>, min: Vec3, max: Vec3) {
-    let p = |x: bool, y: bool, z: bool| {
-        Vec3::new(
-            if x { max.x } else { min.x },
-            if y { max.y } else { min.y },
-            if z { max.z } else { min.z },
-        )
-    };
-    let faces = [
-        [
-            p(true, false, false),
-            p(true, true, false),
-            p(true, true, true),
-            p(true, false, true),
-        ],
-        [
-            p(false, false, true),
-            p(false, true, true),
-            p(false, true, false),
-            p(false, false, false),
-        ],
-        [
-            p(false, true, false),
-            p(false, true, true),
-            p(true, true, true),
-            p(true, true, false),
-        ],
-        [
-            p(false, false, true),
-            p(false, false, false),
-            p(true, false, false),
-            p(true, false, true),
-        ],
-        [
-            p(false, false, true),
-            p(true, false, true),
-            p(true, true, true),
-            p(false, true, true),
-        ],
-        [
-            p(true, false, false),
-            p(false, false, false),
-            p(false, true, false),
-            p(true, true, false),
-        ],
-    ];
-    for face in faces {
-        push_quad(vertices, indices, face);
-    }
-}
-
-/// A spar buoy: a cylinder 2.2 m tall (0.8 m of it under water) of radius 0.5 m with a cone
-/// on top, y up, the waterline at y = 0.
-fn buoy() -> (Vec<BodyVertex>, Vec<u32>) {
-    let (mut vertices, mut indices) = (Vec::new(), Vec::new());
-    let segments = 16;
-    let ring = |k: usize, r: f32, y: f32| {
-        let a = k as f32 / segments as f32 * std::f32::consts::TAU;
-        Vec3::new(r * a.cos(), y, r * a.sin())
-    };
-    for k in 0..segments {
-        let (k1, k0) = (k, k + 1);
-        push_quad(
-            &mut vertices,
-            &mut indices,
-            [
-                ring(k0, 0.5, -0.8),
-                ring(k0, 0.5, 1.4),
-                ring(k1, 0.5, 1.4),
-                ring(k1, 0.5, -0.8),
-            ],
-        );
-        push_quad(
-            &mut vertices,
-            &mut indices,
-            [
-                ring(k0, 0.5, 1.4),
-                ring(k0, 0.05, 2.6),
-                ring(k1, 0.05, 2.6),
-                ring(k1, 0.5, 1.4),
-            ],
-        );
-    }
-    (vertices, indices)
-}
-
-/// A small boat: a hull 9 m long (along x) and 3 m wide with a cabin, y up, the waterline at
-/// y = 0.
-fn boat() -> (Vec<BodyVertex>, Vec<u32>) {
-    let (mut vertices, mut indices) = (Vec::new(), Vec::new());
-    push_box(
-        &mut vertices,
-        &mut indices,
-        Vec3::new(-4.5, -0.7, -1.5),
-        Vec3::new(3.0, 0.9, 1.5),
-    );
-    // The bow: a wedge from the hull's front to a point.
-    let (top, bottom) = (0.9, -0.7);
-    let tip_top = Vec3::new(5.5, top + 0.3, 0.0);
-    let tip_bottom = Vec3::new(4.6, bottom, 0.0);
-    push_quad(
-        &mut vertices,
-        &mut indices,
-        [
-            Vec3::new(3.0, bottom, 1.5),
-            tip_bottom,
-            tip_top,
-            Vec3::new(3.0, top, 1.5),
-        ],
-    );
-    push_quad(
-        &mut vertices,
-        &mut indices,
-        [
-            tip_bottom,
-            Vec3::new(3.0, bottom, -1.5),
-            Vec3::new(3.0, top, -1.5),
-            tip_top,
-        ],
-    );
-    push_quad(
-        &mut vertices,
-        &mut indices,
-        [
-            Vec3::new(3.0, top, 1.5),
-            tip_top,
-            tip_top,
-            Vec3::new(3.0, top, -1.5),
-        ],
-    );
-    push_box(
-        &mut vertices,
-        &mut indices,
-        Vec3::new(-3.5, 0.9, -1.1),
-        Vec3::new(0.5, 2.6, 1.1),
-    );
-    (vertices, indices)
 }

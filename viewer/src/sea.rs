@@ -1,7 +1,13 @@
 //! The sea state the panels edit: every parameter of the spectrum and the ocean's
-//! configuration as plain numbers, turned into a [`Spectrum`] and an [`OceanConfig`].
+//! configuration as plain numbers, read from and turned into a [`Spectrum`] (through its
+//! [`SpectrumParams`](ocean_fft::SpectrumParams)) and an [`OceanConfig`].
 
-use ocean_fft::{Error, OceanConfig, SeaState, Spectrum, Spreading};
+use ocean_fft::{
+    DepthFactor, Dispersion, Error, OceanConfig, SeaState, Spectrum, SpectrumKind, Spreading,
+};
+
+/// The fetch in m the panel starts from when a sea built without one switches to JONSWAP.
+const DEFAULT_FETCH: f32 = 100_000.0;
 
 /// The spectrum's model.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -133,26 +139,33 @@ impl SeaParams {
         Self::from_built("default", &spectrum, &OceanConfig::default())
     }
 
-    /// The parameters of a built spectrum and config.
+    /// The parameters of a built spectrum (read as [`SpectrumParams`]) and config.
     fn from_built(name: &str, spectrum: &Spectrum, config: &OceanConfig) -> SeaParams {
-        let model = if let Some(w) = spectrum.inverse_wave_age() {
-            Model::Elfouhaily {
-                inverse_wave_age: w,
+        let params = spectrum.params();
+        let (model, fetch, gamma) = match params.kind {
+            SpectrumKind::Jonswap { fetch, gamma } => {
+                let tma = params.dispersion.depth().is_some()
+                    && params.depth_factor == DepthFactor::Kitaigorodskii;
+                (if tma { Model::Tma } else { Model::Jonswap }, fetch, gamma)
             }
-        } else if spectrum.depth().is_some() {
-            Model::Tma
-        } else if spectrum.fetch().is_none() {
-            match (spectrum.alpha(), spectrum.gamma()) {
-                (Some(alpha), Some(gamma)) if gamma != 1.0 => Model::JonswapParameters {
-                    alpha,
-                    peak_period: spectrum.peak_period(),
-                },
-                _ => Model::PiersonMoskowitz,
+            SpectrumKind::PiersonMoskowitz => (Model::PiersonMoskowitz, DEFAULT_FETCH, 1.0),
+            SpectrumKind::JonswapShape { alpha, gamma, .. } => {
+                let peak_period = spectrum.peak_period();
+                let model = Model::JonswapParameters { alpha, peak_period };
+                (model, DEFAULT_FETCH, gamma)
             }
-        } else {
-            Model::Jonswap
+            SpectrumKind::Elfouhaily { inverse_wave_age } => {
+                let model = Model::Elfouhaily { inverse_wave_age };
+                (model, DEFAULT_FETCH, Spectrum::DEFAULT_GAMMA)
+            }
+            SpectrumKind::Phillips { amplitude } => {
+                let model = Model::Phillips { amplitude };
+                (model, DEFAULT_FETCH, Spectrum::DEFAULT_GAMMA)
+            }
+            // A model this viewer does not know yet: its default sea's.
+            _ => (Model::Jonswap, DEFAULT_FETCH, Spectrum::DEFAULT_GAMMA),
         };
-        let spreading = match spectrum.spreading_kind() {
+        let spreading = match params.spreading {
             Spreading::Mitsuyasu => 1,
             Spreading::Hasselmann => 2,
             Spreading::Cos2s { .. } => 3,
@@ -161,21 +174,21 @@ impl SeaParams {
             Spreading::Flat => 6,
             _ => 0,
         };
-        let spreading_s = match spectrum.spreading_kind() {
+        let spreading_s = match params.spreading {
             Spreading::Cos2s { s } => s,
             _ => 10.0,
         };
         SeaParams {
             name: name.to_string(),
             model,
-            wind_speed: spectrum.wind_speed(),
-            fetch: spectrum.fetch().unwrap_or(100_000.0),
-            direction: spectrum.wind_direction().to_degrees(),
+            wind_speed: params.wind_speed,
+            fetch,
+            direction: params.wind_direction.to_degrees(),
             spreading,
             spreading_s,
-            swell: spectrum.swell(),
-            gamma: spectrum.gamma().unwrap_or(Spectrum::DEFAULT_GAMMA),
-            depth: spectrum.depth(),
+            swell: params.swell,
+            gamma,
+            depth: params.dispersion.depth(),
             choppiness: config.choppiness,
             foam_coverage: config.foam.coverage,
             foam_wind: config.foam.wind_speed,
@@ -190,7 +203,7 @@ impl SeaParams {
     /// # Errors
     /// The crate's, naming the parameter (a fetch or depth out of range, …).
     pub fn spectrum(&self) -> Result<Spectrum, Error> {
-        let mut spectrum = match self.model {
+        let spectrum = match self.model {
             Model::Jonswap => {
                 Spectrum::jonswap(self.wind_speed, self.fetch)?.with_gamma(self.gamma)?
             }
@@ -206,8 +219,10 @@ impl SeaParams {
             }
             Model::Phillips { amplitude } => Spectrum::phillips(self.wind_speed, amplitude)?,
         };
-        spectrum = spectrum.with_wind_direction(self.direction.to_radians())?;
-        let spreading = match self.spreading {
+        // The model's own parameters from its constructor, the rest as the panels set it.
+        let mut params = spectrum.params();
+        params.wind_direction = self.direction.to_radians();
+        params.spreading = match self.spreading {
             1 => Spreading::Mitsuyasu,
             2 => Spreading::Hasselmann,
             3 => Spreading::Cos2s {
@@ -218,11 +233,11 @@ impl SeaParams {
             6 => Spreading::Flat,
             _ => Spreading::DonelanBanner,
         };
-        spectrum = spectrum.with_spreading(spreading)?.with_swell(self.swell)?;
+        params.swell = self.swell;
         if let (Some(depth), false) = (self.depth, self.model == Model::Tma) {
-            spectrum = spectrum.with_depth(depth)?;
+            params.dispersion = Dispersion::FiniteDepth { depth };
         }
-        Ok(spectrum)
+        Spectrum::from_params(&params)
     }
 
     /// The ocean's configuration (everything but the spectrum).

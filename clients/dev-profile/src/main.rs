@@ -12,8 +12,8 @@ fn main() -> Result<(), ocean_fft::Error> {
     let points: Vec<[f64; 2]> = (0..16).map(|i| [f64::from(i) * 3.0, -40.0]).collect();
     for _frame in 0..3 {
         ocean.step(1.0 / 60.0)?;
-        ocean.heights_at(&points, &mut heights)?;
+        ocean.water().heights_at(&points, &mut heights)?;
     }
-    println!("boat at {:.3} m", ocean.height_at(12.0, -40.0)?);
+    println!("boat at {:.3} m", ocean.water().height_at(12.0, -40.0)?);
     Ok(())
 }

@@ -81,7 +81,9 @@ pub fn update_normal_map(
 /// A boat on the water: macroquad's 3D frame (`Camera3D`: right-handed, y up, and metres if
 /// you say so) is the crate's, so its x and z go to `height_at` as they are.
 pub fn on_water(ocean: &OceanState, position: Vec3) -> Result<Vec3, Error> {
-    let height = ocean.height_at(f64::from(position.x), f64::from(position.z))?;
+    let height = ocean
+        .water()
+        .height_at(f64::from(position.x), f64::from(position.z))?;
     Ok(Vec3::new(position.x, height, position.z))
 }
 // guide: end

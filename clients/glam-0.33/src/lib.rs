@@ -34,8 +34,14 @@ impl OceanTexels {
     pub fn step_and_pack(&mut self, ocean: &mut OceanState, dt: f64) -> Result<(), Error> {
         ocean.step(dt)?;
         for c in 0..ocean.cascades().len() {
-            ocean.pack_texels_f16(c, TexelLayout::DisplacementFoam, &mut self.displacement[c])?;
-            ocean.pack_texels_f16(c, TexelLayout::SlopeJacobianFoam, &mut self.slope[c])?;
+            ocean.textures().pack_f16(
+                c,
+                TexelLayout::DisplacementFoam,
+                &mut self.displacement[c],
+            )?;
+            ocean
+                .textures()
+                .pack_f16(c, TexelLayout::SlopeJacobianFoam, &mut self.slope[c])?;
         }
         Ok(())
     }
@@ -60,9 +66,9 @@ pub fn water_point_under(
     position: [f64; 3],
 ) -> Result<([f64; 3], bool), Error> {
     let [x, _, z] = engine.position_to_crate(position);
-    let found = ocean.locate(x, z)?; // the undisplaced point whose water lands on (x, z)
+    let found = ocean.water().locate(x, z)?; // the undisplaced point whose water lands on (x, z)
     let [x0, z0] = found.undisplaced;
-    let height = ocean.sample(x0, z0)?.height; // = ocean.height_at(x, z)
+    let height = ocean.water().at_rest(x0, z0)?.height; // = ocean.water().height_at(x, z)
     Ok((engine.position([x, f64::from(height), z]), found.converged))
 }
 // guide: end

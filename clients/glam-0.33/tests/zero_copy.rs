@@ -80,8 +80,8 @@ mod engines {
     fn water_point_under_is_height_at_in_each_engines_frame() {
         let ocean = ocean();
         for (x, z) in [(0.0, 0.0), (3.7, -12.25), (-40.0, 7.5)] {
-            let y = f64::from(ocean.height_at(x, z).unwrap());
-            assert!(ocean.locate(x, z).unwrap().converged);
+            let y = f64::from(ocean.water().height_at(x, z).unwrap());
+            assert!(ocean.water().locate(x, z).unwrap().converged);
             // The crate's point (x, 5, z) in each engine, by the table of the guide (not through
             // Engine::position), and the water point under it in that engine's frame and units.
             let cases = [
@@ -113,7 +113,7 @@ mod engines {
         let buoy = Vec3::new(3.5, 40.0, -8.0);
         let floated = float_on_water(&ocean, buoy).unwrap();
         assert_eq!((floated.x, floated.z), (buoy.x, buoy.z));
-        assert_eq!(floated.y, ocean.height_at(3.5, -8.0).unwrap());
+        assert_eq!(floated.y, ocean.water().height_at(3.5, -8.0).unwrap());
     }
 
     #[test]

@@ -6,6 +6,7 @@ use super::shuffle::Shuffle;
 use super::{cells, each, F32s, F64s, FEWEST, LANES};
 use crate::cascade::MAX_CASCADES;
 use crate::math::periodic::Period;
+use crate::math::simd::Kernel;
 use crate::query::frame::Fields;
 use crate::query::inversion;
 use crate::query::results::{surface, SurfaceSample};
@@ -178,6 +179,8 @@ fn heights<S: Shuffle>(
 /// summed in order as [`inversion`]'s `evaluate` sums them: the displacement with
 /// `DISPLACEMENT`, its Jacobian with `JACOBIAN`, the height with `HEIGHT`, the slope with
 /// `SLOPE`. Every cascade in `range` must have spline tiles.
+/// Out of line at the batch's SIMD level (see [`Shuffle::run`]): the searches call it from
+/// several places, each of which would otherwise hold a copy.
 #[inline(always)]
 pub(super) fn evaluate<
     S: Shuffle,
@@ -188,7 +191,66 @@ pub(super) fn evaluate<
 >(
     shuffle: S,
     fields: &Fields<'_>,
-    [x, z]: &[F64s; 2],
+    at: &[F64s; 2],
+    range: std::ops::Range<usize>,
+) -> SummedLanes {
+    shuffle.run(Evaluate::<S, DISPLACEMENT, JACOBIAN, HEIGHT, SLOPE> {
+        shuffle,
+        fields,
+        at,
+        range,
+    })
+}
+
+/// [`evaluate`]'s arguments, as a [`Kernel`].
+struct Evaluate<
+    'a,
+    S,
+    const DISPLACEMENT: bool,
+    const JACOBIAN: bool,
+    const HEIGHT: bool,
+    const SLOPE: bool,
+> {
+    shuffle: S,
+    fields: &'a Fields<'a>,
+    at: &'a [F64s; 2],
+    range: std::ops::Range<usize>,
+}
+
+impl<
+        S: Shuffle,
+        const DISPLACEMENT: bool,
+        const JACOBIAN: bool,
+        const HEIGHT: bool,
+        const SLOPE: bool,
+    > Kernel for Evaluate<'_, S, DISPLACEMENT, JACOBIAN, HEIGHT, SLOPE>
+{
+    type Output = SummedLanes;
+
+    #[inline(always)]
+    fn run(self) -> SummedLanes {
+        let Evaluate {
+            shuffle,
+            fields,
+            at: [x, z],
+            range,
+        } = self;
+        sum::<S, DISPLACEMENT, JACOBIAN, HEIGHT, SLOPE>(shuffle, fields, [x, z], range)
+    }
+}
+
+/// [`evaluate`]'s work.
+#[inline(always)]
+fn sum<
+    S: Shuffle,
+    const DISPLACEMENT: bool,
+    const JACOBIAN: bool,
+    const HEIGHT: bool,
+    const SLOPE: bool,
+>(
+    shuffle: S,
+    fields: &Fields<'_>,
+    [x, z]: [&F64s; 2],
     range: std::ops::Range<usize>,
 ) -> SummedLanes {
     let frame = fields.frame();

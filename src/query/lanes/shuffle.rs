@@ -2,6 +2,7 @@
 //! taps transposed into lanes, and products added with one rounding.
 
 use super::{each, F32s, LANES};
+use crate::math::simd::Kernel;
 
 /// How a batch's lanes turn rows of taps into vectors (pure data movement) and add
 /// products (IEEE operations, each rounded once: a fused multiply-add is one operation), so
@@ -20,6 +21,16 @@ pub(crate) trait Shuffle: Copy {
     fn mul(self, w: F32s, x: F32s) -> F32s;
     /// `a + b` lane by lane.
     fn add(self, a: F32s, b: F32s) -> F32s;
+    /// `kernel` at this level as a function of its own, which the compiler may inline or
+    /// call: one compiled copy for all its callers rather than one inlined into each.
+    fn run<K: Kernel>(self, kernel: K) -> K::Output;
+}
+
+/// [`Kernel::run`] as a function of its own (see [`Shuffle::run`]): `#[inline]` alone left the
+/// baseline's copies inlined.
+#[inline(never)]
+fn outlined<K: Kernel>(kernel: K) -> K::Output {
+    kernel.run()
 }
 
 /// [`Shuffle`] written as plain array code (the baseline level), its products added fused
@@ -53,6 +64,11 @@ impl Shuffle for Plain {
     #[inline(always)]
     fn add(self, a: F32s, b: F32s) -> F32s {
         each(|l| a[l] + b[l])
+    }
+
+    #[inline(always)]
+    fn run<K: Kernel>(self, kernel: K) -> K::Output {
+        outlined(kernel)
     }
 }
 
@@ -90,6 +106,12 @@ impl Shuffle for pulp::x86::V3 {
     fn add(self, a: F32s, b: F32s) -> F32s {
         use pulp::{cast, f32x8, Simd as _};
         cast(self.add_f32s(cast::<_, f32x8>(a), cast::<_, f32x8>(b)))
+    }
+
+    #[inline(always)]
+    fn run<K: Kernel>(self, kernel: K) -> K::Output {
+        // pulp's entry into the level is a function of its own, compiled with its features.
+        crate::math::simd::Simd::Avx2(self).run_kernel(kernel)
     }
 }
 

@@ -1,0 +1,137 @@
+//! The foam of an ocean as a game reads it ([`FoamView`]): its fields, the foam and breaking
+//! at a point, the coverage and the calibration.
+
+use super::calibration::FoamCalibration;
+use super::state::Foam;
+use super::FoamCoverage;
+use crate::cascade::Cascade;
+use crate::error::Error;
+
+/// The foam of an ocean, read-only: what
+/// [`OceanState::foam_view`](crate::OceanState::foam_view) returns. One field for the whole
+/// ocean on the grid of cascade 0 (the largest): index j·N + i of each slice is its grid
+/// point (i·L/N, j·L/N) in metres, and the field tiles the plane with that cascade's period
+/// L. Only cascade 0's textures carry foam
+/// ([`OceanState::textures`](crate::OceanState::textures)). Borrows the ocean; `Copy`;
+/// allocates nothing.
+///
+/// ```
+/// use ocean_fft::{OceanConfig, OceanState, Spectrum};
+/// let config = OceanConfig { size: 32, ..OceanConfig::default() };
+/// let mut ocean = OceanState::new(Spectrum::jonswap(20.0, 300_000.0)?, config)?;
+/// ocean.pre_roll(20.0, 0.1)?;
+/// let foam = ocean.foam_view();
+/// let here = foam.foam_at(40.0, -12.0)?;            // at rest point (x0, z0) in m
+/// assert!((here.active + here.residual - here.total).abs() < 1e-6);
+/// let fraction = ocean.water().at_rest(40.0, -12.0)?.foam; // the coarse coverage there
+/// assert!((0.0..=1.0).contains(&here.total) && (0.0..=1.0).contains(&fraction));
+/// assert!(foam.coverage().active > 0.0);            // whitecaps somewhere
+/// # Ok::<(), ocean_fft::Error>(())
+/// ```
+#[derive(Clone, Copy)]
+pub struct FoamView<'a> {
+    foam: &'a Foam,
+    /// The ocean's cascades: the finer ones place the foam's detail.
+    cascades: &'a [Cascade],
+}
+
+impl std::fmt::Debug for FoamView<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FoamView")
+            .field("size", &self.foam.n)
+            .field("length", &self.foam.length)
+            .field("coverage", &self.foam.coverage())
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a> FoamView<'a> {
+    /// The view of `foam` on the ocean of `cascades`.
+    pub(crate) fn new(foam: &'a Foam, cascades: &'a [Cascade]) -> FoamView<'a> {
+        FoamView { foam, cascades }
+    }
+
+    /// All foam in [0, 1] — active whitecaps and residual foam together, a + r(1 − a) — on
+    /// the foam grid (the same slice as [`OceanState::foam`](crate::OceanState::foam)).
+    pub fn total(&self) -> &'a [f32] {
+        self.foam.total()
+    }
+
+    /// Active whitecap foam a in [0, 1] on the foam grid: foam of waves breaking now or
+    /// within about [`FoamConfig::active_decay`](crate::FoamConfig::active_decay).
+    pub fn active(&self) -> &'a [f32] {
+        self.foam.active()
+    }
+
+    /// Residual foam r in [0, 1] on the foam grid: older foam that has aged out of the
+    /// active whitecaps, drifting and stretched into streaks.
+    pub fn residual(&self) -> &'a [f32] {
+        self.foam.residual()
+    }
+
+    /// The breaking intensity s ≥ 0 in 1/s at the current time on the foam grid: how fast
+    /// the surface around each point starts to break — new breaking per second, as a
+    /// fraction of the area, plus the area breaking now over τ_A — and so how fast active
+    /// foam is injected there (it grows at s·(1 − a)). Large on the compressed crests of the
+    /// largest waves, where the smaller ones break on top of them; near zero elsewhere. For
+    /// spray particles and the sound of breaking waves.
+    pub fn breaking(&self) -> &'a [f32] {
+        self.foam.breaking()
+    }
+
+    /// The foam at the rest (undisplaced) point (`x0`, `z0`) in metres (any finite
+    /// coordinates), patterned at the finest breaking scale: the active whitecaps a, the
+    /// residual foam not under them r·(1 − a), and all foam, each in [0, 1] — white (1) on
+    /// foam, 0 on water, with soft edges — so that their means over a stretch of sea are the
+    /// fractions of [`coverage`](Self::coverage). Whitecaps lie where the finer cascades
+    /// compress the surface most (their Jacobians), as many as the coarse active foam on the
+    /// foam grid ([`active`](Self::active)) says; residual foam lies in thin streaks along the
+    /// wind, as much as the coarse residual foam says, carried with the water (its wind
+    /// drift, and the orbital motion of the rest point itself) and fading with it
+    /// (docs/theory.md, §15.8). [`Water::at_rest`](crate::Water::at_rest)'s `foam` (and a
+    /// [`Surface`](crate::Surface)'s) is the coarse coverage, the expectation of this
+    /// `total`. To draw fresh whitecaps apart from older foam; for a world point, find its
+    /// rest point with [`Water::locate`](crate::Water::locate) first.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
+    pub fn foam_at(&self, x0: f64, z0: f64) -> Result<FoamCoverage, Error> {
+        check_point(x0, z0)?;
+        Ok(self.foam.detail_at(self.cascades, x0, z0))
+    }
+
+    /// The breaking intensity in 1/s at the rest (undisplaced) point (`x0`, `z0`) in metres
+    /// (any finite coordinates: the foam grid wraps with cascade 0's period), interpolated
+    /// bilinearly from [`breaking`](Self::breaking). For a world point, find its rest point
+    /// with [`Water::locate`](crate::Water::locate) first.
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
+    pub fn breaking_at(&self, x0: f64, z0: f64) -> Result<f32, Error> {
+        check_point(x0, z0)?;
+        Ok(self.foam.breaking_at(x0, z0))
+    }
+
+    /// The area fractions covered by active whitecaps, residual foam and all foam (summed in
+    /// a fixed order over the foam grid when the foam last changed; costs nothing here).
+    pub fn coverage(&self) -> FoamCoverage {
+        self.foam.coverage()
+    }
+
+    /// The whitecap calibration of this ocean: the breaking threshold, the target coverage
+    /// and what the statistics of the sea predict.
+    pub fn calibration(&self) -> FoamCalibration {
+        self.foam.calibration()
+    }
+}
+
+/// Checks a point: both coordinates finite, the error naming `x` or `z` as the ocean's
+/// foam queries always have.
+fn check_point(x: f64, z: f64) -> Result<(), Error> {
+    for (name, value) in [("x", x), ("z", z)] {
+        if !value.is_finite() {
+            return Err(Error::NonFinite { name });
+        }
+    }
+    Ok(())
+}

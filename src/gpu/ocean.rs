@@ -1,0 +1,167 @@
+//! What a renderer reads from a whole ocean ([`Textures`]): every cascade's texels with the
+//! ocean's foam in cascade 0's, and the sub-grid slope variance for the sun's glitter.
+
+use super::{Sources, TexelLayout};
+use crate::cascade::Cascade;
+use crate::error::{self, Error};
+use crate::ocean::OceanState;
+use crate::spectrum::SlopeVariance;
+
+/// What a renderer reads from an ocean each frame: what
+/// [`OceanState::textures`] returns. The cascades' texels with the ocean's foam
+/// ([`pack`](Self::pack), `pack_f16` with the `half` feature) and the
+/// slope variance the grids cannot show ([`subgrid_slope_variance`](Self::subgrid_slope_variance)).
+/// Borrows the ocean; `Copy`; allocates nothing.
+///
+/// ```
+/// use ocean_fft::gpu::TexelLayout;
+/// use ocean_fft::{OceanConfig, OceanState, Spectrum};
+/// let config = OceanConfig { size: 32, ..OceanConfig::default() };
+/// let mut ocean = OceanState::new(Spectrum::jonswap(10.0, 100_000.0)?, config)?;
+/// ocean.step(1.0 / 60.0)?;
+/// let mut texels = vec![[0.0f32; 4]; 32 * 32];
+/// for cascade in 0..ocean.cascades().len() {
+///     ocean.textures().pack(cascade, TexelLayout::DisplacementFoam, &mut texels)?;
+///     // upload `texels` to this cascade's texture
+/// }
+/// let glitter = ocean.textures().subgrid_slope_variance().total();   // σ², dimensionless
+/// assert!(glitter > 0.0);
+/// # Ok::<(), ocean_fft::Error>(())
+/// ```
+#[derive(Clone, Copy)]
+pub struct Textures<'a> {
+    ocean: &'a OceanState,
+}
+
+impl std::fmt::Debug for Textures<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Textures")
+            .field("cascades", &self.ocean.cascades().len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl OceanState {
+    /// What a renderer reads each frame: every cascade's texels with the ocean's foam
+    /// ([`Textures::pack`]) and the slope variance the grids cannot show
+    /// ([`Textures::subgrid_slope_variance`]). Costs nothing.
+    #[inline]
+    pub fn textures(&self) -> Textures<'_> {
+        Textures { ocean: self }
+    }
+
+    /// Deprecated: [`Textures::pack`] through [`OceanState::textures`].
+    ///
+    /// # Errors
+    /// As [`Textures::pack`].
+    #[deprecated(
+        since = "0.4.0",
+        note = "use `ocean.textures().pack(cascade, layout, out)`"
+    )]
+    #[doc(hidden)]
+    pub fn pack_texels(
+        &self,
+        cascade: usize,
+        layout: TexelLayout,
+        out: &mut [[f32; 4]],
+    ) -> Result<(), Error> {
+        self.textures().pack(cascade, layout, out)
+    }
+
+    /// Deprecated: [`Textures::pack_f16`] through [`OceanState::textures`].
+    ///
+    /// # Errors
+    /// As [`Textures::pack_f16`].
+    #[cfg(feature = "half")]
+    #[deprecated(
+        since = "0.4.0",
+        note = "use `ocean.textures().pack_f16(cascade, layout, out)`"
+    )]
+    #[doc(hidden)]
+    pub fn pack_texels_f16(
+        &self,
+        cascade: usize,
+        layout: TexelLayout,
+        out: &mut [[half::f16; 4]],
+    ) -> Result<(), Error> {
+        self.textures().pack_f16(cascade, layout, out)
+    }
+
+    /// Deprecated: [`Textures::subgrid_slope_variance`] through [`OceanState::textures`].
+    #[deprecated(
+        since = "0.4.0",
+        note = "use `ocean.textures().subgrid_slope_variance()`"
+    )]
+    #[doc(hidden)]
+    pub fn subgrid_slope_variance(&self) -> SlopeVariance {
+        self.textures().subgrid_slope_variance()
+    }
+}
+
+impl Textures<'_> {
+    /// Packs cascade `cascade` (0 the largest) into interleaved RGBA32F texels of `layout`
+    /// (see [`TexelLayout`]), texel (i, j) of that cascade's N×N grid at `out[j * N + i]`.
+    /// The ocean's one foam field lives on cascade 0's grid ([`OceanState::foam`]), so the
+    /// layouts with foam carry it in cascade 0's texels and 0 in every other cascade's (a
+    /// shader that sums the foam channels, or combines them as 1 − Π(1 − f), gets the foam).
+    /// Copies the values bit for bit. Row blocks in parallel; allocates nothing inside a
+    /// rayon pool; the result does not depend on the number of threads.
+    ///
+    /// # Errors
+    /// [`Error::IndexOutOfRange`] naming `cascade` unless it is below the number of cascades;
+    /// [`Error::LengthMismatch`] naming `out` unless `out.len()` is that cascade's N².
+    /// Nothing is written then.
+    pub fn pack(
+        &self,
+        cascade: usize,
+        layout: TexelLayout,
+        out: &mut [[f32; 4]],
+    ) -> Result<(), Error> {
+        let (sources, n) = self.sources(cascade, out.len())?;
+        sources.pack_f32(n, layout, out);
+        Ok(())
+    }
+
+    /// [`pack`](Self::pack) into RGBA16F texels (with the `half` feature), rounded and
+    /// saturated as [`Cascade::pack_texels_f16`] says: nearest f16, ties to even, ±65504
+    /// beyond the f16 range (never ±∞ or NaN).
+    ///
+    /// # Errors
+    /// As [`pack`](Self::pack); nothing is written then.
+    #[cfg(feature = "half")]
+    pub fn pack_f16(
+        &self,
+        cascade: usize,
+        layout: TexelLayout,
+        out: &mut [[half::f16; 4]],
+    ) -> Result<(), Error> {
+        let (sources, n) = self.sources(cascade, out.len())?;
+        sources.pack_f16(n, layout, out);
+        Ok(())
+    }
+
+    /// Slope variance along and across the wind that the spectrum holds above the finest
+    /// cascade's band, up to [`SlopeVariance::DEFAULT_CUTOFF`]: the roughness the grids
+    /// cannot show, which widens the sun's glitter (the last cascade's
+    /// [`Cascade::subgrid_slope_variance`]; a cascade `c` reports what lies above its own
+    /// band). For another cut-off use
+    /// [`Spectrum::slope_variance`](crate::Spectrum::slope_variance) from the top of the
+    /// last band.
+    pub fn subgrid_slope_variance(&self) -> SlopeVariance {
+        self.ocean
+            .cascades()
+            .last()
+            .map(Cascade::subgrid_slope_variance)
+            .unwrap_or_default()
+    }
+
+    /// Checks a pack of cascade `cascade` into a buffer of `len` texels; its sources and N.
+    fn sources(&self, cascade: usize, len: usize) -> Result<(Sources<'_>, usize), Error> {
+        let cascades = self.ocean.cascades();
+        error::index("cascade", cascade, cascades.len())?;
+        let c = &cascades[cascade];
+        error::length("out", len, c.size() * c.size())?;
+        let foam = (cascade == 0).then(|| self.ocean.foam());
+        Ok((Sources::new(c, foam), c.size()))
+    }
+}
