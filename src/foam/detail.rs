@@ -271,6 +271,27 @@ impl Detail {
         (row0 * (1.0 - fa) + row1 * fa) / variance.sqrt()
     }
 
+    /// The streak field laid out for a texture, its origin wrapped into one tile: the same
+    /// coordinates [`streak_at`](Self::streak_at) computes, with the offset projected onto
+    /// the wind's frame.
+    pub(super) fn streaks(&self) -> super::FoamStreaks<'_> {
+        let [c, s] = self.wind;
+        let [ox, oz] = self.offset;
+        let length_a = STREAK_ALONG as f64 * ALONG_SPACING;
+        let length_c = STREAK_ACROSS as f64 * ACROSS_SPACING;
+        let along = wrap(ox * c + oz * s, length_a, 1.0 / length_a);
+        let across = wrap(oz * c - ox * s, length_c, 1.0 / length_c);
+        super::FoamStreaks {
+            texels: &self.streaks,
+            across_texels: STREAK_ACROSS,
+            along_texels: STREAK_ALONG,
+            spacing: [ACROSS_SPACING as f32, ALONG_SPACING as f32],
+            axis: [c as f32, s as f32],
+            origin: [across as f32, along as f32],
+            neighbour_correlation: [self.neighbours[1], self.neighbours[0]],
+        }
+    }
+
     /// The standardised compression of the cascades ≥ 1 at undisplaced world (x, z):
     /// Σ (1 − J_c) over the analytic standard deviation of that bilinear interpolation there,
     /// for a sea whose unresolved compression variance at unit choppiness is `variance`.

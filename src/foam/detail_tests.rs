@@ -184,3 +184,60 @@ fn streaks_drift_with_the_water() {
     }
     assert!(moved > 0.1, "{moved}");
 }
+
+/// The streak field as a renderer samples it (`Textures::foam_streaks`), read the way a
+/// shader does — f32 world coordinates, the wind frame's rotation, the origin, texel
+/// centres half a texel in, repeat addressing, bilinear filtering and the variance
+/// correction the docs give — equals `streak_at` after the streaks have drifted. The
+/// shader's coordinates are f32 near 100 m (error ~1e-5 m, 4e-5 of a 0.25 m texel across)
+/// and the field changes by at most a few units per texel, so 1e-3 bounds the difference.
+#[test]
+fn a_shader_reads_the_streaks_as_foam_at_does() {
+    let (spectrum, mut config) = SeaState::Storm.build();
+    config.size = 64;
+    let spectrum = spectrum.with_wind_direction(2.3).unwrap();
+    let mut ocean = OceanState::new(spectrum, config).unwrap();
+    for _ in 0..50 {
+        ocean.step(0.2).unwrap();
+    }
+    let streaks = ocean.textures().foam_streaks();
+    assert_eq!(
+        streaks.texels.len(),
+        streaks.across_texels * streaks.along_texels
+    );
+    let shader = |x: f32, z: f32| -> f32 {
+        let [a0, a1] = streaks.axis;
+        let along = x * a0 + z * a1 - streaks.origin[1];
+        let across = z * a0 - x * a1 - streaks.origin[0];
+        let (nc, na) = (streaks.across_texels, streaks.along_texels);
+        // Texture coordinates with the half texel, then the hardware's texel space.
+        let u = across / (streaks.spacing[0] * nc as f32) + 0.5 / nc as f32;
+        let v = along / (streaks.spacing[1] * na as f32) + 0.5 / na as f32;
+        let (tu, tv) = (u * nc as f32 - 0.5, v * na as f32 - 0.5);
+        let (iu, iv) = (tu.floor(), tv.floor());
+        let (fu, fv) = (tu - iu, tv - iv);
+        let texel = |i: f32, j: f32| {
+            let i = (i as i64).rem_euclid(nc as i64) as usize;
+            let j = (j as i64).rem_euclid(na as i64) as usize;
+            streaks.texels[j * nc + i]
+        };
+        let row0 = texel(iu, iv) * (1.0 - fu) + texel(iu + 1.0, iv) * fu;
+        let row1 = texel(iu, iv + 1.0) * (1.0 - fu) + texel(iu + 1.0, iv + 1.0) * fu;
+        let kept = |f: f32, rho: f32| (1.0 - f) * (1.0 - f) + f * f + 2.0 * f * (1.0 - f) * rho;
+        let [rc, ra] = streaks.neighbour_correlation;
+        (row0 * (1.0 - fv) + row1 * fv) / (kept(fu, rc) * kept(fv, ra)).sqrt()
+    };
+    let mut spread = 0.0f32;
+    for k in 0..3000 {
+        let (x, z) = (f64::from(k) * 0.093 - 140.0, f64::from(k % 53) * 1.7 - 40.0);
+        let expected = ocean.foam.detail.streak_at(x, z);
+        let got = shader(x as f32, z as f32);
+        assert!(
+            (got - expected).abs() < 1e-3,
+            "({x}, {z}): {got} vs {expected}"
+        );
+        spread = spread.max(expected.abs());
+    }
+    // The points cross many texels of a field of unit variance, not a flat patch.
+    assert!(spread > 1.5, "{spread}");
+}

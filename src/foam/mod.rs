@@ -13,6 +13,7 @@ mod model;
 mod moments;
 mod rows;
 mod state;
+mod streaks;
 #[cfg(test)]
 mod tests;
 mod transport;
@@ -21,6 +22,7 @@ mod view;
 pub use calibration::FoamCalibration;
 pub use config::FoamConfig;
 pub(crate) use state::{memory_bytes, Foam};
+pub use streaks::FoamStreaks;
 pub use view::FoamView;
 
 /// How much of the surface is covered by foam: area fractions in [0, 1], each grid point

@@ -525,6 +525,11 @@ impl Foam {
         self.residual.copy_from_slice(residual);
     }
 
+    /// The streak field of the foam's detail as a renderer samples it.
+    pub(crate) fn streaks(&self) -> super::FoamStreaks<'_> {
+        self.detail.streaks()
+    }
+
     /// How far the streak field of the foam's detail has drifted, `[x, z]` m.
     pub(crate) fn drift_offset(&self) -> [f64; 2] {
         self.detail.offset

@@ -1,7 +1,7 @@
 //! What a renderer reads from a whole ocean ([`Textures`]): every cascade's texels with the
 //! ocean's foam in cascade 0's, and the sub-grid slope variance for the sun's glitter.
 
-use super::{Sources, TexelLayout};
+use super::{FoamStreaks, Sources, TexelLayout};
 use crate::cascade::Cascade;
 use crate::error::{self, Error};
 use crate::ocean::OceanState;
@@ -98,7 +98,7 @@ impl OceanState {
     }
 }
 
-impl Textures<'_> {
+impl<'a> Textures<'a> {
     /// Packs cascade `cascade` (0 the largest) into interleaved RGBA32F texels of `layout`
     /// (see [`TexelLayout`]), texel (i, j) of that cascade's N×N grid at `out[j * N + i]`.
     /// The ocean's one foam field lives on cascade 0's grid ([`OceanState::foam`]), so the
@@ -153,6 +153,12 @@ impl Textures<'_> {
             .last()
             .map(Cascade::subgrid_slope_variance)
             .unwrap_or_default()
+    }
+
+    /// The streak field of the foam's detail and where it lies now ([`FoamStreaks`]): the
+    /// texels to upload once, the placement to set each frame. Costs nothing.
+    pub fn foam_streaks(&self) -> FoamStreaks<'a> {
+        self.ocean.foam.streaks()
     }
 
     /// Checks a pack of cascade `cascade` into a buffer of `len` texels; its sources and N.
