@@ -7,11 +7,13 @@
 mod calibration;
 mod change;
 mod config;
+mod detail;
 mod intensity;
 mod model;
 mod moments;
 mod rows;
 mod state;
+mod streaks;
 #[cfg(test)]
 mod tests;
 mod transport;
@@ -20,6 +22,7 @@ pub(crate) mod view;
 pub use calibration::FoamCalibration;
 pub use config::FoamConfig;
 pub(crate) use state::{memory_bytes, Foam};
+pub use streaks::FoamStreaks;
 pub use view::FoamView;
 
 /// How much of the surface is covered by foam: area fractions in [0, 1], each grid point

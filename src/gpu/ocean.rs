@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-use super::{Sources, TexelLayout};
+use super::{FoamStreaks, Sources, TexelLayout};
 use crate::cascade::Cascade;
 use crate::error::{self, Error};
 use crate::ocean::OceanState;
@@ -100,7 +100,7 @@ impl OceanState {
     }
 }
 
-impl Textures<'_> {
+impl<'a> Textures<'a> {
     /// Packs cascade `cascade` (0 the largest) into interleaved RGBA32F texels of `layout`
     /// (see [`TexelLayout`]), texel (i, j) of that cascade's N×N grid at `out[j * N + i]`.
     /// The ocean's one foam field lives on cascade 0's grid ([`OceanState::foam`]), so the
@@ -191,6 +191,12 @@ impl Textures<'_> {
                 }
             });
         Ok(())
+    }
+
+    /// The streak field of the foam's detail and where it lies now ([`FoamStreaks`]): the
+    /// texels to upload once, the placement to set each frame. Costs nothing.
+    pub fn foam_streaks(&self) -> FoamStreaks<'a> {
+        self.ocean.foam.streaks()
     }
 
     /// Checks a pack of cascade `cascade` into a buffer of `len` texels; its sources and N.

@@ -25,7 +25,7 @@ impl OceanState {
     #[inline]
     pub fn foam_view(&self) -> FoamView<'_> {
         let wakes = self.wake.as_ref().map(|_| self as &dyn ExtraFoam);
-        FoamView::new(&self.foam, wakes)
+        FoamView::new(&self.foam, &self.cascades, wakes)
     }
 
     /// Deprecated: [`FoamView::active`] through [`OceanState::foam_view`].
@@ -84,13 +84,16 @@ impl OceanState {
     }
 }
 
-/// The wake's foam trail over the ocean's foam: what [`Water::at_rest`] gives.
-///
-/// [`Water::at_rest`]: crate::query::Water::at_rest
+/// The wake's foam trail where the water of a rest point lands (the ocean's displacement
+/// there; the wake moves the water up and down only).
 impl ExtraFoam for OceanState {
-    fn total_at(&self, x0: f64, z0: f64) -> f32 {
-        self.water()
-            .at_rest(x0, z0)
-            .map_or(0.0, |sample| sample.foam)
+    fn trail_at(&self, x0: f64, z0: f64) -> f32 {
+        let Some(wakes) = self.wakes() else {
+            return 0.0;
+        };
+        self.water().at_rest(x0, z0).map_or(0.0, |sample| {
+            let [dx, dz] = sample.displacement;
+            wakes.foam_at(x0 + f64::from(dx), z0 + f64::from(dz))
+        })
     }
 }

@@ -25,7 +25,9 @@ pub struct SurfaceSample {
     pub normal: [f32; 3],
     /// Foam coverage in [0, 1]: the ocean's one foam field
     /// ([`OceanState::foam`](crate::OceanState::foam), on cascade 0's grid) interpolated
-    /// bilinearly; 0 from a range of cascades without cascade 0
+    /// bilinearly, the fraction of the sea around the point that foam covers (the expectation
+    /// of the foam itself, which [`FoamView::foam_at`](crate::FoamView::foam_at) gives
+    /// patterned at the breaking scale); 0 from a range of cascades without cascade 0
     /// ([`Water::at_rest_cascades`](crate::Water::at_rest_cascades)), as cascade 0's
     /// textures carry the foam.
     pub foam: f32,
