@@ -139,11 +139,17 @@ fn foam_queries_include_the_trail() {
         let (x0, z0) = (x - 40.0 + f64::from(k) * 1.3, f64::from(k % 7) - 3.0);
         let rest = water.at_rest(x0, z0).unwrap();
         let coverage = view.foam_at(x0, z0).unwrap();
-        // foam_at's total is the sample's foam, the trail where the water lands over the
-        // ocean's: f + w(1 − f); active whitecaps are the ocean's alone.
-        assert_eq!(coverage.total, rest.foam);
+        // foam_at's total is the trail where the water lands laid over the ocean's detailed
+        // foam d: d + w(1 − d), so at least the trail and at most 1, and what is left of it
+        // once the trail is taken out, d, is a foam value in [0, 1]; active whitecaps are the
+        // ocean's alone.
         let [dx, dz] = rest.displacement.map(f64::from);
         let trail = w.foam_at(x0 + dx, z0 + dz);
+        assert!(coverage.total >= trail - 1e-6 && coverage.total <= 1.0);
+        if trail < 0.99 {
+            let detail = (coverage.total - trail) / (1.0 - trail);
+            assert!((-1e-5..=1.0 + 1e-5).contains(&detail), "{detail}");
+        }
         let ocean_alone = rest.foam - trail;
         assert!(
             (ocean_alone / (1.0 - trail).max(1e-6)).abs() < 0.05,

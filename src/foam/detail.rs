@@ -11,7 +11,7 @@
 //!   that of the undisplaced point itself).
 //!
 //! The threshold is a soft ramp ρ(t) = clamp((t − q)/(2w) + ½, 0, 1) of half-width w, and q(f)
-//! solves E[ρ] = f for a standard normal t; the inverse is tabulated once, in f64 with the
+//! solves E\[ρ\] = f for a standard normal t; the inverse is tabulated once, in f64 with the
 //! functions of the ocean's determinism mode.
 
 use crate::cascade::Cascade;
@@ -49,7 +49,7 @@ const STREAK_SEED: u64 = 0x5f0a_3d7e_c41b_9265;
 pub(crate) const DETAIL_BYTES: usize =
     4 * ((2.0 * REACH / STEP) as usize + 1) * 2 + 4 * STREAK_ALONG * STREAK_ACROSS;
 
-/// E[ρ] as a function of the threshold q for one edge half-width: `mean[i]` at
+/// E\[ρ\] as a function of the threshold q for one edge half-width: `mean[i]` at
 /// q = −REACH + (i + edge)·STEP, decreasing in i.
 #[derive(Debug, Clone)]
 pub(super) struct Quantiles {
@@ -88,7 +88,7 @@ impl Quantiles {
         }
     }
 
-    /// The threshold q (standard deviations) at which E[ρ] is `fraction`: +∞ for no foam,
+    /// The threshold q (standard deviations) at which E\[ρ\] is `fraction`: +∞ for no foam,
     /// −∞ for all of it, linear between the table's entries.
     #[inline]
     pub(super) fn threshold(&self, fraction: f32) -> f32 {
@@ -140,9 +140,9 @@ pub(super) struct BilinearVariance {
     /// (V₀, Vₓ, V_z, V_xz) of the compression −(D_xx + D_zz) at unit choppiness, whose
     /// multiplier is k: Σ 2|h0|² k² times 1, (1 − cos k_xΔ), (1 − cos k_zΔ) and both.
     parts: [f64; 4],
-    /// E[T²K] with T = D_xx + D_zz and K = D_xx·D_zz − D_xz² at unit choppiness (Isserlis'
+    /// E\[T²K\] with T = D_xx + D_zz and K = D_xx·D_zz − D_xz² at unit choppiness (Isserlis'
     /// theorem on the covariance of the gradient): 1 − J = −λT − λ²K has the third moment
-    /// −3λ⁴E[T²K] to leading order.
+    /// −3λ⁴E\[T²K\] to leading order.
     third: f64,
 }
 
