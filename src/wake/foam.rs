@@ -147,8 +147,15 @@ fn crest(foam: &mut f32, sx: f32, sz: f32, clock: TrailClock) {
     *foam = kept + (1.0 - kept) * (CREST_RATE * excess * clock.tick).min(1.0);
 }
 
-/// `to[j][i] = from[j + dz][i + dx]`, or 0 where that lies outside the `n`×`n` grid.
-pub(crate) fn shift_foam(from: &[f32], to: &mut [f32], n: usize, [dx, dz]: [i64; 2]) {
+/// `to[j][i] = keep(from[j + dz][i + dx])`, or `U::default()` (0) where that lies outside
+/// the `n`×`n` grid: the window's buffers moved by whole cells.
+pub(crate) fn shift_grid<T: Copy + Sync, U: Default + Send>(
+    from: &[T],
+    to: &mut [U],
+    n: usize,
+    [dx, dz]: [i64; 2],
+    keep: impl Fn(T) -> U + Sync,
+) {
     to.par_chunks_mut(n)
         .enumerate()
         .with_min_len(ROWS_PER_TASK)
@@ -158,9 +165,9 @@ pub(crate) fn shift_foam(from: &[f32], to: &mut [f32], n: usize, [dx, dz]: [i64;
                 let column = i as i64 + dx;
                 let inside = (0..n as i64).contains(&source) && (0..n as i64).contains(&column);
                 *value = if inside {
-                    from[source as usize * n + column as usize]
+                    keep(from[source as usize * n + column as usize])
                 } else {
-                    0.0
+                    U::default()
                 };
             }
         });

@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use super::bump;
 use super::config::{Hull, WakeConfig};
 use super::fft::Fft;
-use super::foam::{crest_tick, hull_row, shift_foam, TrailClock};
+use super::foam::{crest_tick, hull_row, shift_grid, TrailClock};
 use super::window::Wakes;
 use crate::error::{self, Error};
 use crate::math::determinism::{with_math, Determinism, Math};
@@ -309,14 +309,14 @@ impl WakeSim {
         self.origin = origin;
         let n = self.n;
         let scale = 1.0 / (n * n) as f32;
-        shift_into(&self.field, &mut self.work, n, shift);
+        shift_grid(&self.field, &mut self.work, n, shift, real);
         std::mem::swap(&mut self.field, &mut self.work);
-        shift_foam(&self.foam, &mut self.foam_work, n, shift);
+        shift_grid(&self.foam, &mut self.foam_work, n, shift, |v| v);
         std::mem::swap(&mut self.foam, &mut self.foam_work);
         // ψ to physical space, moved, and back.
         self.work.copy_from_slice(&self.psi);
         self.fft.run(true, &mut self.work, &mut self.psi);
-        shift_into(&self.psi, &mut self.work, n, shift);
+        shift_grid(&self.psi, &mut self.work, n, shift, real);
         self.fft.run(false, &mut self.work, &mut self.psi);
         self.psi.par_iter_mut().for_each(|value| *value *= scale);
         true
@@ -388,22 +388,9 @@ impl WakeSim {
     }
 }
 
-/// `to[j][i] = from[j + dz][i + dx]` (its real part), or 0 where that lies outside.
-fn shift_into(from: &[Complex32], to: &mut [Complex32], n: usize, [dx, dz]: [i64; 2]) {
-    to.par_chunks_mut(n)
-        .enumerate()
-        .with_min_len(ROWS_PER_TASK)
-        .for_each(|(j, row)| {
-            let source = j as i64 + dz;
-            for (i, value) in row.iter_mut().enumerate() {
-                let column = i as i64 + dx;
-                *value = if (0..n as i64).contains(&source) && (0..n as i64).contains(&column) {
-                    Complex32::new(from[source as usize * n + column as usize].re, 0.0)
-                } else {
-                    Complex32::default()
-                };
-            }
-        });
+/// A field value's real part, as a complex number (the shifted fields are real).
+fn real(v: Complex32) -> Complex32 {
+    Complex32::new(v.re, 0.0)
 }
 
 /// The rotation of each mode (|m_x|, |m_z|) over a tick of `substep` s (see
