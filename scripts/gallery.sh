@@ -39,6 +39,9 @@ cp "$work/out/weather.png" "$images/weather.png"
 cp "$work/out/weather_strip.png" "$images/weather_strip.png"
 run second_order --palette
 cp "$work/out/second_order.png" "$images/second_order.png"
+run wake --palette
+cp "$work/out/wake.png" "$images/wake_top.png"
+cp "$work/out/wake_depth.png" "$images/wake_depth.png"
 
 # The Bevy plugin's sea example (bevy_ocean_fft/), headless under Xvfb with Mesa's software
 # Vulkan (needs xvfb mesa-vulkan-drivers libvulkan1 libxkbcommon-x11-0; about a minute after
