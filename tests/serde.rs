@@ -640,3 +640,65 @@ fn a_saved_snapshot_restores_and_a_tampered_one_is_refused() {
     ));
     assert_eq!(ocean.cascades()[0].height(), heights.as_slice());
 }
+
+#[test]
+fn a_saved_snapshot_with_a_wake_restores_and_a_tampered_one_is_refused() {
+    let config = OceanConfig {
+        size: 16,
+        wakes: Some(ocean_fft::WakeConfig {
+            size: 32,
+            spacing: 1.0,
+            ..ocean_fft::WakeConfig::default()
+        }),
+        ..OceanConfig::default()
+    };
+    let spectrum = ocean_fft::Spectrum::jonswap(5.0, 10_000.0).unwrap();
+    let mut ocean = OceanState::new(spectrum, config).unwrap();
+    let hull = ocean_fft::Hull {
+        velocity: [2.0, 0.0],
+        length: 6.0,
+        beam: 2.0,
+        draft: 0.5,
+        ..ocean_fft::Hull::default()
+    };
+    ocean.set_hulls(&[hull]).unwrap();
+    ocean.step(1.0).unwrap();
+    let snapshot = ocean.snapshot();
+    let text = serde_json::to_string(&snapshot).unwrap();
+    let loaded: ocean_fft::OceanSnapshot = serde_json::from_str(&text).unwrap();
+    assert_eq!(loaded, snapshot);
+    let wake = ocean.wakes().unwrap().height().to_vec();
+    assert!(wake.iter().any(|&h| h != 0.0));
+    ocean.step(1.0).unwrap();
+    ocean.restore(&loaded).unwrap();
+    assert_eq!(ocean.wakes().unwrap().height(), wake.as_slice());
+
+    // Hand edits: foam above 1, a hull of zero length, one value fewer, no wake at all.
+    type Edit = (&'static str, fn(&mut Value));
+    let edits: [Edit; 4] = [
+        ("snapshot.wake.foam", |v| v["wake"]["foam"][3] = json!(1.5)),
+        ("hull.length", |v| {
+            v["wake"]["hulls"][0]["length"] = json!(0.0)
+        }),
+        ("snapshot.wake.eta", |v| {
+            v["wake"]["eta"].as_array_mut().unwrap().pop();
+        }),
+        ("snapshot.wake", |v| v["wake"] = Value::Null),
+    ];
+    ocean.step(0.5).unwrap();
+    let before = ocean.wakes().unwrap().height().to_vec();
+    for (name, edit) in edits {
+        let mut value: Value = serde_json::from_str(&text).unwrap();
+        edit(&mut value);
+        let bad: ocean_fft::OceanSnapshot = serde_json::from_value(value).unwrap();
+        let error = ocean.restore(&bad).unwrap_err();
+        let named = match error {
+            ocean_fft::Error::OutOfRange { name, .. }
+            | ocean_fft::Error::LengthMismatch { name, .. }
+            | ocean_fft::Error::NotApplicable { name, .. } => name,
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(named, name);
+        assert_eq!(ocean.wakes().unwrap().height(), before.as_slice());
+    }
+}

@@ -1,5 +1,6 @@
 //! Steps with wakes allocate nothing once built: the wake's ticks, its hulls and the moves
-//! of its window included (a counting global allocator sees every thread's allocations).
+//! of its window included, and so do a pre-roll, a capture into a used snapshot and a
+//! restore (a counting global allocator sees every thread's allocations).
 
 mod counting;
 
@@ -36,6 +37,7 @@ fn stepping_with_wakes_allocates_nothing() {
             .collect();
         let points: Vec<[f64; 2]> = (0..256).map(|i| [f64::from(i) * 0.3, -3.0]).collect();
         let mut heights = vec![0.0; points.len()];
+        let mut saved = ocean.snapshot();
         let (before, after) = pool.install(|| {
             for _ in 0..3 {
                 ocean.set_hulls(&hulls).unwrap();
@@ -50,7 +52,12 @@ fn stepping_with_wakes_allocates_nothing() {
                 ocean.water().heights_at(&points, &mut heights).unwrap();
                 let _ = ocean.water().at_rest(3.0, 4.0).unwrap();
                 let _ = ocean.water().surface_at(3.0, 4.0).unwrap();
+                if frame % 40 == 0 {
+                    saved.capture(&ocean);
+                }
             }
+            ocean.pre_roll(0.5, 0.05).unwrap();
+            ocean.restore(&saved).unwrap();
             (before, count())
         });
         assert_eq!(

@@ -5,16 +5,20 @@ use crate::error::Error;
 
 use super::time::{FoamMotion, Scope};
 use super::OceanState;
+use crate::wake::snapshot::WakeSnapshot;
 
 /// Everything about an [`OceanState`] that cannot be recomputed from its spectrum and config:
 /// the time, the choppiness (the one the buffers were computed with, and the one last set if
-/// it has not been applied yet), and the foam's state (active and residual foam). Everything
+/// it has not been applied yet), the foam's state (active and residual foam) and, with
+/// [`OceanConfig::wakes`](crate::OceanConfig::wakes), the wake window's waves, foam trail,
+/// place and hulls. Everything
 /// else (the cascades' buffers, the breaking intensity, the total foam and its coverage)
 /// follows from these, so [`OceanState::restore`] brings an ocean back to exactly the bits it
 /// had when the snapshot was taken, and it then steps to the same bits as the original did.
 ///
 /// A snapshot holds 8 bytes per point of the foam grid (cascade 0's N×N) and the drift of
-/// the foam's streaks. Take one with [`OceanState::snapshot`], or refill one without
+/// the foam's streaks; with wakes, 16 bytes more per cell of the wake window (1 MiB for the
+/// default 256² window). Take one with [`OceanState::snapshot`], or refill one without
 /// allocating with [`capture`](Self::capture). With the `serde` feature it can be saved and
 /// loaded; a loaded snapshot is checked when it is restored. For a restore that is bit-exact,
 /// the format must read numbers back exactly: binary formats do, and so does `serde_json`
@@ -51,6 +55,10 @@ pub struct OceanSnapshot {
     /// before 0.4: 0).
     #[cfg_attr(feature = "serde", serde(default))]
     foam_drift: [f64; 2],
+    /// The wake window's state, with [`OceanConfig::wakes`](crate::OceanConfig::wakes)
+    /// (absent from snapshots saved before 0.4, which had no wakes).
+    #[cfg_attr(feature = "serde", serde(default))]
+    wake: Option<WakeSnapshot>,
 }
 
 impl OceanSnapshot {
@@ -71,6 +79,10 @@ impl OceanSnapshot {
         self.residual.clear();
         self.residual.extend_from_slice(ocean.foam.residual());
         self.foam_drift = ocean.foam.drift_offset();
+        match &ocean.wake {
+            Some(wake) => wake.save(self.wake.get_or_insert_with(WakeSnapshot::default)),
+            None => self.wake = None,
+        }
     }
 }
 
@@ -85,6 +97,7 @@ impl OceanState {
             active: Vec::new(),
             residual: Vec::new(),
             foam_drift: [0.0; 2],
+            wake: None,
         };
         snapshot.capture(self);
         snapshot
@@ -96,8 +109,8 @@ impl OceanState {
         snapshot.capture(self);
     }
 
-    /// Brings the ocean back to the state `snapshot` holds: its time, choppiness and foam, and
-    /// every cascade updated to that time. The result is bit-identical to the ocean the
+    /// Brings the ocean back to the state `snapshot` holds: its time, choppiness, foam and
+    /// wake window, and every cascade updated to that time. The result is bit-identical to the ocean the
     /// snapshot was taken from, and steps on identically. Allocates nothing inside a rayon
     /// pool.
     ///
@@ -107,8 +120,13 @@ impl OceanState {
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for a time beyond
     /// [`Cascade::MAX_TIME`](crate::Cascade::MAX_TIME) or a foam value outside [0, 1], and the
     /// errors of [`set_choppiness`](Self::set_choppiness); [`Error::NonFinite`] naming
-    /// `snapshot.foam_drift` for a drift of the foam's streaks that is not finite. Nothing
-    /// changes then.
+    /// `snapshot.foam_drift` for a drift of the foam's streaks that is not finite;
+    /// [`Error::NotApplicable`] naming `snapshot.wake` when one of the snapshot and the ocean
+    /// has a wake window and the other has not, and for a wake window of another size
+    /// [`Error::LengthMismatch`] (naming `snapshot.wake.eta`, `.psi` or `.foam`), or
+    /// [`Error::NonFinite`] or [`Error::OutOfRange`] naming the `snapshot.wake` field that
+    /// is not finite or out of its range (its hulls as [`set_hulls`](Self::set_hulls) checks
+    /// them). Nothing changes then.
     pub fn restore(&mut self, snapshot: &OceanSnapshot) -> Result<(), Error> {
         self.foam.check_state(
             ("snapshot.active", &snapshot.active),
@@ -121,6 +139,25 @@ impl OceanState {
             return Err(Error::NonFinite {
                 name: "snapshot.foam_drift",
             });
+        }
+        match (&self.wake, &snapshot.wake, &self.config.wakes) {
+            (Some(wake), Some(saved), Some(config)) => wake.check(saved, config.inner_side())?,
+            (None, None, _) => {}
+            (Some(_), None, _) => {
+                return Err(Error::NotApplicable {
+                    name: "snapshot.wake",
+                    reason: "the snapshot was taken from an ocean without wakes",
+                })
+            }
+            _ => {
+                return Err(Error::NotApplicable {
+                    name: "snapshot.wake",
+                    reason: "the ocean was built without `OceanConfig::wakes`",
+                })
+            }
+        }
+        if let (Some(wake), Some(saved)) = (&mut self.wake, &snapshot.wake) {
+            wake.load(saved, self.config.determinism);
         }
         self.foam.set_state(&snapshot.active, &snapshot.residual);
         self.foam.set_drift_offset(snapshot.foam_drift);

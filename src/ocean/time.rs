@@ -106,7 +106,11 @@ impl OceanState {
     /// not on any earlier history: every client of a networked game, or every frame range of
     /// a bake, gets the same bits. Whitecaps reach their steady coverage within about five
     /// [`FoamConfig::active_decay`](crate::FoamConfig::active_decay) (20 s by default), residual foam within about five
-    /// [`FoamConfig::residual_decay`](crate::FoamConfig::residual_decay). Allocates nothing inside a rayon pool.
+    /// [`FoamConfig::residual_decay`](crate::FoamConfig::residual_decay). With
+    /// [`OceanConfig::wakes`](crate::OceanConfig::wakes) the wake window, where it stands,
+    /// is cleared to still water and spun up over the same seconds with the hulls last set,
+    /// each moving along its velocity, so a boat starts with its wake behind it (the window's
+    /// ticks cost what they cost in a step). Allocates nothing inside a rayon pool.
     ///
     /// ```
     /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
@@ -144,6 +148,9 @@ impl OceanState {
         rayon::scope(|_| {
             self.finish_preparing();
             self.foam.clear_state();
+            if let Some(wake) = &mut self.wake {
+                wake.clear_state();
+            }
             self.advance(start, FoamMotion::Jump, Scope::FoamSource);
             let mut previous = start;
             for k in 1..=steps {
@@ -174,8 +181,9 @@ impl OceanState {
                 FoamMotion::Keep => {}
             }
             if let Some(wake) = &mut self.wake {
-                match (foam, scope) {
-                    (FoamMotion::Integrate(_), Scope::All) => wake.advance(t),
+                // A pre-roll's steps (cascade 0 alone) move the wake too.
+                match foam {
+                    FoamMotion::Integrate(_) => wake.advance(t),
                     _ => wake.jump(t),
                 }
             }

@@ -8,6 +8,7 @@ mod config;
 mod fft;
 mod foam;
 pub(crate) mod sim;
+pub(crate) mod snapshot;
 #[cfg(test)]
 mod tests;
 mod window;

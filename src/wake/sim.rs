@@ -29,8 +29,8 @@ use crate::spectrum::dispersion::{Dispersion, GRAVITY, SURFACE_TENSION, WATER_DE
 
 /// A hull as placed by `set_hulls`, with its heading's unit vector.
 #[derive(Debug, Clone, Copy)]
-struct Placed {
-    hull: Hull,
+pub(super) struct Placed {
+    pub(super) hull: Hull,
     /// (cos θ, sin θ) of the heading.
     bow: [f32; 2],
     /// Radius in metres of the circle around the centre that holds the waterplane.
@@ -40,18 +40,18 @@ struct Placed {
 /// The wake layer's simulation (its public face is [`Wakes`], the buffers it writes).
 #[derive(Debug, Clone)]
 pub(crate) struct WakeSim {
-    n: usize,
-    spacing: f64,
+    pub(super) n: usize,
+    pub(super) spacing: f64,
     substep: f64,
     fft: Fft,
     /// η in physical space (`[z][x]`, the real parts), between ticks; the pressure head is
     /// written into the imaginary parts at the start of a tick.
-    field: Vec<Complex32>,
+    pub(super) field: Vec<Complex32>,
     /// The transforms' other buffer.
     work: Vec<Complex32>,
     /// ψ̂ in wave-number space, transposed (`[k_x][k_z]`), normalised (its unnormalised
     /// inverse transform is ψ).
-    psi: Vec<Complex32>,
+    pub(super) psi: Vec<Complex32>,
     /// Per mode (|m_x|, |m_z|), (N/2 + 1)² of them (a mode's rotation depends on |k| alone):
     /// cos ωτ, sin ωτ, (1 − cos ωτ)·G, sin ωτ·G; all zero for the mean and the Nyquist
     /// row and column.
@@ -62,18 +62,18 @@ pub(crate) struct WakeSim {
     fade: Vec<f32>,
     /// The hulls' pressure head p/(ρg) in metres at the last tick's middle (`[z][x]`): the
     /// static dip the crests of the foam are measured from.
-    head: Vec<f32>,
+    pub(super) head: Vec<f32>,
     /// Whether `head` holds anything (a hull pressed at the last tick).
-    pressed: bool,
+    pub(super) pressed: bool,
     /// The foam trail's coverage in [0, 1] (`[z][x]`), and room for its moves.
-    foam: Vec<f32>,
+    pub(super) foam: Vec<f32>,
     foam_work: Vec<f32>,
     clock: TrailClock,
-    hulls: Vec<Placed>,
+    pub(super) hulls: Vec<Placed>,
     /// Simulated time in seconds at which the hulls were at their positions.
-    hull_time: f64,
+    pub(super) hull_time: f64,
     /// Cell indices (x, z) of sample (0, 0).
-    origin: [i64; 2],
+    pub(super) origin: [i64; 2],
     /// Ticks done: the state stands for the time `ticks · substep`.
     ticks: i64,
 }
