@@ -18,6 +18,7 @@ use crate::cascade::Cascade;
 use crate::math::determinism::Math;
 use crate::math::periodic::{cell_on, wrap, Period, Stencil};
 use crate::math::rng::gaussian_pair;
+use rayon::prelude::*;
 
 use super::FoamCoverage;
 
@@ -34,16 +35,26 @@ pub(super) const RESIDUAL_EDGE: usize = 32;
 
 /// Texels of the streak field along the wind and across it.
 pub(super) const STREAK_ALONG: usize = 128;
-pub(super) const STREAK_ACROSS: usize = 512;
-/// Spacing of the streak field's texels along and across the wind, m (a tile of 256 m × 128 m).
+pub(super) const STREAK_ACROSS: usize = 1024;
+/// Spacing of the streak field's texels along and across the wind, m (a tile of 256 m × 256 m).
 const ALONG_SPACING: f64 = 2.0;
 const ACROSS_SPACING: f64 = 0.25;
-/// Standard deviations of the Gaussian kernels that smooth white noise into the streak field,
-/// along and across the wind, m: its correlation falls to 1/e at twice these, 12 m and 1 m.
-const ALONG_KERNEL: f64 = 6.0;
+/// Standard deviations of the Gaussian kernels that smooth white noise into the windrows of
+/// the streak field, along and across the wind, m: their correlation falls to 1/e at twice
+/// these, 36 m and 1 m.
+const ALONG_KERNEL: f64 = 18.0;
 const ACROSS_KERNEL: f64 = 0.5;
-/// Mixed into cascade 0's seed for the streak field's noise.
+/// The same for the patches that group the windrows, `[along, across]` m.
+const PATCH_KERNEL: [f64; 2] = [14.0, 6.0];
+/// Weights of the windrows and the patches in the streak field (before it is normalised):
+/// the patches hold a fifth of its variance, enough to group the windrows without stacking
+/// them into bars.
+const STREAK_WEIGHTS: [f64; 2] = [1.0, 0.5];
+/// The patches' columns lie this many texels apart (2 m).
+const PATCH_STRIDE: usize = 8;
+/// Mixed into cascade 0's seed for the streak field's noise, and again for the patches'.
 const STREAK_SEED: u64 = 0x5f0a_3d7e_c41b_9265;
+const PATCH_SEED: u64 = 0x1d3b_77a2_90c4_e651;
 
 /// Bytes of the detail's tables: the quantile table and the streak field.
 pub(crate) const DETAIL_BYTES: usize =
@@ -360,52 +371,35 @@ fn split(g: f64, n: usize) -> (usize, f32) {
     ((i as usize).min(n - 1), f)
 }
 
-/// The streak field: white noise (one standard normal per texel from `seed`) smoothed by
-/// periodic Gaussian kernels along and across the wind, brought to mean 0 and variance 1,
-/// with the functions of `M`; and the correlations of neighbouring texels along and across.
+/// The streak field: two fields of white noise (one standard normal per texel from `seed`
+/// and from a second seed) smoothed by periodic Gaussian kernels, the windrows (long along
+/// the wind, thin across) and the patches that group them, summed with the weights
+/// [`STREAK_WEIGHTS`], brought to mean 0 and variance 1, with the functions of `M`; and the
+/// correlations of neighbouring texels along and across.
 fn streak_field<M: Math>(seed: u64) -> (Vec<f32>, [f32; 2]) {
-    let kernel = |std: f64, spacing: f64| -> Vec<f64> {
-        let radius = (4.0 * std / spacing).ceil() as i32;
-        (-radius..=radius)
-            .map(|d| {
-                let x = f64::from(d) * spacing / std;
-                M::exp(-0.5 * x * x)
-            })
-            .collect()
-    };
-    let wa = kernel(ALONG_KERNEL, ALONG_SPACING);
-    let wc = kernel(ACROSS_KERNEL, ACROSS_SPACING);
     let (na, nc) = (STREAK_ALONG, STREAK_ACROSS);
-    let noise: Vec<f64> = (0..na * nc)
-        .map(|k| gaussian_pair::<M>(seed, (k % nc) as i32, (k / nc) as i32).0)
+    let windrows = smoothed::<M>(seed, [ALONG_KERNEL, ACROSS_KERNEL], nc, ACROSS_SPACING);
+    // The patches are smooth over metres: made on every PATCH_STRIDE-th column (2 m apart)
+    // and interpolated linearly across, which keeps all but 0.3 % of their variance between
+    // the columns (correlation 0.97 at 2 m).
+    let coarse = nc / PATCH_STRIDE;
+    let spacing = ACROSS_SPACING * PATCH_STRIDE as f64;
+    let patches = smoothed::<M>(seed ^ PATCH_SEED, PATCH_KERNEL, coarse, spacing);
+    let [w, p] = STREAK_WEIGHTS;
+    let out: Vec<f64> = windrows
+        .iter()
+        .enumerate()
+        .map(|(k, a)| {
+            let (j, i) = (k / nc, k % nc);
+            let (c, f) = (
+                i / PATCH_STRIDE,
+                (i % PATCH_STRIDE) as f64 / PATCH_STRIDE as f64,
+            );
+            let row = &patches[j * coarse..(j + 1) * coarse];
+            let b = (1.0 - f) * row[c] + f * row[(c + 1) % coarse];
+            w * a + p * b
+        })
         .collect();
-    // Across (within rows), then along (between rows), both periodic.
-    let mut rows = vec![0.0f64; na * nc];
-    let rc = (wc.len() / 2) as isize;
-    for j in 0..na {
-        for i in 0..nc {
-            let mut v = 0.0;
-            for (d, w) in wc.iter().enumerate() {
-                let ii = (i as isize + d as isize - rc).rem_euclid(nc as isize) as usize;
-                v += w * noise[j * nc + ii];
-            }
-            rows[j * nc + i] = v;
-        }
-    }
-    let norm =
-        (wa.iter().map(|w| w * w).sum::<f64>() * wc.iter().map(|w| w * w).sum::<f64>()).sqrt();
-    let ra = (wa.len() / 2) as isize;
-    let mut out = vec![0.0f64; na * nc];
-    for j in 0..na {
-        for i in 0..nc {
-            let mut v = 0.0;
-            for (d, w) in wa.iter().enumerate() {
-                let jj = (j as isize + d as isize - ra).rem_euclid(na as isize) as usize;
-                v += w * rows[jj * nc + i];
-            }
-            out[j * nc + i] = v / norm;
-        }
-    }
     // The realised field to mean 0 and variance 1 exactly (its few thousand independent
     // values leave them a few per cent off), and its neighbours' correlations.
     let count = (na * nc) as f64;
@@ -422,6 +416,62 @@ fn streak_field<M: Math>(seed: u64) -> (Vec<f32>, [f32; 2]) {
     }
     let values = field.iter().map(|&v| v as f32).collect();
     (values, [(along / count) as f32, (across / count) as f32])
+}
+
+/// White noise on a periodic grid of `STREAK_ALONG` rows of `nc` texels `across_spacing`
+/// metres apart (one standard normal per texel from `seed`) smoothed by Gaussian kernels of
+/// standard deviation `[along, across]` metres, with unit variance in expectation.
+fn smoothed<M: Math>(
+    seed: u64,
+    [along, across]: [f64; 2],
+    nc: usize,
+    across_spacing: f64,
+) -> Vec<f64> {
+    let kernel = |std: f64, spacing: f64| -> Vec<f64> {
+        let radius = (4.0 * std / spacing).ceil() as i32;
+        (-radius..=radius)
+            .map(|d| {
+                let x = f64::from(d) * spacing / std;
+                M::exp(-0.5 * x * x)
+            })
+            .collect()
+    };
+    let wa = kernel(along, ALONG_SPACING);
+    let wc = kernel(across, across_spacing);
+    let na = STREAK_ALONG;
+    let noise: Vec<f64> = (0..na * nc)
+        .into_par_iter()
+        .map(|k| gaussian_pair::<M>(seed, (k % nc) as i32, (k / nc) as i32).0)
+        .collect();
+    // Across (within rows), then along (between rows), both periodic; rows in parallel, each
+    // value summed in one order whatever the threads.
+    let mut rows = vec![0.0f64; na * nc];
+    let rc = (wc.len() / 2) as isize;
+    rows.par_chunks_mut(nc).enumerate().for_each(|(j, row)| {
+        for (i, value) in row.iter_mut().enumerate() {
+            let mut v = 0.0;
+            for (d, w) in wc.iter().enumerate() {
+                let ii = (i as isize + d as isize - rc).rem_euclid(nc as isize) as usize;
+                v += w * noise[j * nc + ii];
+            }
+            *value = v;
+        }
+    });
+    let norm =
+        (wa.iter().map(|w| w * w).sum::<f64>() * wc.iter().map(|w| w * w).sum::<f64>()).sqrt();
+    let ra = (wa.len() / 2) as isize;
+    let mut out = vec![0.0f64; na * nc];
+    out.par_chunks_mut(nc).enumerate().for_each(|(j, row)| {
+        for (i, value) in row.iter_mut().enumerate() {
+            let mut v = 0.0;
+            for (d, w) in wa.iter().enumerate() {
+                let jj = (j as isize + d as isize - ra).rem_euclid(na as isize) as usize;
+                v += w * rows[jj * nc + i];
+            }
+            *value = v / norm;
+        }
+    });
+    out
 }
 
 #[cfg(test)]
