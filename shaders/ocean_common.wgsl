@@ -375,6 +375,9 @@ struct OceanUniforms {
     // Entry i: x = wave number k_i (rad/m, k_i = table.x · ratio^i); y, z = slope variance
     // along and across the wind of the simulated waves with wave numbers above k_i.
     slope_table: array<vec4<f32>, 32>,
+    // The wake window (ocean_fft_render::WakeTexels::uniform): xy = world x, z of its texel
+    // (0, 0) (m), z = 1/side (1/m), w = N, its samples a side (0: no window, no wake read).
+    wake: vec4<f32>,
 }
 
 // The light of the uniforms, with the sun an engine gives (its own light, or the uniforms'
@@ -545,4 +548,68 @@ fn ocean_water_surface(
     surface.variance = u.wind.zw + ocean_unresolved_variance(u, OCEAN_PI / footprint);
     surface.foam = ocean_foam(foam, jacobian, u.subsurface.w, xz, u.wind.xy, footprint);
     return surface;
+}
+
+// ---- Wakes ----
+//
+// The wake window (`OceanState::wakes`, packed by `pack_wakes`): an N×N texture_2d of
+// RGBA16F texels (η (m), ∂y/∂x, ∂y/∂z, foam in [0, 1]) for world (x₀ + i·Δ, z₀ + j·Δ), read
+// with a linear, clamp-to-edge sampler. Its texels fade to zero toward the window's edge, and
+// outside the window nothing is read, so the wake ends without a seam. The wake has no
+// horizontal displacement.
+
+// uv of world point `xz` (m) in the wake window, and in z whether the wake is read there (1
+// inside the window, 0 outside it or without a window).
+fn ocean_wake_uv(u: OceanUniforms, xz: vec2<f32>) -> vec3<f32> {
+    let n = u.wake.w;
+    if (n < 1.0) {
+        return vec3<f32>(0.0);
+    }
+    let uv = (xz - u.wake.xy) * u.wake.z + vec2<f32>(0.5 / n);
+    let inside = all(uv >= vec2<f32>(0.0)) && all(uv <= vec2<f32>(1.0));
+    return vec3<f32>(uv, select(0.0, 1.0, inside));
+}
+
+// `displacement` (`ocean_displacement`) with the wake's height added at undisplaced point
+// `xz` (m).
+fn ocean_add_wake_displacement(
+    wake: texture_2d<f32>,
+    wake_sampler: sampler,
+    u: OceanUniforms,
+    xz: vec2<f32>,
+    displacement: vec3<f32>,
+) -> vec3<f32> {
+    let w = ocean_wake_uv(u, xz);
+    if (w.z <= 0.0) {
+        return displacement;
+    }
+    let height = textureSampleLevel(wake, wake_sampler, w.xy, 0.0).x;
+    return displacement + vec3<f32>(0.0, height, 0.0);
+}
+
+// `surface` (`ocean_water_surface` at undisplaced point `xz`, m) with the wake's slope added
+// to its normal and the wake's foam f_w to its foam f as f + f_w·(1 − f) (as the crate's
+// queries combine them). The trail's foam, a coverage on the window's grid, is broken up by
+// a fine two-scale noise (patches about a metre across with soft edges) and is white where it
+// is thick.
+fn ocean_add_wake_surface(
+    wake: texture_2d<f32>,
+    wake_sampler: sampler,
+    u: OceanUniforms,
+    xz: vec2<f32>,
+    surface: OceanSurface,
+) -> OceanSurface {
+    let w = ocean_wake_uv(u, xz);
+    if (w.z <= 0.0) {
+        return surface;
+    }
+    let t = textureSampleLevel(wake, wake_sampler, w.xy, 0.0);
+    var s = surface;
+    let slope = -s.normal.xz / max(s.normal.y, 1e-3) + t.yz;
+    s.normal = ocean_normal(slope);
+    let detail = 0.6 * ocean_noise(xz / 1.3 + vec2<f32>(3.7, 1.1)) + 0.4 * ocean_noise(xz / 0.45);
+    let f = clamp(t.w, 0.0, 1.0);
+    let foam = smoothstep(0.0, 1.0, clamp(f * (0.35 + 1.3 * detail) + 0.5 * f * f, 0.0, 1.0));
+    s.foam = s.foam + foam * (1.0 - s.foam);
+    return s;
 }

@@ -58,6 +58,9 @@ fn the_shading_functions_stand_alone() {
         "ocean_unresolved_variance",
         "ocean_water_surface",
         "ocean_varying",
+        "ocean_wake_uv",
+        "ocean_add_wake_displacement",
+        "ocean_add_wake_surface",
     ] {
         assert!(
             names.contains(&wanted),
@@ -105,6 +108,7 @@ fn the_uniforms_have_the_rust_layout() {
             "slope_table",
             std::mem::offset_of!(OceanUniforms, slope_table),
         ),
+        ("wake", std::mem::offset_of!(OceanUniforms, wake)),
     ];
     assert_eq!(members.len(), rust.len(), "members");
     for (member, (name, offset)) in members.iter().zip(rust) {

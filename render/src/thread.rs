@@ -13,11 +13,12 @@ use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::thread::JoinHandle;
 use std::time::Instant;
 
-use ocean_fft::{Error, OceanState, SurfaceSample};
+use ocean_fft::{Error, Hull, OceanState, SurfaceSample};
 
 use crate::info::{OceanInfo, SlopeTable};
 use crate::sea::{apply, build, Plan, SeaSettings, PRE_ROLL_DT};
 use crate::texels::Texels;
+use crate::wake::WakeTexels;
 
 /// Timings of the simulation's share of a frame, ms.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -37,6 +38,8 @@ pub struct SimTimes {
 pub struct Frame {
     /// Every cascade's texels with their mip chains.
     pub texels: Texels,
+    /// The wake window's texels (empty without `OceanConfig::wakes`).
+    pub wake: WakeTexels,
     /// The world points (x, z; m) queried after the step, and their surfaces.
     pub queries: Vec<[f64; 2]>,
     pub samples: Vec<SurfaceSample>,
@@ -59,12 +62,21 @@ impl Frame {
     }
 }
 
-/// A request to the simulation thread: take the sea to `sea` (if given), step by `dt`
-/// seconds, fill `frame`.
+/// A request to the simulation thread: take the sea to `sea` (if given), set the wake's
+/// hulls and window, step by `dt` seconds, fill `frame`.
 struct Request {
     dt: f64,
     sea: Option<SeaSettings>,
+    wake: Option<Box<WakeRequest>>,
     frame: Box<Frame>,
+}
+
+/// The hulls and the window's centre the next step's wake takes (an ocean without wakes
+/// ignores them).
+#[derive(Debug, Clone, Default)]
+struct WakeRequest {
+    centre: [f64; 2],
+    hulls: Vec<Hull>,
 }
 
 /// The simulation thread's own state.
@@ -81,6 +93,11 @@ pub struct Simulation {
     results: Receiver<Box<Frame>>,
     /// The frame the engine holds (uploaded, sent back with the next request).
     spare: Option<Box<Frame>>,
+    /// The wake input of the next request, and the one the thread gave back (kept so that
+    /// setting hulls every frame allocates nothing).
+    wake: Option<Box<WakeRequest>>,
+    wake_spare: Option<Box<WakeRequest>>,
+    returned: Receiver<Box<WakeRequest>>,
     thread: Option<JoinHandle<()>>,
 }
 
@@ -125,12 +142,17 @@ impl Simulation {
             .map_err(|e| e.to_string())?;
         let (request_tx, request_rx) = sync_channel::<Option<Request>>(1);
         let (result_tx, result_rx) = sync_channel::<Box<Frame>>(2);
+        let (wake_tx, wake_rx) = sync_channel::<Box<WakeRequest>>(2);
         result_tx.send(first).map_err(|e| e.to_string())?;
         let thread = std::thread::Builder::new()
             .name("ocean-sim".into())
             .spawn(move || {
-                while let Ok(Some(request)) = request_rx.recv() {
-                    let frame = pool.install(|| worker.serve(request));
+                while let Ok(Some(mut request)) = request_rx.recv() {
+                    let wake = request.wake.take();
+                    let frame = pool.install(|| worker.serve(request, wake.as_deref()));
+                    if let Some(wake) = wake {
+                        let _ = wake_tx.try_send(wake);
+                    }
                     if result_tx.send(frame).is_err() {
                         break;
                     }
@@ -141,8 +163,31 @@ impl Simulation {
             requests: request_tx,
             results: result_rx,
             spare: Some(Box::new(Frame::new(queries.len()))),
+            wake: None,
+            wake_spare: None,
+            returned: wake_rx,
             thread: Some(thread),
         })
+    }
+
+    /// The hulls that make the wake and the window's centre (world x, z, m), taken by the
+    /// next request's step (`OceanState::set_wake_centre`, then `set_hulls`; an ocean built
+    /// without `OceanConfig::wakes` ignores them). Call it before [`next`](Self::next) each
+    /// frame the hulls move; a frame without the call keeps the last hulls moving along
+    /// their velocities. Allocates nothing once the hulls' buffer has grown.
+    pub fn set_wake(&mut self, centre: [f64; 2], hulls: &[Hull]) {
+        while let Ok(back) = self.returned.try_recv() {
+            self.wake_spare = Some(back);
+        }
+        let mut wake = self
+            .wake
+            .take()
+            .or_else(|| self.wake_spare.take())
+            .unwrap_or_default();
+        wake.centre = centre;
+        wake.hulls.clear();
+        wake.hulls.extend_from_slice(hulls);
+        self.wake = Some(wake);
     }
 
     /// Waits for the next stepped frame, then at once asks for the one after it (the sea
@@ -176,6 +221,7 @@ impl Simulation {
             .send(Some(Request {
                 dt,
                 sea,
+                wake: self.wake.take(),
                 frame: spare,
             }))
             .map_err(|_| "the simulation thread stopped".to_string())?;
@@ -236,6 +282,7 @@ impl Worker {
     fn fill(&mut self, frame: &mut Frame) -> Result<(), Error> {
         let start = Instant::now();
         frame.texels.pack(&self.ocean)?;
+        frame.wake.pack(&self.ocean)?;
         frame.info.update(&self.ocean, &mut self.slopes)?;
         frame.info.jacobian_sd = frame.texels.jacobian_sd;
         frame.rebuilds = self.rebuilds;
@@ -249,9 +296,11 @@ impl Worker {
         Ok(())
     }
 
-    /// One request: the change, the step, the pack and the queries.
-    fn serve(&mut self, request: Request) -> Box<Frame> {
-        let Request { dt, sea, mut frame } = request;
+    /// One request: the change, the wake's input, the step, the pack and the queries.
+    fn serve(&mut self, request: Request, wake: Option<&WakeRequest>) -> Box<Frame> {
+        let Request {
+            dt, sea, mut frame, ..
+        } = request;
         frame.times = SimTimes::default();
         frame.error = None;
         if let Some(sea) = sea {
@@ -260,6 +309,16 @@ impl Worker {
                 frame.error = Some(e.to_string());
             }
             frame.times.change = start.elapsed().as_secs_f64() * 1e3;
+        }
+        if let Some(wake) = wake.filter(|_| self.ocean.wakes().is_some()) {
+            let [x, z] = wake.centre;
+            let set = self
+                .ocean
+                .set_wake_centre(x, z)
+                .and_then(|()| self.ocean.set_hulls(&wake.hulls));
+            if let Err(e) = set {
+                frame.error = Some(format!("wake: {e}"));
+            }
         }
         let start = Instant::now();
         if let Err(e) = self.ocean.step(dt) {

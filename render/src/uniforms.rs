@@ -124,6 +124,9 @@ pub struct OceanUniforms {
     /// Entry i: x = k_i (rad/m); y, z = slope variance along and across the wind of the
     /// simulated waves with wave numbers above k_i.
     pub slope_table: [[f32; 4]; SLOPE_TABLE],
+    /// The wake window ([`WakeTexels::uniform`](crate::WakeTexels::uniform)): x, z of its
+    /// texel (0, 0) (m), 1/side (1/m), w = N, its samples a side (0: no window).
+    pub wake: [f32; 4],
 }
 
 impl OceanUniforms {

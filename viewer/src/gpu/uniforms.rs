@@ -33,6 +33,7 @@ impl Renderer {
             ..Tiling::default()
         };
         g.ocean.set_ocean(info, [view.eye.x, view.eye.z], &tiling);
+        g.ocean.wake = self.wake;
         let mut ring_list = [Ring::default(); MAX_RINGS];
         let count = rings(
             [view.eye.x, view.eye.z],
