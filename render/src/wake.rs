@@ -125,10 +125,10 @@ pub fn wake_centre(eye: [f32; 3], forward: [f32; 3], side: f32) -> [f64; 2] {
     [f64::from(eye[0] + ahead.x), f64::from(eye[2] + ahead.z)]
 }
 
-/// The heading (radians, the crate's convention) of a body whose rotation is `rotation`:
-/// the direction of its +z in (x, z).
-pub fn heading_of(rotation: Quat) -> f32 {
-    let z = rotation * Vec3::Z;
+/// The heading (radians, the crate's convention) of a body whose rotation is `rotation` (a
+/// unit quaternion x, y, z, w): the direction of its +z in (x, z).
+pub fn heading_of(rotation: [f32; 4]) -> f32 {
+    let z = Quat::from_array(rotation) * Vec3::Z;
     z.z.atan2(z.x)
 }
 
@@ -150,8 +150,7 @@ mod tests {
         assert!((hull.heading - 0.6).abs() < 1e-5, "{hull:?}");
         assert_eq!(hull.position, [10.0, -4.0]);
         assert_eq!(hull.velocity, [8.0, 0.0]);
-        let rotation = Quat::from_array(pose.rotation);
-        assert!((heading_of(rotation) - 0.6).abs() < 1e-5);
+        assert!((heading_of(pose.rotation) - 0.6).abs() < 1e-5);
     }
 
     /// The window goes ahead of an eye looking at the horizon, under one looking down.
