@@ -26,7 +26,7 @@ use crate::sim::OceanTexels;
 
 use assets::{cascade_image, ring_mesh};
 use upload::{extract_texels, upload_texels};
-use wake::wake_image;
+use wake::{streak_image, wake_image};
 
 mod assets;
 mod upload;
@@ -146,6 +146,10 @@ pub struct OceanMaterial {
     #[texture(5)]
     #[sampler(6)]
     pub wake: Handle<Image>,
+    /// The foam's streak field (the library's `FoamStreaks`), R16F, repeat, linear.
+    #[texture(7)]
+    #[sampler(8)]
+    pub streaks: Handle<Image>,
 }
 
 impl Material for OceanMaterial {
@@ -243,6 +247,9 @@ pub struct OceanRender {
     /// The wake window's image and side (0: the 1×1 placeholder).
     wake: Handle<Image>,
     wake_size: usize,
+    /// The streak field's image and size (across, along; (0, 0): the placeholder).
+    streaks: Handle<Image>,
+    streak_size: (usize, usize),
     /// The last texels' information.
     info: OceanInfo,
     /// The uniforms both materials get.
@@ -345,11 +352,13 @@ fn setup(
     let displacement = images.add(cascade_image(2, 1, 1));
     let slope = images.add(cascade_image(2, 1, anisotropy.0));
     let wake = images.add(wake_image(0));
+    let streaks = images.add(streak_image(0, 0));
     let material = materials.add(OceanMaterial {
         displacement: displacement.clone(),
         slope: slope.clone(),
         uniforms: UniformBlock::default(),
         wake: wake.clone(),
+        streaks: streaks.clone(),
     });
     let sky = skies.add(OceanSkyMaterial {
         uniforms: UniformBlock::default(),
@@ -392,6 +401,8 @@ fn setup(
         slope,
         wake,
         wake_size: 0,
+        streaks,
+        streak_size: (0, 0),
         info: OceanInfo::default(),
         uniforms: bytemuck::Zeroable::zeroed(),
     });
@@ -415,6 +426,14 @@ fn fit_textures(
         render.wake = images.add(wake_image(frame.wake.size));
         if let Some(mut material) = materials.get_mut(&render.material) {
             material.wake = render.wake.clone();
+        }
+    }
+    let streak_size = (frame.streaks.across, frame.streaks.along);
+    if render.streak_size != streak_size {
+        render.streak_size = streak_size;
+        render.streaks = images.add(streak_image(streak_size.0, streak_size.1));
+        if let Some(mut material) = materials.get_mut(&render.material) {
+            material.streaks = render.streaks.clone();
         }
     }
     let grid = (frame.texels.size, frame.texels.cascades);

@@ -11,7 +11,8 @@ use bevy::prelude::*;
 use bevy::tasks::{block_on, AsyncComputeTaskPool, Task};
 use ocean_fft::{Error, OceanState, Spectrum};
 use ocean_fft_render::{
-    apply, build, follow_clock, OceanInfo, Plan, SeaSettings, SlopeTable, Texels, WakeTexels,
+    apply, build, follow_clock, OceanInfo, Plan, SeaSettings, SlopeTable, StreakTexels, Texels,
+    WakeTexels,
 };
 
 use crate::settings::{OceanClock, OceanSettings};
@@ -24,6 +25,8 @@ pub struct PackedFrame {
     pub texels: Texels,
     /// The wake window's texels (empty without wakes).
     pub wake: WakeTexels,
+    /// The foam's streak field (copied when the ocean is new).
+    pub streaks: StreakTexels,
     /// The ocean at the time the texels hold.
     pub info: OceanInfo,
 }
@@ -33,6 +36,7 @@ impl PackedFrame {
     fn pack(&mut self, ocean: &OceanState, slopes: &mut SlopeTable) -> Result<(), Error> {
         self.texels.pack(ocean)?;
         self.wake.pack(ocean)?;
+        self.streaks.pack(ocean);
         self.info.update(ocean, slopes)?;
         self.info.jacobian_sd = self.texels.jacobian_sd;
         Ok(())

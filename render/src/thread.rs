@@ -17,6 +17,7 @@ use ocean_fft::{Error, Hull, OceanState, SurfaceSample};
 
 use crate::info::{OceanInfo, SlopeTable};
 use crate::sea::{apply, build, Plan, SeaSettings, PRE_ROLL_DT};
+use crate::streaks::StreakTexels;
 use crate::texels::Texels;
 use crate::wake::WakeTexels;
 
@@ -40,6 +41,9 @@ pub struct Frame {
     pub texels: Texels,
     /// The wake window's texels (empty without `OceanConfig::wakes`).
     pub wake: WakeTexels,
+    /// The foam's streak field (copied when the ocean is new; upload it when its
+    /// generation changes).
+    pub streaks: StreakTexels,
     /// The world points (x, z; m) queried after the step, and their surfaces.
     pub queries: Vec<[f64; 2]>,
     pub samples: Vec<SurfaceSample>,
@@ -283,6 +287,7 @@ impl Worker {
         let start = Instant::now();
         frame.texels.pack(&self.ocean)?;
         frame.wake.pack(&self.ocean)?;
+        frame.streaks.pack(&self.ocean);
         frame.info.update(&self.ocean, &mut self.slopes)?;
         frame.info.jacobian_sd = frame.texels.jacobian_sd;
         frame.rebuilds = self.rebuilds;

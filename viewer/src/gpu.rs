@@ -108,6 +108,8 @@ pub struct Renderer {
     textures: Option<OceanTextures>,
     /// `OceanUniforms::wake` of the last upload.
     wake: [f32; 4],
+    /// Whether the streak texture holds the ocean's field.
+    streaks_bound: bool,
     ocean_pipeline: wgpu::RenderPipeline,
     sky_pipeline: wgpu::RenderPipeline,
     body_pipeline: wgpu::RenderPipeline,
@@ -197,6 +199,16 @@ impl Renderer {
                     binding: 6,
                     visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 7,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
                     count: None,
                 },
             ],
@@ -363,6 +375,7 @@ impl Renderer {
             wake_sampler,
             textures: None,
             wake: [0.0; 4],
+            streaks_bound: false,
             ocean_pipeline,
             sky_pipeline,
             body_pipeline,

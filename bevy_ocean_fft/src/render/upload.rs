@@ -14,7 +14,7 @@ use bevy::render::renderer::RenderQueue;
 use bevy::render::texture::GpuImage;
 use bevy::render::Extract;
 
-use super::wake::{wake_gpu_image, write_wake};
+use super::wake::{wake_gpu_image, write_streaks, write_wake};
 use super::{OceanRender, UploadTime};
 use crate::sim::{OceanTexels, PackedFrame};
 
@@ -25,6 +25,7 @@ pub(super) struct ExtractedTexels {
     texels: Option<Arc<PackedFrame>>,
     images: Option<(AssetId<Image>, AssetId<Image>)>,
     wake: Option<AssetId<Image>>,
+    streaks: Option<AssetId<Image>>,
 }
 
 pub(super) fn extract_texels(
@@ -37,6 +38,7 @@ pub(super) fn extract_texels(
         texels: texels.texels.clone(),
         images: render.as_ref().map(|r| (r.displacement.id(), r.slope.id())),
         wake: render.as_ref().map(|r| r.wake.id()),
+        streaks: render.as_ref().map(|r| r.streaks.id()),
     });
 }
 
@@ -47,6 +49,7 @@ pub(super) fn upload_texels(
     queue: Res<RenderQueue>,
     upload: Res<UploadTime>,
     mut uploaded: Local<u64>,
+    mut streaks_written: Local<(Option<AssetId<Image>>, u64)>,
 ) {
     let Some(extracted) = extracted else {
         return;
@@ -103,6 +106,13 @@ pub(super) fn upload_texels(
     }
     if let Some(image) = wake_gpu_image(&images, extracted.wake) {
         write_wake(&queue, image, frame);
+    }
+    if let Some(image) = wake_gpu_image(&images, extracted.streaks) {
+        // A new image holds no field yet.
+        if streaks_written.0 != extracted.streaks {
+            *streaks_written = (extracted.streaks, 0);
+        }
+        write_streaks(&queue, image, frame, &mut streaks_written.1);
     }
     upload.0.store(
         (start.elapsed().as_secs_f64() * 1e3).to_bits(),

@@ -26,7 +26,7 @@
 #import ocean_fft::common::{
     OceanLight, OceanUniforms, OceanVarying, ocean_light, ocean_morph, ocean_displacement,
     ocean_varying, ocean_water_surface, ocean_shade, ocean_add_wake_displacement,
-    ocean_add_wake_surface,
+    ocean_add_wake_surface, ocean_foam_surface,
 }
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(0) var displacement_foam: texture_2d_array<f32>;
@@ -39,6 +39,9 @@
 // The wake window (η, ∂y/∂x, ∂y/∂z, foam), clamped to the edge, linear.
 @group(#{MATERIAL_BIND_GROUP}) @binding(5) var wake: texture_2d<f32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(6) var wake_sampler: sampler;
+// The foam's streak field (R16F), repeat, linear.
+@group(#{MATERIAL_BIND_GROUP}) @binding(7) var streaks: texture_2d<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(8) var streak_sampler: sampler;
 
 // The light: Bevy's first directional light (colour × exposure, scaled to the reference
 // shader's sun) when there is one, the uniforms' sun otherwise; the sky and water colours of
@@ -77,8 +80,10 @@ fn vertex(v: Vertex) -> OceanVarying {
 @fragment
 fn fragment(in: OceanVarying) -> @location(0) vec4<f32> {
     let eye = view.world_position;
-    let surface = ocean_add_wake_surface(wake, wake_sampler, ocean, in.undisplaced, ocean_water_surface(
-        slope_jacobian_foam, ocean_sampler, ocean, in.world, in.undisplaced, in.height, eye.xz));
+    let water = ocean_water_surface(
+        slope_jacobian_foam, ocean_sampler, ocean, in.world, in.undisplaced, in.height, eye.xz);
+    let foamed = ocean_foam_surface(streaks, streak_sampler, ocean, in.undisplaced, water);
+    let surface = ocean_add_wake_surface(wake, wake_sampler, ocean, in.undisplaced, foamed);
     let to_eye = in.world - eye;
     let distance = length(to_eye);
     let dir = to_eye / distance;

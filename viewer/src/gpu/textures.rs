@@ -1,9 +1,10 @@
 //! The textures the water is drawn from: the cascades (two 2D arrays, a layer per cascade,
-//! RGBA16F with mipmaps) and the wake window (a 2D texture, RGBA16F, one level; a 1×1 zero
-//! texel when the ocean has no wakes), and the bind group that holds them.
+//! RGBA16F with mipmaps), the wake window (a 2D texture, RGBA16F, one level; a 1×1 zero
+//! texel when the ocean has no wakes), the foam's streak field (R16F, written when the ocean
+//! is new), and the bind group that holds them.
 
 use ocean_fft::half::f16;
-use ocean_fft_render::{Frame, WakeTexels};
+use ocean_fft_render::{Frame, StreakTexels, WakeTexels};
 
 use super::Renderer;
 
@@ -12,12 +13,16 @@ pub struct OceanTextures {
     displacement: wgpu::Texture,
     slope: wgpu::Texture,
     wake: wgpu::Texture,
+    streaks: wgpu::Texture,
     pub bind_group: wgpu::BindGroup,
     size: usize,
     cascades: usize,
     mips: usize,
     /// Side of the wake texture (1: the placeholder).
     wake_size: usize,
+    /// Size of the streak texture (across, along) and the fingerprint of the field in it.
+    streak_size: (usize, usize),
+    streak_fingerprint: u64,
 }
 
 /// Writes `texels` (RGBA16F, `side`² of them) into `texture`'s level `level`, layer `layer`.
@@ -59,15 +64,21 @@ impl Renderer {
         let texels = &frame.texels;
         let mips = texels.level_offsets.len();
         let wake_size = frame.wake.size.max(1);
+        let streak_size = (frame.streaks.across.max(1), frame.streaks.along.max(1));
         let fits = self.textures.as_ref().is_some_and(|t| {
             t.size == texels.size
                 && t.cascades == texels.cascades
                 && t.mips == mips
                 && t.wake_size == wake_size
+                && t.streak_size == streak_size
         });
         if !fits {
-            self.textures =
-                Some(self.create_textures(device, (texels.size, texels.cascades, mips), wake_size));
+            self.textures = Some(self.create_textures(
+                device,
+                (texels.size, texels.cascades, mips),
+                wake_size,
+                streak_size,
+            ));
             if !frame.wake.active() {
                 let textures = self.textures.as_ref().expect("created above");
                 write(queue, &textures.wake, (0, 0), 1, &[[f16::ZERO; 4]]);
@@ -84,6 +95,39 @@ impl Renderer {
             }
         }
         self.upload_wake(queue, &frame.wake);
+        self.upload_streaks(queue, &frame.streaks);
+    }
+
+    /// The streak field, when it is not the one on the GPU.
+    fn upload_streaks(&mut self, queue: &wgpu::Queue, streaks: &StreakTexels) {
+        let Some(textures) = self.textures.as_mut() else {
+            return;
+        };
+        self.streaks_bound = !streaks.texels.is_empty();
+        if !self.streaks_bound || textures.streak_fingerprint == streaks.fingerprint {
+            return;
+        }
+        textures.streak_fingerprint = streaks.fingerprint;
+        let (width, height) = (streaks.across as u32, streaks.along as u32);
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &textures.streaks,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            bytemuck::cast_slice(&streaks.texels),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(width * 2),
+                rows_per_image: Some(height),
+            },
+            wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+        );
     }
 
     /// The wake window's texels and place.
@@ -105,26 +149,41 @@ impl Renderer {
         device: &wgpu::Device,
         (size, cascades, mips): (usize, usize, usize),
         wake_size: usize,
+        streak_size: (usize, usize),
     ) -> OceanTextures {
-        let texture = |label: &str, side: usize, layers: usize, mips: usize| {
+        let texture = |label: &str, (width, height), layers: usize, mips: usize, format| {
             device.create_texture(&wgpu::TextureDescriptor {
                 label: Some(label),
                 size: wgpu::Extent3d {
-                    width: side as u32,
-                    height: side as u32,
+                    width: width as u32,
+                    height: height as u32,
                     depth_or_array_layers: layers as u32,
                 },
                 mip_level_count: mips as u32,
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba16Float,
+                format,
                 usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
                 view_formats: &[],
             })
         };
-        let displacement = texture("displacement + foam", size, cascades, mips);
-        let slope = texture("slope + jacobian + foam", size, cascades, mips);
-        let wake = texture("wake", wake_size, 1, 1);
+        let rgba = wgpu::TextureFormat::Rgba16Float;
+        let displacement = texture("displacement + foam", (size, size), cascades, mips, rgba);
+        let slope = texture(
+            "slope + jacobian + foam",
+            (size, size),
+            cascades,
+            mips,
+            rgba,
+        );
+        let wake = texture("wake", (wake_size, wake_size), 1, 1, rgba);
+        let streaks = texture(
+            "foam streaks",
+            streak_size,
+            1,
+            1,
+            wgpu::TextureFormat::R16Float,
+        );
         let view = |t: &wgpu::Texture, dimension| {
             t.create_view(&wgpu::TextureViewDescriptor {
                 dimension: Some(dimension),
@@ -167,17 +226,27 @@ impl Renderer {
                     binding: 6,
                     resource: wgpu::BindingResource::Sampler(&self.wake_sampler),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 7,
+                    resource: wgpu::BindingResource::TextureView(&view(
+                        &streaks,
+                        wgpu::TextureViewDimension::D2,
+                    )),
+                },
             ],
         });
         OceanTextures {
             displacement,
             slope,
             wake,
+            streaks,
             bind_group,
             size,
             cascades,
             mips,
             wake_size,
+            streak_size,
+            streak_fingerprint: 0,
         }
     }
 }
