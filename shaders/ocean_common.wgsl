@@ -726,9 +726,11 @@ fn ocean_add_wake_displacement(
 
 // `surface` (`ocean_water_surface` at undisplaced point `xz`, m) with the wake's slope added
 // to its normal and the wake's foam f_w to its foam f as f + f_w·(1 − f) (as the crate's
-// queries combine them). The trail's foam, a coverage on the window's grid, is broken up by
-// a fine two-scale noise (patches about a metre across with soft edges) and is white where it
-// is thick.
+// queries combine them). The trail's foam, a coverage on the window's grid, is placed like
+// the sea's: white where a two-scale noise (patches about a metre across) passes its
+// (1 − f_w) normal quantile, with soft edges, opaque where the trail is thick (fresh, behind
+// the hull) and thinner as it thins out, so an old trail turns into marbled patches; bubbles
+// around it tint the water turquoise.
 fn ocean_add_wake_surface(
     wake: texture_2d<f32>,
     wake_sampler: sampler,
@@ -744,9 +746,14 @@ fn ocean_add_wake_surface(
     var s = surface;
     let slope = -s.normal.xz / max(s.normal.y, 1e-3) + t.yz;
     s.normal = ocean_normal(slope);
-    let detail = 0.6 * ocean_noise(xz / 1.3 + vec2<f32>(3.7, 1.1)) + 0.4 * ocean_noise(xz / 0.45);
+    // Value noise has a standard deviation of 0.2149; this sum 0.1550.
+    let rank = (0.6 * ocean_noise(xz / 1.3 + vec2<f32>(3.7, 1.1)) + 0.4 * ocean_noise(xz / 0.45) - 0.5) / 0.1550;
     let f = clamp(t.w, 0.0, 1.0);
-    let foam = smoothstep(0.0, 1.0, clamp(f * (0.35 + 1.3 * detail) + 0.5 * f * f, 0.0, 1.0));
+    let soft = 0.3 + 0.5 * min(s.footprint, 2.0);
+    let detailed = ocean_soft_step(rank, ocean_probit(1.0 - f), soft);
+    let blur = smoothstep(0.2, 1.5, s.footprint);
+    let foam = mix(detailed, f, blur) * mix(0.55, 1.0, smoothstep(0.3, 0.9, f));
     s.foam = s.foam + foam * (1.0 - s.foam);
+    s.bubbles = max(s.bubbles, smoothstep(0.02, 0.4, f) * (1.0 - foam));
     return s;
 }

@@ -375,4 +375,48 @@ mod tests {
             .collect();
         assert_eq!(times, expected);
     }
+
+    /// With a wake window, the hulls set before a request press the water in the frames that
+    /// follow, the window moves to the centre given, and the frames carry the wake's texels
+    /// and the streak field.
+    #[test]
+    fn hulls_reach_the_wake_and_its_texels() {
+        let mut sea = SeaSettings::preset(SeaState::Calm);
+        sea.config.size = 32;
+        sea.config.wakes = Some(ocean_fft::WakeConfig {
+            size: 64,
+            spacing: 1.0,
+            ..ocean_fft::WakeConfig::default()
+        });
+        let queries = [[0.0, 0.0]];
+        let mut sim = Simulation::start(sea, 5.0, 0.0, 1, &queries).unwrap();
+        let mut deepest = 0.0f32;
+        let mut origin = [0.0; 2];
+        for n in 0..8 {
+            let hull = Hull {
+                position: [200.0 + 0.5 * n as f64, -40.0],
+                velocity: [4.0, 0.0],
+                length: 10.0,
+                beam: 3.0,
+                draft: 0.8,
+                ..Hull::default()
+            };
+            sim.set_wake([200.0, -40.0], &[hull]);
+            let frame = sim.next(0.125, None, &queries).unwrap();
+            assert_eq!(frame.error, None);
+            if frame.wake.active() {
+                origin = frame.wake.origin;
+                let low = frame.wake.texels.iter().map(|t| t[0].to_f32());
+                deepest = deepest.min(low.fold(0.0, f32::min));
+            }
+            assert!(!frame.streaks.texels.is_empty());
+            sim.give_back(frame);
+        }
+        assert!(deepest < -0.1, "the hull presses the water: {deepest}");
+        // The window (64 m) is centred on (200, -40) to a cell.
+        assert!(
+            (origin[0] - 168.0).abs() <= 1.0 && (origin[1] + 72.0).abs() <= 1.0,
+            "{origin:?}"
+        );
+    }
 }
