@@ -314,8 +314,8 @@ fn ocean_foam_layers(
     let q_w = ocean_probit(1.0 - a);
     let q_s = ocean_probit(1.0 - r);
     let soft = 0.5 * min(footprint, 2.0);
-    let white = ocean_soft_step(rank_w, q_w, 0.15 + soft);
-    let streaks = 0.55 * ocean_soft_step(rank_s, q_s, 0.25 + soft);
+    let white = ocean_soft_step(rank_w, q_w, 0.25 + soft);
+    let streaks = 0.55 * ocean_soft_step(rank_s, q_s, 0.35 + soft);
     let marble = 0.15 * ocean_soft_step(rank_s, q_s - 0.6, 0.4 + soft);
     let bubbles = ocean_soft_step(rank_w, q_w - 0.5, 0.35 + soft) * (1.0 - white);
     // Expectations: the soft steps of a standard normal rank cover 1 − Φ(q) (a, r exactly).

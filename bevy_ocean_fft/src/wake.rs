@@ -61,7 +61,7 @@ pub(crate) fn collect_hulls(
     mut input: ResMut<WakeInput>,
     mut bodies: Query<(&Buoyancy, &Wake, &mut WakeTrack, &Transform)>,
     cameras: Query<(&GlobalTransform, Has<crate::OceanCamera>), With<Camera3d>>,
-    window: Res<WakeWindow>,
+    (window, settings): (Res<WakeWindow>, Res<crate::OceanSettings>),
     mut body: Local<Body>,
 ) {
     let input = &mut *input;
@@ -94,7 +94,9 @@ pub(crate) fn collect_hulls(
         .map(|(t, _)| t.compute_transform());
     input.centre = match camera {
         Some(camera) => {
-            let side = window.0.size as f32 * window.0.spacing;
+            // The settings' own window if they have one, else the plugin's.
+            let config = settings.0.config.wakes.as_ref().unwrap_or(&window.0);
+            let side = config.size as f32 * config.spacing;
             Some(wake_centre(
                 camera.translation.to_array(),
                 camera.forward().as_vec3().to_array(),
