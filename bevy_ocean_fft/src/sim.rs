@@ -3,7 +3,6 @@
 //! back at the start of the next frame, when the game's queries and the buoyancy use it. New
 //! oceans (new grids, a new depth) are built by a second task while the old one runs on.
 
-use std::borrow::Cow;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -197,18 +196,26 @@ pub(crate) fn launch(
     (wakes, window): (Res<WakeInput>, Res<WakeWindow>),
     clock: Res<OceanClock>,
     time: Res<Time<Virtual>>,
+    mut with_wakes: Local<Option<(SeaSettings, ocean_fft::WakeConfig, SeaSettings)>>,
 ) {
     let sim = &mut *sim;
     let target = clock_time(&clock, &time);
     let mut changes = Vec::new();
     let wanted = if wakes.wanted && settings.0.config.wakes.is_none() {
-        let mut with_wakes = settings.0.clone();
-        with_wakes.config.wakes = Some(window.0.clone());
-        Cow::Owned(with_wakes)
+        // The settings with the plugin's window, made again only when they change (no
+        // allocation a frame).
+        let fresh = with_wakes
+            .as_ref()
+            .is_some_and(|(from, window_of, _)| *from == settings.0 && *window_of == window.0);
+        if !fresh {
+            let mut sea = settings.0.clone();
+            sea.config.wakes = Some(window.0.clone());
+            *with_wakes = Some((settings.0.clone(), window.0.clone(), sea));
+        }
+        &with_wakes.as_ref().expect("set above").2
     } else {
-        Cow::Borrowed(&settings.0)
+        &settings.0
     };
-    let wanted = &*wanted;
     if sim.build.is_none()
         && sim.applied.as_ref() != Some(wanted)
         && sim.refused.as_ref() != Some(wanted)
