@@ -49,6 +49,11 @@ cp "$work/out/wake_depth.png" "$images/wake_depth.png"
 cargo build --release --manifest-path "$root/Cargo.toml" -p bevy_ocean_fft --example sea
 (cd "$work" && xvfb-run -a -s "-screen 0 1920x1080x24" "$root/target/release/examples/sea" \
     --frames 60 --anisotropy 1 --screenshot "$images/bevy_sea.png")
+# Its boats' wakes: the first boat at 8 m/s on a calm sea, the camera 40 m above following it
+# (Bevy's virtual time takes at most 0.25 s a frame: 40 frames are about 10 s of sea time).
+(cd "$work" && xvfb-run -a -s "-screen 0 1920x1080x24" "$root/target/release/examples/sea" \
+    --frames 40 --anisotropy 1 --preset calm --boat-speed 8 --follow-boat \
+    --camera 19.3,40,6.4 --look-at -2.2,0,-16.8 --screenshot "$images/wake_bevy.png")
 
 ls -l "$images"
 du -ch "$images"/*.png | tail -n 1

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Makes the README's three viewer pictures, docs/images/viewer_{calm,fresh_breeze,storm}.png
-# (1280×720), with the real-time viewer rendering headless under a virtual X server, with 4×
+# (1280×720), and docs/images/wake_viewer.png, with the real-time viewer rendering headless
+# under a virtual X server, with 4×
 # MSAA and trilinear filtering: on a machine without a GPU (Mesa's software Vulkan, lavapipe)
 # anisotropic filtering makes a frame take minutes instead of about a second (a GPU runs the
 # viewer with 16× by default).
@@ -31,4 +32,10 @@ shot fresh_breeze --preset fresh_breeze --camera 0,9,0 --heading 20 --pitch -7 -
 # crests and streaks of foam along the wind.
 shot storm --preset storm --camera 150,25,-400 --heading 100 --pitch -9
 
-ls -l "$images"/viewer_*.png
+# A boat at 8 m/s on a calm sea, seen from 40 m above with the camera following it: its
+# Kelvin wedge and foam trail after 8 s of sea time (240 frames; several minutes).
+xvfb-run -a -s "-screen 0 1920x1080x24" "$viewer" --preset calm --frames 240 --boat-speed 8 \
+    --follow-boat --camera 0,40,0 --heading 0 --pitch -34 --hide-ui \
+    --screenshot "$images/wake_viewer.png"
+
+ls -l "$images"/viewer_*.png "$images"/wake_viewer.png

@@ -14,6 +14,12 @@
 //   4  vertex_sampler       the same without anisotropy: the vertex stage's explicit-LOD
 //                           lookups (an anisotropic sampler has no defined footprint without
 //                           derivatives; lavapipe returned displacements that tore the mesh)
+//   5  wake                 texture_2d<f32>: the wake window's texels (η, ∂y/∂x, ∂y/∂z, foam),
+//                           RGBA16F (1×1 of zeros without wakes; `ocean.wake.w` = 0 then)
+//   6  wake_sampler         clamp to edge, linear
+//   7  streaks              texture_2d<f32>: the foam's streak field (`FoamStreaks`), R16F,
+//                           read with vertex_sampler (repeat, linear); uploaded when the
+//                           ocean is new
 //
 // Entry points: vs_ocean/fs_ocean draw the water on a clipmap of square rings (no vertex
 // buffer: the vertex index is the grid point, the instance index the ring), vs_sky/fs_sky the
@@ -38,6 +44,9 @@ struct Globals {
 @group(0) @binding(2) var slope_jacobian_foam: texture_2d_array<f32>;
 @group(0) @binding(3) var ocean_sampler: sampler;
 @group(0) @binding(4) var vertex_sampler: sampler;
+@group(0) @binding(5) var wake: texture_2d<f32>;
+@group(0) @binding(6) var wake_sampler: sampler;
+@group(0) @binding(7) var streaks: texture_2d<f32>;
 
 fn light() -> OceanLight {
     return ocean_light(globals.ocean, globals.ocean.sun.xyz, globals.ocean.sun_colour.rgb);
@@ -57,8 +66,8 @@ fn vs_ocean(@builtin(vertex_index) vertex: u32, @builtin(instance_index) ring: u
     let morphed = ocean_morph(cell, level.w);
     let xz = level.xy + morphed.xy * level.z;
     let spacing = level.z * (1.0 + morphed.z);
-    let displacement = ocean_displacement(
-        displacement_foam, slope_jacobian_foam, vertex_sampler, globals.ocean, xz, spacing, globals.eye.xz);
+    let displacement = ocean_add_wake_displacement(wake, wake_sampler, globals.ocean, xz, ocean_displacement(
+        displacement_foam, slope_jacobian_foam, vertex_sampler, globals.ocean, xz, spacing, globals.eye.xz));
     var out = ocean_varying(xz, displacement);
     out.clip = globals.view_proj * vec4<f32>(out.world, 1.0);
     return out;
@@ -66,12 +75,14 @@ fn vs_ocean(@builtin(vertex_index) vertex: u32, @builtin(instance_index) ring: u
 
 @fragment
 fn fs_ocean(in: OceanVarying) -> @location(0) vec4<f32> {
-    let surface = ocean_water_surface(
+    let water = ocean_water_surface(
         slope_jacobian_foam, ocean_sampler, globals.ocean, in.world, in.undisplaced, in.height, globals.eye.xz);
+    let foamed = ocean_foam_surface(streaks, vertex_sampler, globals.ocean, in.undisplaced, water);
+    let surface = ocean_add_wake_surface(wake, wake_sampler, globals.ocean, in.undisplaced, foamed);
     let to_eye = in.world - globals.eye.xyz;
     let distance = length(to_eye);
     let colour = ocean_shade(light(), surface, to_eye / distance, distance);
-    return vec4<f32>(ocean_tone_map(colour, globals.ocean.sun_colour.w), 1.0);
+    return vec4<f32>(ocean_dither(ocean_tone_map(colour, globals.ocean.sun_colour.w), in.clip.xy), 1.0);
 }
 
 // ---- Sky ----
@@ -101,7 +112,7 @@ fn fs_sky(in: SkyVarying) -> @location(0) vec4<f32> {
     } else {
         colour = ocean_sky(light(), dir, true);
     }
-    return vec4<f32>(ocean_tone_map(colour, globals.ocean.sun_colour.w), 1.0);
+    return vec4<f32>(ocean_dither(ocean_tone_map(colour, globals.ocean.sun_colour.w), in.clip.xy), 1.0);
 }
 
 // ---- Floating bodies ----

@@ -270,6 +270,102 @@ fn ocean_foam(coverage: f32, jacobian: f32, jacobian_sd: f32, xz: vec2<f32>, win
     return mix(detailed, f * 0.7, blur);
 }
 
+// A soft threshold of a rank at `q` (in the rank's standard deviations) of half-width `w`.
+fn ocean_soft_step(rank: f32, q: f32, w: f32) -> f32 {
+    return smoothstep(q - w, q + w, rank);
+}
+
+// Foam from the coverage the textures carry and the streak field: (cover, bubbles) in [0, 1]
+// at undisplaced point `xz` (m). `coverage` is the whole ocean's foam f = a + r(1 − a) of the
+// cell; the sea's `active_share` splits it into active whitecaps a and residual foam r (the
+// library's two parts, docs/theory.md §15.8). Whitecaps: white where a rank of the
+// standardised compression z = −(J − 1)/σ_J and a fine lace noise passes its (1 − a) normal
+// quantile, so they sit on the most compressed crests. Residual foam: where the library's
+// streak field `streak` (unit variance, long along the wind, thin across, moving with the
+// water) passes its (1 − r) quantile, 55 % opaque (old foam is thin), with marbled foam (15 %) just below
+// the threshold. Bubbles: a halo below the whitecaps' threshold. Edges widen with the pixel's
+// `footprint` (m), and each layer blends into its expectation (the same coverage) where the
+// footprint outgrows its detail, so the distant sea keeps its foam statistically: no shimmer,
+// and no band where the detail hands over.
+fn ocean_foam_layers(
+    coverage: f32,
+    active_share: f32,
+    jacobian: f32,
+    jacobian_sd: f32,
+    xz: vec2<f32>,
+    wind: vec2<f32>,
+    footprint: f32,
+    streak: f32,
+) -> vec2<f32> {
+    let f = clamp(coverage, 0.0, 1.0);
+    let a = f * clamp(active_share, 0.0, 1.0);
+    let r = clamp((f - a) / max(1.0 - a, 1e-4), 0.0, 1.0);
+    let along = dot(xz, wind);
+    let across = dot(xz, vec2<f32>(-wind.y, wind.x));
+    let has_crests = jacobian_sd > 1e-3;
+    let z = select(0.0, -(jacobian - 1.0) / max(jacobian_sd, 1e-3), has_crests);
+    // Value noise has a standard deviation of 0.2149; this sum 0.1550.
+    let lace = (0.6 * ocean_noise(vec2<f32>(along, across) / 2.5 + vec2<f32>(7.3, 0.0))
+        + 0.4 * ocean_noise(vec2<f32>(along, across) / 0.6) - 0.5) / 0.1550;
+    let fine = (ocean_noise(vec2<f32>(along / 1.5, across / 0.35) + vec2<f32>(1.7, 9.2)) - 0.5) / 0.2149;
+    // Ranks of unit standard deviation.
+    let rank_w = select(lace, 0.85 * z + 0.527 * lace, has_crests);
+    let rank_s = 0.85 * streak + 0.527 * fine;
+    let q_w = ocean_probit(1.0 - a);
+    let q_s = ocean_probit(1.0 - r);
+    let soft = 0.5 * min(footprint, 2.0);
+    let white = ocean_soft_step(rank_w, q_w, 0.25 + soft);
+    let streaks = 0.55 * ocean_soft_step(rank_s, q_s, 0.35 + soft);
+    let marble = 0.15 * ocean_soft_step(rank_s, q_s - 0.6, 0.4 + soft);
+    let bubbles = ocean_soft_step(rank_w, q_w - 0.5, 0.35 + soft) * (1.0 - white);
+    // Expectations: the soft steps of a standard normal rank cover 1 − Φ(q) (a, r exactly).
+    let blur_w = smoothstep(0.2, 1.5, footprint);
+    let blur_s = smoothstep(0.08, 0.5, footprint);
+    let w_far = a;
+    let s_far = 0.55 * r;
+    let m_far = 0.15 * (1.0 - ocean_normal_cdf(q_s - 0.6));
+    let b_far = (1.0 - ocean_normal_cdf(q_w - 0.5)) * (1.0 - a);
+    let w_mix = mix(white, w_far, blur_w);
+    let s_mix = mix(streaks, s_far, blur_s);
+    let m_mix = mix(marble, m_far, blur_s);
+    let cover = w_mix + (1.0 - w_mix) * (s_mix + (1.0 - s_mix) * m_mix);
+    return vec2<f32>(clamp(cover, 0.0, 1.0), clamp(mix(bubbles, b_far, blur_w), 0.0, 1.0));
+}
+
+// uv of undisplaced point `xz` (m) in the streak field's texture (repeat addressing), from
+// the field's placement in the uniforms (`FoamStreaks`' sampling rule).
+fn ocean_streak_uv(u: OceanUniforms, xz: vec2<f32>) -> vec2<f32> {
+    let axis = u.streaks.xy;
+    let along = xz.x * axis.x + xz.y * axis.y - u.streaks.w;
+    let across = xz.y * axis.x - xz.x * axis.y - u.streaks.z;
+    let texels = max(u.streak_scale.zw, vec2<f32>(1.0));
+    return vec2<f32>(across, along) * u.streak_scale.xy + vec2<f32>(0.5) / texels;
+}
+
+// The streak field at `xz` when the engine binds it (`u.streak_scale.z` > 0), else value
+// noise stretched 40× along the wind (unit variance).
+fn ocean_streak(streaks: texture_2d<f32>, streak_sampler: sampler, u: OceanUniforms, xz: vec2<f32>) -> f32 {
+    if (u.streak_scale.z > 0.0) {
+        return textureSampleLevel(streaks, streak_sampler, ocean_streak_uv(u, xz), 0.0).x;
+    }
+    let wind = u.wind.xy;
+    let along = dot(xz, wind);
+    let across = dot(xz, vec2<f32>(-wind.y, wind.x));
+    return (0.7 * ocean_noise(vec2<f32>(along / 40.0, across / 1.0))
+        + 0.3 * ocean_noise(vec2<f32>(along / 9.0 + 3.1, across / 0.4)) - 0.5) / 0.1637;
+}
+
+// Display values (linear, in [0, 1], about to be written to an 8-bit sRGB target) with a
+// triangular dither of one 8-bit step in the sRGB encoding added at pixel `pixel`, which
+// turns the sky's and the water's banding into fine noise.
+fn ocean_dither(colour: vec3<f32>, pixel: vec2<f32>) -> vec3<f32> {
+    let p = vec2<i32>(floor(pixel));
+    let noise = ocean_hash(p) + ocean_hash(p + vec2<i32>(7919, 104729)) - 1.0;
+    let encoded = pow(max(colour, vec3<f32>(0.0)), vec3<f32>(1.0 / 2.2));
+    let dithered = clamp(encoded + vec3<f32>(noise / 255.0), vec3<f32>(0.0), vec3<f32>(1.0));
+    return pow(dithered, vec3<f32>(2.2));
+}
+
 // ---- The water's colour ----
 
 // What the fragment stage knows about one point of water.
@@ -279,8 +375,15 @@ struct OceanSurface {
     // Summed height η (m) and its standard deviation over the sea (m).
     height: f32,
     height_sd: f32,
-    // Foam cover of the pixel in [0, 1] (`ocean_foam`).
+    // Foam cover of the pixel in [0, 1] (`ocean_foam`, `ocean_foam_layers`).
     foam: f32,
+    // Bubbles under and around the whitecaps in [0, 1]: a turquoise glow in the water.
+    bubbles: f32,
+    // What the foam is made from (`ocean_foam_surface`): the cell's foam coverage, the
+    // summed Jacobian J and the pixel's footprint on the water (m).
+    coverage: f32,
+    jacobian: f32,
+    footprint: f32,
     // Slope variance (along, across the wind) that the pixel does not resolve.
     variance: vec2<f32>,
     // Horizontal unit wind (x, z).
@@ -318,7 +421,11 @@ fn ocean_shade(light: OceanLight, surface: OceanSurface, dir: vec3<f32>, distanc
     let body = light.deep * (0.6 + 0.8 * luminance) + light.subsurface * crest * toward
         + light.deep * normal.y;
 
-    var colour = body * (1.0 - fresnel) + reflection * fresnel + glitter;
+    // Bubbles under and around the whitecaps scatter the light back up: a pale turquoise.
+    let bubble_light = light.subsurface * (2.5 * ambient + 0.8 * light.sun_colour * max(sun.y, 0.0))
+        + vec3<f32>(0.02, 0.05, 0.05) * luminance;
+    let water = mix(body, bubble_light, 0.4 * surface.bubbles);
+    var colour = water * (1.0 - fresnel) + reflection * fresnel + glitter;
     // Foam: a bright, rough, partly translucent scatterer (albedo about 0.85): the sky's
     // light, the sun on the facets facing it, and a share of the sun scattered through it.
     let sunlit = (1.0 - light.overcast) * (0.75 * max(dot(normal, sun), 0.0) + 0.25) * max(sun.y, 0.0);
@@ -365,7 +472,7 @@ struct OceanUniforms {
     // number of rings, Bevy's ring half-width in cells).
     tiling: vec4<f32>,
     // x: first wave number of `slope_table` (rad/m); y: 1/ln of the ratio between entries;
-    // z: number of entries; w: unused.
+    // z: number of entries; w: the share of the sea's foam that is active whitecaps.
     table: vec4<f32>,
     // Cascade c: x = L (m), y = L/N (m), z = N, w = mip levels.
     cascades: array<vec4<f32>, 8>,
@@ -375,6 +482,15 @@ struct OceanUniforms {
     // Entry i: x = wave number k_i (rad/m, k_i = table.x · ratio^i); y, z = slope variance
     // along and across the wind of the simulated waves with wave numbers above k_i.
     slope_table: array<vec4<f32>, 32>,
+    // The wake window (ocean_fft_render::WakeTexels::uniform): xy = world x, z of its texel
+    // (0, 0) (m), z = 1/side (1/m), w = N, its samples a side (0: no window, no wake read).
+    wake: vec4<f32>,
+    // The foam's streak field (ocean_fft_render::streak_uniforms): xy = the wind's axis
+    // (x, z), zw = the field's origin across and along the wind (m).
+    streaks: vec4<f32>,
+    // xy = 1/(spacing·texels) across and along (1/m), zw = texels across and along (0: no
+    // streak texture, `ocean_foam_layers` uses its own noise).
+    streak_scale: vec4<f32>,
 }
 
 // The light of the uniforms, with the sun an engine gives (its own light, or the uniforms'
@@ -544,5 +660,100 @@ fn ocean_water_surface(
     surface.wind = u.wind.xy;
     surface.variance = u.wind.zw + ocean_unresolved_variance(u, OCEAN_PI / footprint);
     surface.foam = ocean_foam(foam, jacobian, u.subsurface.w, xz, u.wind.xy, footprint);
+    surface.bubbles = 0.0;
+    surface.coverage = foam;
+    surface.jacobian = jacobian;
+    surface.footprint = footprint;
     return surface;
+}
+
+// `surface` (`ocean_water_surface` at undisplaced point `xz`, m) with its foam drawn by
+// `ocean_foam_layers`: whitecaps on the compressed crests, residual foam in the streak field
+// `streaks` (the library's `FoamStreaks`, an R16F texture_2d uploaded once, read with a
+// repeat, linear sampler; with `u.streak_scale.z` = 0 a value noise stands in), bubbles.
+fn ocean_foam_surface(
+    streaks: texture_2d<f32>,
+    streak_sampler: sampler,
+    u: OceanUniforms,
+    xz: vec2<f32>,
+    surface: OceanSurface,
+) -> OceanSurface {
+    var s = surface;
+    let streak = ocean_streak(streaks, streak_sampler, u, xz);
+    let foam = ocean_foam_layers(
+        s.coverage, u.table.w, s.jacobian, u.subsurface.w, xz, u.wind.xy, s.footprint, streak);
+    s.foam = foam.x;
+    s.bubbles = foam.y;
+    return s;
+}
+
+// ---- Wakes ----
+//
+// The wake window (`OceanState::wakes`, packed by `pack_wakes`): an N×N texture_2d of
+// RGBA16F texels (η (m), ∂y/∂x, ∂y/∂z, foam in [0, 1]) for world (x₀ + i·Δ, z₀ + j·Δ), read
+// with a linear, clamp-to-edge sampler. Its texels fade to zero toward the window's edge, and
+// outside the window nothing is read, so the wake ends without a seam. The wake has no
+// horizontal displacement.
+
+// uv of world point `xz` (m) in the wake window, and in z whether the wake is read there (1
+// inside the window, 0 outside it or without a window).
+fn ocean_wake_uv(u: OceanUniforms, xz: vec2<f32>) -> vec3<f32> {
+    let n = u.wake.w;
+    if (n < 1.0) {
+        return vec3<f32>(0.0);
+    }
+    let uv = (xz - u.wake.xy) * u.wake.z + vec2<f32>(0.5 / n);
+    let inside = all(uv >= vec2<f32>(0.0)) && all(uv <= vec2<f32>(1.0));
+    return vec3<f32>(uv, select(0.0, 1.0, inside));
+}
+
+// `displacement` (`ocean_displacement`) with the wake's height added at undisplaced point
+// `xz` (m).
+fn ocean_add_wake_displacement(
+    wake: texture_2d<f32>,
+    wake_sampler: sampler,
+    u: OceanUniforms,
+    xz: vec2<f32>,
+    displacement: vec3<f32>,
+) -> vec3<f32> {
+    let w = ocean_wake_uv(u, xz);
+    if (w.z <= 0.0) {
+        return displacement;
+    }
+    let height = textureSampleLevel(wake, wake_sampler, w.xy, 0.0).x;
+    return displacement + vec3<f32>(0.0, height, 0.0);
+}
+
+// `surface` (`ocean_water_surface` at undisplaced point `xz`, m) with the wake's slope added
+// to its normal and the wake's foam f_w to its foam f as f + f_w·(1 − f) (as the crate's
+// queries combine them). The trail's foam, a coverage on the window's grid, is placed like
+// the sea's: white where a two-scale noise (patches about a metre across) passes its
+// (1 − f_w) normal quantile, with soft edges, opaque where the trail is thick (fresh, behind
+// the hull) and thinner as it thins out, so an old trail turns into marbled patches; bubbles
+// around it tint the water turquoise.
+fn ocean_add_wake_surface(
+    wake: texture_2d<f32>,
+    wake_sampler: sampler,
+    u: OceanUniforms,
+    xz: vec2<f32>,
+    surface: OceanSurface,
+) -> OceanSurface {
+    let w = ocean_wake_uv(u, xz);
+    if (w.z <= 0.0) {
+        return surface;
+    }
+    let t = textureSampleLevel(wake, wake_sampler, w.xy, 0.0);
+    var s = surface;
+    let slope = -s.normal.xz / max(s.normal.y, 1e-3) + t.yz;
+    s.normal = ocean_normal(slope);
+    // Value noise has a standard deviation of 0.2149; this sum 0.1550.
+    let rank = (0.6 * ocean_noise(xz / 1.3 + vec2<f32>(3.7, 1.1)) + 0.4 * ocean_noise(xz / 0.45) - 0.5) / 0.1550;
+    let f = clamp(t.w, 0.0, 1.0);
+    let soft = 0.3 + 0.5 * min(s.footprint, 2.0);
+    let detailed = ocean_soft_step(rank, ocean_probit(1.0 - f), soft);
+    let blur = smoothstep(0.2, 1.5, s.footprint);
+    let foam = mix(detailed, f, blur) * mix(0.55, 1.0, smoothstep(0.3, 0.9, f));
+    s.foam = s.foam + foam * (1.0 - s.foam);
+    s.bubbles = max(s.bubbles, smoothstep(0.02, 0.4, f) * (1.0 - foam));
+    return s;
 }

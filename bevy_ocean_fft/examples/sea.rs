@@ -5,6 +5,9 @@
 //! cargo run --release -p bevy_ocean_fft --example sea -- --frames 60 --screenshot out/bevy.png
 //! ```
 //!
+//! The boats leave wakes (`Wake`); `--boat-speed 8` drives them ahead, `--follow-boat` keeps
+//! the camera's offset from the first one, `--camera X,Y,Z --look-at X,Y,Z` places it.
+//!
 //! `--anisotropy 1` for a software rasteriser (as in CI): anisotropic filtering makes its
 //! frames take minutes. With `--frames N` it renders N frames and exits, printing
 //! `frames N, mean frame … ms, step … ms, upload … ms, …`; with `--screenshot FILE` it saves
@@ -45,6 +48,53 @@ struct Options {
         value_parser = clap::value_parser!(u16).range(1..=16)
     )]
     anisotropy: u16,
+    /// Sea state to start from.
+    #[arg(long, value_name = "NAME", default_value = "fresh_breeze", value_parser = preset)]
+    preset: SeaState,
+    /// The boats' speed ahead in m/s, 0 (drifting where they are) to 20.
+    #[arg(long, value_name = "M/S", default_value_t = 0.0, value_parser = speed)]
+    boat_speed: f32,
+    /// The camera moves with the first boat (keeps its offset from it).
+    #[arg(long)]
+    follow_boat: bool,
+    /// The camera's place in metres, y up.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = point)]
+    camera: Option<Vec3>,
+    /// The point the camera looks at, m.
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = point)]
+    look_at: Option<Vec3>,
+}
+
+/// `--preset`: a `SeaState` name.
+fn preset(text: &str) -> Result<SeaState, String> {
+    SeaState::ALL
+        .into_iter()
+        .find(|s| s.name() == text)
+        .ok_or_else(|| {
+            let names: Vec<&str> = SeaState::ALL.iter().map(|s| s.name()).collect();
+            format!("one of {}", names.join(", "))
+        })
+}
+
+/// `--boat-speed`: 0 to 20 m/s.
+fn speed(text: &str) -> Result<f32, String> {
+    match text.parse::<f32>() {
+        Ok(v) if (0.0..=20.0).contains(&v) => Ok(v),
+        _ => Err("a speed from 0 to 20 m/s".into()),
+    }
+}
+
+/// `--camera`, `--look-at`: three finite numbers separated by commas.
+fn point(text: &str) -> Result<Vec3, String> {
+    let v: Vec<f32> = text
+        .split(',')
+        .map(|p| p.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| "three numbers X,Y,Z".to_string())?;
+    match v[..] {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(Vec3::new(x, y, z)),
+        _ => Err("three finite numbers X,Y,Z".into()),
+    }
 }
 
 /// `--frames`: a whole number, at least 1.
@@ -74,12 +124,12 @@ fn main() -> ExitCode {
             anisotropy: options.anisotropy,
             ..default()
         })
-        // A fresh breeze on the crate's default grids (three 256² cascades).
-        .insert_resource(OceanSettings::preset(SeaState::FreshBreeze))
+        // The sea of --preset (a fresh breeze by default) on its default grids.
+        .insert_resource(OceanSettings::preset(options.preset))
         .insert_resource(options)
         .init_resource::<Stats>()
         .add_systems(Startup, (scene, panel))
-        .add_systems(Update, (buttons, hud, frames))
+        .add_systems(Update, (buttons, hud, frames, drive))
         .run();
     // guide: end
     match exit {
@@ -99,17 +149,24 @@ fn sun_direction() -> Vec3 {
     )
 }
 
+/// The first boat (the one `--follow-boat` follows).
+#[derive(Component)]
+struct Lead;
+
 fn scene(
     mut commands: Commands,
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
+    options: Res<Options>,
 ) {
+    let eye = options.camera.unwrap_or(Vec3::new(0.0, 7.0, 24.0));
+    let target = options.look_at.unwrap_or(Vec3::new(0.0, 1.0, -40.0));
     commands.spawn((
         Camera3d::default(),
         // The filmic curve the reference shader's palette was tuned with (ACES).
         Tonemapping::AcesFitted,
         OceanCamera,
-        Transform::from_xyz(0.0, 7.0, 24.0).looking_at(Vec3::new(0.0, 1.0, -40.0), Vec3::Y),
+        Transform::from_translation(eye).looking_at(target, Vec3::Y),
     ));
     // About 3.8 klx: with Bevy's default exposure (EV100 9.7) a white body facing the sun
     // shows about 1.15, the brightness the reference shader is tuned for.
@@ -154,28 +211,61 @@ fn scene(
         // guide: boat
         // A 6 × 2.4 × 1.2 m hull of 3 t: it heaves, pitches and rolls on the waves (the
         // plugin moves it every fixed update; add a BuoyancyForce to hand the push to a
-        // physics engine instead).
-        commands
-            .spawn((
-                Name::new(format!("boat {i}")),
-                Buoyancy::boat(6.0, 2.4, 1.2, 3000.0),
-                Transform::from_translation(place).with_rotation(heading),
-                Mesh3d(hull.clone()),
-                MeshMaterial3d(materials.add(colour)),
-            ))
-            .with_children(|boat| {
-                boat.spawn((
-                    Mesh3d(cabin.clone()),
-                    MeshMaterial3d(white.clone()),
-                    Transform::from_xyz(0.0, 1.0, 0.8),
-                ));
-                boat.spawn((
-                    Mesh3d(mast.clone()),
-                    MeshMaterial3d(white.clone()),
-                    Transform::from_xyz(0.0, 3.0, -0.8),
-                ));
-            });
+        // physics engine instead), and leaves a wake and a foam trail as it moves.
+        let mut boat = commands.spawn((
+            Name::new(format!("boat {i}")),
+            Buoyancy::boat(6.0, 2.4, 1.2, 3000.0),
+            Wake::default(),
+            Transform::from_translation(place).with_rotation(heading),
+            Mesh3d(hull.clone()),
+            MeshMaterial3d(materials.add(colour)),
+        ));
         // guide: end
+        if i == 0 {
+            boat.insert(Lead);
+        }
+        boat.with_children(|boat| {
+            boat.spawn((
+                Mesh3d(cabin.clone()),
+                MeshMaterial3d(white.clone()),
+                Transform::from_xyz(0.0, 1.0, 0.8),
+            ));
+            boat.spawn((
+                Mesh3d(mast.clone()),
+                MeshMaterial3d(white.clone()),
+                Transform::from_xyz(0.0, 3.0, -0.8),
+            ));
+        });
+    }
+}
+
+/// The boats that `drive` moves (not the camera).
+type Boats<'w, 's> =
+    Query<'w, 's, (&'static mut Transform, Has<Lead>), (With<Wake>, Without<OceanCamera>)>;
+
+/// `--boat-speed`: the boats go ahead (their +z) on the water; `--follow-boat`: the camera
+/// moves with the first.
+fn drive(
+    time: Res<Time>,
+    options: Res<Options>,
+    mut boats: Boats,
+    mut camera: Query<&mut Transform, With<OceanCamera>>,
+) {
+    let mut lead = Vec3::ZERO;
+    for (mut transform, is_lead) in &mut boats {
+        let ahead = transform.rotation * Vec3::Z;
+        let moved = Vec3::new(ahead.x, 0.0, ahead.z).normalize_or_zero()
+            * options.boat_speed
+            * time.delta_secs();
+        transform.translation += moved;
+        if is_lead {
+            lead = moved;
+        }
+    }
+    if options.follow_boat {
+        for mut eye in &mut camera {
+            eye.translation += lead;
+        }
     }
 }
 
@@ -391,6 +481,29 @@ mod tests {
     fn defaults_and_flags() {
         let o = parse(&[]).unwrap();
         assert_eq!((o.frames, o.screenshot, o.anisotropy), (None, None, 16));
+        assert_eq!(
+            (o.preset, o.boat_speed, o.follow_boat),
+            (SeaState::FreshBreeze, 0.0, false)
+        );
+        assert_eq!((o.camera, o.look_at), (None, None));
+        let o = parse(&[
+            "--preset",
+            "calm",
+            "--boat-speed",
+            "8",
+            "--follow-boat",
+            "--camera",
+            "-10,40,-20",
+            "--look-at",
+            "0,0,0",
+        ])
+        .unwrap();
+        assert_eq!(
+            (o.preset, o.boat_speed, o.follow_boat),
+            (SeaState::Calm, 8.0, true)
+        );
+        assert_eq!(o.camera, Some(Vec3::new(-10.0, 40.0, -20.0)));
+        assert_eq!(o.look_at, Some(Vec3::ZERO));
         // CI's command line.
         let o = parse(&[
             "--frames",
@@ -419,6 +532,9 @@ mod tests {
             (&["--anisotropy", "0"], "--anisotropy"),
             (&["--anisotropy", "17"], "--anisotropy"),
             (&["--screenshot", "out.png"], "--frames"),
+            (&["--boat-speed", "30"], "--boat-speed"),
+            (&["--camera", "1,2"], "--camera"),
+            (&["--preset", "gale"], "--preset"),
             (&["--bogus"], "--bogus"),
         ] {
             let text = parse(args).expect_err("a bad command line").to_string();

@@ -75,7 +75,7 @@ impl Buoyancy {
     }
 
     /// Writes this body into the render layer's `body`, reusing its columns' allocation.
-    fn write(&self, body: &mut Body) {
+    pub(crate) fn write(&self, body: &mut Body) {
         body.columns.clear();
         body.columns.extend(self.points.iter().map(|p| Column {
             offset: p.offset.to_array(),

@@ -25,7 +25,8 @@
 //! - The simulation steps on Bevy's `AsyncComputeTaskPool` while the frame renders
 //!   ([`OceanSystems`] says where in the frame); the render world uploads its textures.
 //! - [`Buoyancy`] bodies float kinematically, or hand a [`BuoyancyForce`] to a physics
-//!   engine; [`Water`] answers height and normal queries.
+//!   engine; [`Water`] answers height and normal queries. A [`Wake`] on a body makes it
+//!   leave a Kelvin wake and a foam trail, in the queries and on the water drawn.
 //! - With rendering (an app whose plugins include Bevy's `PbrPlugin`), the water is drawn
 //!   on a clipmap that follows the camera ([`OceanCamera`], or the first 3D camera) with an
 //!   [`OceanMaterial`], under a sky dome of the same shader; [`OceanAppearance`] holds the
@@ -37,6 +38,7 @@ mod buoyancy;
 mod render;
 mod settings;
 mod sim;
+mod wake;
 mod water;
 
 use bevy::prelude::*;
@@ -51,13 +53,14 @@ pub use render::{
 };
 pub use settings::{OceanClock, OceanSettings};
 pub use sim::{OceanSim, OceanStatus, OceanTexels, PackedFrame};
+pub use wake::{Wake, WakeInput, WakeTrack, WakeWindow};
 pub use water::Water;
 
 /// The plugin's types and the crate's presets, for `use bevy_ocean_fft::prelude::*`.
 pub mod prelude {
     pub use crate::{
         Buoyancy, BuoyancyForce, OceanAppearance, OceanCamera, OceanClock, OceanPlugin,
-        OceanSettings, OceanStatus, OceanSystems, Water,
+        OceanSettings, OceanStatus, OceanSystems, Wake, Water,
     };
     pub use ocean_fft::{SeaState, Spectrum};
 }
@@ -102,11 +105,17 @@ impl Plugin for OceanPlugin {
             .init_resource::<OceanSim>()
             .init_resource::<OceanStatus>()
             .init_resource::<OceanTexels>()
+            .init_resource::<WakeInput>()
+            .init_resource::<WakeWindow>()
             .configure_sets(First, OceanSystems::Collect.after(bevy::time::TimeSystems))
             .add_systems(First, sim::collect.in_set(OceanSystems::Collect))
             .add_systems(
                 FixedUpdate,
                 buoyancy::float_bodies.in_set(OceanSystems::Buoyancy),
+            )
+            .add_systems(
+                PostUpdate,
+                wake::collect_hulls.after(bevy::transform::TransformSystems::Propagate),
             )
             .add_systems(Last, sim::launch.in_set(OceanSystems::Launch));
         if app.is_plugin_added::<bevy::pbr::PbrPlugin>() {

@@ -6,7 +6,6 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
-use std::time::Instant;
 
 use bevy::asset::uuid_handle;
 use bevy::camera::visibility::NoFrustumCulling;
@@ -14,24 +13,24 @@ use bevy::light::{NotShadowCaster, NotShadowReceiver};
 use bevy::mesh::MeshVertexBufferLayoutRef;
 use bevy::pbr::{MaterialPipeline, MaterialPipelineKey, MaterialPlugin};
 use bevy::prelude::*;
-use bevy::render::render_asset::RenderAssets;
 use bevy::render::render_resource::{
-    AsBindGroup, Extent3d, Origin3d, RenderPipelineDescriptor, ShaderType,
-    SpecializedMeshPipelineError, TexelCopyBufferLayout, TexelCopyTextureInfo, TextureAspect,
+    AsBindGroup, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError,
 };
-use bevy::render::renderer::RenderQueue;
-use bevy::render::texture::GpuImage;
-use bevy::render::{Extract, ExtractSchedule, Render, RenderApp, RenderSystems};
+use bevy::render::{ExtractSchedule, Render, RenderApp, RenderSystems};
 use bevy::shader::{Shader, ShaderRef};
 
 use ocean_fft_render::clipmap::{rings, Ring, HOLES, MAX_RINGS};
 use ocean_fft_render::{Light, OceanInfo, OceanUniforms, Tiling};
 
-use crate::sim::{OceanTexels, PackedFrame};
+use crate::sim::OceanTexels;
 
 use assets::{cascade_image, ring_mesh};
+use upload::{extract_texels, upload_texels};
+use wake::{streak_image, wake_image};
 
 mod assets;
+mod upload;
+mod wake;
 
 const COMMON_SHADER: Handle<Shader> = uuid_handle!("5b0e3c52-8f0b-4d6e-9a51-0c8f1f5a7e31");
 const WATER_SHADER: Handle<Shader> = uuid_handle!("0b7a2f41-6c3d-4e8a-b1f2-7d9e5c4a3b20");
@@ -142,6 +141,15 @@ pub struct OceanMaterial {
     pub slope: Handle<Image>,
     #[uniform(4)]
     pub uniforms: UniformBlock,
+    /// The wake window's texels (η, ∂y/∂x, ∂y/∂z, foam), clamped to the edge (1×1 without
+    /// wakes).
+    #[texture(5)]
+    #[sampler(6)]
+    pub wake: Handle<Image>,
+    /// The foam's streak field (the library's `FoamStreaks`), R16F, repeat, linear.
+    #[texture(7)]
+    #[sampler(8)]
+    pub streaks: Handle<Image>,
 }
 
 impl Material for OceanMaterial {
@@ -236,6 +244,12 @@ pub struct OceanRender {
     grid: (usize, usize),
     displacement: Handle<Image>,
     slope: Handle<Image>,
+    /// The wake window's image and side (0: the 1×1 placeholder).
+    wake: Handle<Image>,
+    wake_size: usize,
+    /// The streak field's image and size (across, along; (0, 0): the placeholder).
+    streaks: Handle<Image>,
+    streak_size: (usize, usize),
     /// The last texels' information.
     info: OceanInfo,
     /// The uniforms both materials get.
@@ -337,10 +351,14 @@ fn setup(
     // Placeholders until the first ocean's grid is known.
     let displacement = images.add(cascade_image(2, 1, 1));
     let slope = images.add(cascade_image(2, 1, anisotropy.0));
+    let wake = images.add(wake_image(0));
+    let streaks = images.add(streak_image(0, 0));
     let material = materials.add(OceanMaterial {
         displacement: displacement.clone(),
         slope: slope.clone(),
         uniforms: UniformBlock::default(),
+        wake: wake.clone(),
+        streaks: streaks.clone(),
     });
     let sky = skies.add(OceanSkyMaterial {
         uniforms: UniformBlock::default(),
@@ -381,6 +399,10 @@ fn setup(
         grid: (0, 0),
         displacement,
         slope,
+        wake,
+        wake_size: 0,
+        streaks,
+        streak_size: (0, 0),
         info: OceanInfo::default(),
         uniforms: bytemuck::Zeroable::zeroed(),
     });
@@ -398,6 +420,22 @@ fn fit_textures(
         return;
     };
     render.info = frame.info;
+    render.uniforms.wake = frame.wake.uniform();
+    if render.wake_size != frame.wake.size {
+        render.wake_size = frame.wake.size;
+        render.wake = images.add(wake_image(frame.wake.size));
+        if let Some(mut material) = materials.get_mut(&render.material) {
+            material.wake = render.wake.clone();
+        }
+    }
+    let streak_size = (frame.streaks.across, frame.streaks.along);
+    if render.streak_size != streak_size {
+        render.streak_size = streak_size;
+        render.streaks = images.add(streak_image(streak_size.0, streak_size.1));
+        if let Some(mut material) = materials.get_mut(&render.material) {
+            material.streaks = render.streaks.clone();
+        }
+    }
     let grid = (frame.texels.size, frame.texels.cascades);
     if render.grid == grid {
         return;
@@ -502,91 +540,4 @@ fn follow_camera(
     if let Some(mut material) = materials.get_mut(&render.material) {
         material.uniforms = block;
     }
-}
-
-/// The texels and the images they go to, in the render world.
-#[derive(Resource, Default)]
-struct ExtractedTexels {
-    generation: u64,
-    texels: Option<Arc<PackedFrame>>,
-    images: Option<(AssetId<Image>, AssetId<Image>)>,
-}
-
-fn extract_texels(
-    mut commands: Commands,
-    texels: Extract<Res<OceanTexels>>,
-    render: Extract<Option<Res<OceanRender>>>,
-) {
-    commands.insert_resource(ExtractedTexels {
-        generation: texels.generation,
-        texels: texels.texels.clone(),
-        images: render.as_ref().map(|r| (r.displacement.id(), r.slope.id())),
-    });
-}
-
-/// Writes a new frame's texels, every layer and mip level, into the images' textures.
-fn upload_texels(
-    extracted: Option<Res<ExtractedTexels>>,
-    images: Res<RenderAssets<GpuImage>>,
-    queue: Res<RenderQueue>,
-    upload: Res<UploadTime>,
-    mut uploaded: Local<u64>,
-) {
-    let Some(extracted) = extracted else {
-        return;
-    };
-    let (Some(texels), Some((displacement, slope))) = (&extracted.texels, extracted.images) else {
-        return;
-    };
-    if extracted.generation == *uploaded {
-        return;
-    }
-    let (Some(displacement), Some(slope)) = (images.get(displacement), images.get(slope)) else {
-        return;
-    };
-    let texels = &texels.texels;
-    let fits = |image: &GpuImage| {
-        let size = image.texture_descriptor.size;
-        size.width as usize == texels.size
-            && size.depth_or_array_layers as usize == texels.cascades
-            && image.texture_descriptor.mip_level_count as usize == texels.level_offsets.len()
-    };
-    if !fits(displacement) || !fits(slope) {
-        // The images for a new grid are not on the GPU yet.
-        return;
-    }
-    let start = Instant::now();
-    for (image, data) in [(displacement, &texels.displacement), (slope, &texels.slope)] {
-        for level in texels.levels(data) {
-            let side = level.side as u32;
-            queue.write_texture(
-                TexelCopyTextureInfo {
-                    texture: &image.texture,
-                    mip_level: level.level as u32,
-                    origin: Origin3d {
-                        x: 0,
-                        y: 0,
-                        z: level.layer as u32,
-                    },
-                    aspect: TextureAspect::All,
-                },
-                bytemuck::cast_slice(level.texels),
-                TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(side * 8),
-                    rows_per_image: Some(side),
-                },
-                Extent3d {
-                    width: side,
-                    height: side,
-                    depth_or_array_layers: 1,
-                },
-            );
-        }
-    }
-    upload.0.store(
-        (start.elapsed().as_secs_f64() * 1e3).to_bits(),
-        Ordering::Relaxed,
-    );
-    *uploaded = extracted.generation;
 }

@@ -10,16 +10,22 @@ use bevy::prelude::*;
 use bevy::tasks::{block_on, AsyncComputeTaskPool, Task};
 use ocean_fft::{Error, OceanState, Spectrum};
 use ocean_fft_render::{
-    apply, build, follow_clock, OceanInfo, Plan, SeaSettings, SlopeTable, Texels,
+    apply, build, follow_clock, OceanInfo, Plan, SeaSettings, SlopeTable, StreakTexels, Texels,
+    WakeTexels,
 };
 
 use crate::settings::{OceanClock, OceanSettings};
+use crate::wake::{WakeInput, WakeWindow};
 
 /// One frame's textures and what the shader needs with them.
 #[derive(Debug, Default)]
 pub struct PackedFrame {
     /// Every cascade's texels with their mip chains.
     pub texels: Texels,
+    /// The wake window's texels (empty without wakes).
+    pub wake: WakeTexels,
+    /// The foam's streak field (copied when the ocean is new).
+    pub streaks: StreakTexels,
     /// The ocean at the time the texels hold.
     pub info: OceanInfo,
 }
@@ -28,6 +34,8 @@ impl PackedFrame {
     /// Packs `ocean` as it is now (allocates only when the grid changed).
     fn pack(&mut self, ocean: &OceanState, slopes: &mut SlopeTable) -> Result<(), Error> {
         self.texels.pack(ocean)?;
+        self.wake.pack(ocean)?;
+        self.streaks.pack(ocean);
         self.info.update(ocean, slopes)?;
         self.info.jacobian_sd = self.texels.jacobian_sd;
         Ok(())
@@ -178,18 +186,36 @@ pub(crate) fn collect(
     }
 }
 
-/// `Last`: applies the settings (live changes, or a new ocean built off the main thread)
-/// and sends the ocean to step to the clock's time while the frame renders.
+/// `Last`: applies the settings (live changes, or a new ocean built off the main thread;
+/// with a wake window while a [`Wake`](crate::Wake) body exists), hands the ocean the
+/// frame's hulls, and sends it to step to the clock's time while the frame renders.
 pub(crate) fn launch(
     mut sim: ResMut<OceanSim>,
+    mut status: ResMut<OceanStatus>,
     settings: Res<OceanSettings>,
+    (wakes, window): (Res<WakeInput>, Res<WakeWindow>),
     clock: Res<OceanClock>,
     time: Res<Time<Virtual>>,
+    mut with_wakes: Local<Option<(SeaSettings, ocean_fft::WakeConfig, SeaSettings)>>,
 ) {
     let sim = &mut *sim;
     let target = clock_time(&clock, &time);
     let mut changes = Vec::new();
-    let wanted = &settings.0;
+    let wanted = if wakes.wanted && settings.0.config.wakes.is_none() {
+        // The settings with the plugin's window, made again only when they change (no
+        // allocation a frame).
+        let fresh = with_wakes
+            .as_ref()
+            .is_some_and(|(from, window_of, _)| *from == settings.0 && *window_of == window.0);
+        if !fresh {
+            let mut sea = settings.0.clone();
+            sea.config.wakes = Some(window.0.clone());
+            *with_wakes = Some((settings.0.clone(), window.0.clone(), sea));
+        }
+        &with_wakes.as_ref().expect("set above").2
+    } else {
+        &settings.0
+    };
     if sim.build.is_none()
         && sim.applied.as_ref() != Some(wanted)
         && sim.refused.as_ref() != Some(wanted)
@@ -218,6 +244,14 @@ pub(crate) fn launch(
     let Some(mut ocean) = sim.ocean.take() else {
         return;
     };
+    if ocean.wakes().is_some() {
+        let centre = wakes
+            .centre
+            .map_or(Ok(()), |[x, z]| ocean.set_wake_centre(x, z));
+        if let Err(error) = centre.and_then(|()| ocean.set_hulls(&wakes.hulls)) {
+            status.last_error = Some(format!("wake refused: {error}"));
+        }
+    }
     let mut texels = sim.pool.pop().unwrap_or_default();
     let mut slopes = sim.slopes.take().unwrap_or_default();
     sim.step = Some(AsyncComputeTaskPool::get().spawn(async move {

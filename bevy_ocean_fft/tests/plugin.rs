@@ -9,7 +9,9 @@ use bevy::prelude::*;
 use bevy::time::TimeUpdateStrategy;
 use bevy_ocean_fft::ocean_fft::{OceanState, SeaState, GRAVITY};
 use bevy_ocean_fft::prelude::*;
-use bevy_ocean_fft::{BuoyancyPoint, SEA_WATER_DENSITY};
+use bevy_ocean_fft::{
+    BuoyancyPoint, OceanSim, OceanTexels, WakeInput, WakeWindow, SEA_WATER_DENSITY,
+};
 
 /// Frames of 1/60 s.
 const DT: f64 = 1.0 / 60.0;
@@ -405,4 +407,99 @@ fn forces_for_a_physics_engine_are_archimedes() {
         checked += 1;
     }
     assert!(checked > 50, "only {checked} fixed updates checked");
+}
+
+/// What the game saw of the wake during a frame (the ocean is in its step task between
+/// frames).
+#[derive(Resource, Default)]
+struct WakeSeen {
+    /// The wake's height under the body, from the ocean's own window.
+    dip: Option<f32>,
+    /// The world query's height there, and the same ocean's without the wake.
+    height: Option<(f32, f32)>,
+}
+
+fn see_wake(
+    sim: Res<OceanSim>,
+    water: Water,
+    boats: Query<&Transform, With<Wake>>,
+    mut seen: ResMut<WakeSeen>,
+) {
+    let (Some(ocean), Ok(boat)) = (sim.ocean(), boats.single()) else {
+        return;
+    };
+    let (x, z) = (boat.translation.x, boat.translation.z);
+    let Some(wakes) = ocean.wakes() else {
+        return;
+    };
+    let (dip, _) = wakes.at(f64::from(x), f64::from(z));
+    seen.dip = Some(dip);
+    if let Some(h) = water.height(x, z) {
+        seen.height = Some((h, dip));
+    }
+}
+
+/// A `Wake` on a `Buoyancy` body turns the ocean's wake window on (a new ocean with the
+/// plugin's `WakeWindow`), hands the body to the ocean as a hull of its columns' size moving
+/// at its measured velocity, and the water under it dips: the ocean's own wake window and
+/// the texels the renderer uploads see it.
+#[test]
+fn a_wake_body_presses_the_water_and_is_packed() {
+    let mut app = app(settings(SeaState::Calm, 0.0));
+    app.init_resource::<WakeSeen>();
+    app.world_mut().spawn((
+        Buoyancy::boat(8.0, 3.0, 1.5, 1025.0 * 8.0 * 3.0 * 0.6),
+        Wake::default(),
+        Transform::from_xyz(5.0, 0.0, -3.0),
+    ));
+    app.add_systems(
+        Update,
+        (see_wake, |mut q: Query<&mut Transform, With<Wake>>| {
+            for mut t in &mut q {
+                // 4 m/s along +z (the body's bow: heading π/2).
+                t.translation.z += (4.0 * DT) as f32;
+            }
+        }),
+    );
+    run_until(&mut app, "an ocean with wakes", |w| {
+        w.resource::<WakeSeen>().dip.is_some()
+    });
+    for _ in 0..120 {
+        app.update();
+    }
+    let input = app.world().resource::<WakeInput>().clone();
+    assert!(input.wanted);
+    assert_eq!(input.hulls.len(), 1);
+    let hull = input.hulls[0];
+    assert!((hull.length - 8.0).abs() < 1e-3 && (hull.beam - 3.0).abs() < 1e-3);
+    assert!((hull.draft - 0.6).abs() < 1e-3, "{hull:?}");
+    assert!((hull.velocity[1] - 4.0).abs() < 0.05, "{hull:?}");
+    assert!(hull.velocity[0].abs() < 0.05, "{hull:?}");
+    assert!(
+        // (the waves roll and pitch it a little)
+        (hull.heading - std::f32::consts::FRAC_PI_2).abs() < 0.02,
+        "{hull:?}"
+    );
+    // No camera: the window follows the hull.
+    assert_eq!(input.centre, Some(hull.position));
+
+    let seen = app.world().resource::<WakeSeen>();
+    let dip = seen.dip.expect("seen");
+    assert!(dip < -0.1, "the water under the hull dips: {dip}");
+    let texels = app.world().resource::<OceanTexels>();
+    let frame = texels.texels.as_ref().expect("packed texels");
+    assert!(frame.wake.active());
+    assert_eq!(frame.wake.size, WakeWindow::default().0.size);
+    let deepest = frame
+        .wake
+        .texels
+        .iter()
+        .map(|t| t[0].to_f32())
+        .fold(0.0f32, f32::min);
+    assert!(deepest < -0.1, "the texels hold the dip: {deepest}");
+    assert!(
+        status(&app).last_error.is_none(),
+        "{:?}",
+        status(&app).last_error
+    );
 }

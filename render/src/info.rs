@@ -39,6 +39,12 @@ pub struct OceanInfo {
     pub peak_wavelength: f32,
     /// Foam coverage of the whole sea (active + residual), area fraction in [0, 1].
     pub foam_total: f32,
+    /// The share of that coverage that is active whitecaps (the rest residual foam), in
+    /// [0, 1].
+    pub foam_active_share: f32,
+    /// The streak field's placement now ([`streak_uniforms`](crate::streak_uniforms)).
+    pub streaks: [f32; 4],
+    pub streak_scale: [f32; 4],
 }
 
 /// The slope-variance table and the spectrum and grids it was computed for: 32 integrals of
@@ -102,7 +108,15 @@ impl OceanInfo {
         self.significant_wave_height = spectrum.significant_wave_height();
         let peak_k = spectrum.peak_omega().powi(2) / ocean_fft::GRAVITY;
         self.peak_wavelength = std::f32::consts::TAU / peak_k;
-        self.foam_total = ocean.foam_view().coverage().total;
+        let coverage = ocean.foam_view().coverage();
+        self.foam_total = coverage.total;
+        self.foam_active_share = if coverage.total > 0.0 {
+            (coverage.active / coverage.total).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        (self.streaks, self.streak_scale) =
+            crate::streak_uniforms(&ocean.textures().foam_streaks());
         Ok(())
     }
 }

@@ -10,6 +10,9 @@
 //!   into live changes or a new ocean.
 //! - [`Simulation`]: a double-buffered simulation thread that steps, packs and queries while
 //!   the engine draws the previous frame.
+//! - [`StreakTexels`]: the foam's streak field, uploaded once per ocean, placed each frame.
+//! - [`WakeTexels`]: the wake window's texels and place; [`hull_of`] a floating body's
+//!   [`Hull`](ocean_fft::Hull), [`wake_centre`] where the window goes for a camera.
 //! - [`floater`]: floating bodies ([`Body`] of vertical columns, [`Pose`], [`Motion`]): the
 //!   water's push on them from a batch of height queries ([`Push`]: Archimedes and drag) and
 //!   the kinematic step of their heave, pitch and roll; [`Floater`] holds one with its state.
@@ -23,13 +26,17 @@ mod info;
 mod sea;
 #[cfg(test)]
 mod shader_tests;
+mod streaks;
 mod texels;
 mod thread;
 mod uniforms;
+mod wake;
 
 pub use floater::{Body, Column, Floater, Motion, Pose, Push, Velocities, SEA_WATER_DENSITY};
 pub use info::{OceanInfo, SlopeTable, MAX_CASCADES, SLOPE_TABLE};
 pub use sea::{apply, build, follow_clock, Change, Plan, SeaSettings, PRE_ROLL, PRE_ROLL_DT};
+pub use streaks::{streak_uniforms, StreakTexels};
 pub use texels::{mip_levels, Level, Texels};
 pub use thread::{Frame, SimTimes, Simulation};
 pub use uniforms::{Light, OceanUniforms, Tiling, EXACT_WITHIN};
+pub use wake::{heading_of, hull_of, wake_centre, WakeTexels};

@@ -58,6 +58,14 @@ fn the_shading_functions_stand_alone() {
         "ocean_unresolved_variance",
         "ocean_water_surface",
         "ocean_varying",
+        "ocean_wake_uv",
+        "ocean_add_wake_displacement",
+        "ocean_add_wake_surface",
+        "ocean_streak_uv",
+        "ocean_streak",
+        "ocean_foam_layers",
+        "ocean_foam_surface",
+        "ocean_dither",
     ] {
         assert!(
             names.contains(&wanted),
@@ -104,6 +112,12 @@ fn the_uniforms_have_the_rust_layout() {
         (
             "slope_table",
             std::mem::offset_of!(OceanUniforms, slope_table),
+        ),
+        ("wake", std::mem::offset_of!(OceanUniforms, wake)),
+        ("streaks", std::mem::offset_of!(OceanUniforms, streaks)),
+        (
+            "streak_scale",
+            std::mem::offset_of!(OceanUniforms, streak_scale),
         ),
     ];
     assert_eq!(members.len(), rust.len(), "members");

@@ -13,11 +13,13 @@ use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::thread::JoinHandle;
 use std::time::Instant;
 
-use ocean_fft::{Error, OceanState, SurfaceSample};
+use ocean_fft::{Error, Hull, OceanState, SurfaceSample};
 
 use crate::info::{OceanInfo, SlopeTable};
 use crate::sea::{apply, build, Plan, SeaSettings, PRE_ROLL_DT};
+use crate::streaks::StreakTexels;
 use crate::texels::Texels;
+use crate::wake::WakeTexels;
 
 /// Timings of the simulation's share of a frame, ms.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -37,6 +39,11 @@ pub struct SimTimes {
 pub struct Frame {
     /// Every cascade's texels with their mip chains.
     pub texels: Texels,
+    /// The wake window's texels (empty without `OceanConfig::wakes`).
+    pub wake: WakeTexels,
+    /// The foam's streak field (copied when the ocean is new; upload it when its
+    /// generation changes).
+    pub streaks: StreakTexels,
     /// The world points (x, z; m) queried after the step, and their surfaces.
     pub queries: Vec<[f64; 2]>,
     pub samples: Vec<SurfaceSample>,
@@ -59,12 +66,21 @@ impl Frame {
     }
 }
 
-/// A request to the simulation thread: take the sea to `sea` (if given), step by `dt`
-/// seconds, fill `frame`.
+/// A request to the simulation thread: take the sea to `sea` (if given), set the wake's
+/// hulls and window, step by `dt` seconds, fill `frame`.
 struct Request {
     dt: f64,
     sea: Option<SeaSettings>,
+    wake: Option<Box<WakeRequest>>,
     frame: Box<Frame>,
+}
+
+/// The hulls and the window's centre the next step's wake takes (an ocean without wakes
+/// ignores them).
+#[derive(Debug, Clone, Default)]
+struct WakeRequest {
+    centre: [f64; 2],
+    hulls: Vec<Hull>,
 }
 
 /// The simulation thread's own state.
@@ -81,6 +97,11 @@ pub struct Simulation {
     results: Receiver<Box<Frame>>,
     /// The frame the engine holds (uploaded, sent back with the next request).
     spare: Option<Box<Frame>>,
+    /// The wake input of the next request, and the one the thread gave back (kept so that
+    /// setting hulls every frame allocates nothing).
+    wake: Option<Box<WakeRequest>>,
+    wake_spare: Option<Box<WakeRequest>>,
+    returned: Receiver<Box<WakeRequest>>,
     thread: Option<JoinHandle<()>>,
 }
 
@@ -125,12 +146,17 @@ impl Simulation {
             .map_err(|e| e.to_string())?;
         let (request_tx, request_rx) = sync_channel::<Option<Request>>(1);
         let (result_tx, result_rx) = sync_channel::<Box<Frame>>(2);
+        let (wake_tx, wake_rx) = sync_channel::<Box<WakeRequest>>(2);
         result_tx.send(first).map_err(|e| e.to_string())?;
         let thread = std::thread::Builder::new()
             .name("ocean-sim".into())
             .spawn(move || {
-                while let Ok(Some(request)) = request_rx.recv() {
-                    let frame = pool.install(|| worker.serve(request));
+                while let Ok(Some(mut request)) = request_rx.recv() {
+                    let wake = request.wake.take();
+                    let frame = pool.install(|| worker.serve(request, wake.as_deref()));
+                    if let Some(wake) = wake {
+                        let _ = wake_tx.try_send(wake);
+                    }
                     if result_tx.send(frame).is_err() {
                         break;
                     }
@@ -141,8 +167,31 @@ impl Simulation {
             requests: request_tx,
             results: result_rx,
             spare: Some(Box::new(Frame::new(queries.len()))),
+            wake: None,
+            wake_spare: None,
+            returned: wake_rx,
             thread: Some(thread),
         })
+    }
+
+    /// The hulls that make the wake and the window's centre (world x, z, m), taken by the
+    /// next request's step (`OceanState::set_wake_centre`, then `set_hulls`; an ocean built
+    /// without `OceanConfig::wakes` ignores them). Call it before [`next`](Self::next) each
+    /// frame the hulls move; a frame without the call keeps the last hulls moving along
+    /// their velocities. Allocates nothing once the hulls' buffer has grown.
+    pub fn set_wake(&mut self, centre: [f64; 2], hulls: &[Hull]) {
+        while let Ok(back) = self.returned.try_recv() {
+            self.wake_spare = Some(back);
+        }
+        let mut wake = self
+            .wake
+            .take()
+            .or_else(|| self.wake_spare.take())
+            .unwrap_or_default();
+        wake.centre = centre;
+        wake.hulls.clear();
+        wake.hulls.extend_from_slice(hulls);
+        self.wake = Some(wake);
     }
 
     /// Waits for the next stepped frame, then at once asks for the one after it (the sea
@@ -176,6 +225,7 @@ impl Simulation {
             .send(Some(Request {
                 dt,
                 sea,
+                wake: self.wake.take(),
                 frame: spare,
             }))
             .map_err(|_| "the simulation thread stopped".to_string())?;
@@ -236,6 +286,8 @@ impl Worker {
     fn fill(&mut self, frame: &mut Frame) -> Result<(), Error> {
         let start = Instant::now();
         frame.texels.pack(&self.ocean)?;
+        frame.wake.pack(&self.ocean)?;
+        frame.streaks.pack(&self.ocean);
         frame.info.update(&self.ocean, &mut self.slopes)?;
         frame.info.jacobian_sd = frame.texels.jacobian_sd;
         frame.rebuilds = self.rebuilds;
@@ -249,9 +301,11 @@ impl Worker {
         Ok(())
     }
 
-    /// One request: the change, the step, the pack and the queries.
-    fn serve(&mut self, request: Request) -> Box<Frame> {
-        let Request { dt, sea, mut frame } = request;
+    /// One request: the change, the wake's input, the step, the pack and the queries.
+    fn serve(&mut self, request: Request, wake: Option<&WakeRequest>) -> Box<Frame> {
+        let Request {
+            dt, sea, mut frame, ..
+        } = request;
         frame.times = SimTimes::default();
         frame.error = None;
         if let Some(sea) = sea {
@@ -260,6 +314,16 @@ impl Worker {
                 frame.error = Some(e.to_string());
             }
             frame.times.change = start.elapsed().as_secs_f64() * 1e3;
+        }
+        if let Some(wake) = wake.filter(|_| self.ocean.wakes().is_some()) {
+            let [x, z] = wake.centre;
+            let set = self
+                .ocean
+                .set_wake_centre(x, z)
+                .and_then(|()| self.ocean.set_hulls(&wake.hulls));
+            if let Err(e) = set {
+                frame.error = Some(format!("wake: {e}"));
+            }
         }
         let start = Instant::now();
         if let Err(e) = self.ocean.step(dt) {
@@ -310,5 +374,49 @@ mod tests {
             .map(|n| (10.0 + 0.5 * n as f64, u64::from(n >= 5)))
             .collect();
         assert_eq!(times, expected);
+    }
+
+    /// With a wake window, the hulls set before a request press the water in the frames that
+    /// follow, the window moves to the centre given, and the frames carry the wake's texels
+    /// and the streak field.
+    #[test]
+    fn hulls_reach_the_wake_and_its_texels() {
+        let mut sea = SeaSettings::preset(SeaState::Calm);
+        sea.config.size = 32;
+        sea.config.wakes = Some(ocean_fft::WakeConfig {
+            size: 64,
+            spacing: 1.0,
+            ..ocean_fft::WakeConfig::default()
+        });
+        let queries = [[0.0, 0.0]];
+        let mut sim = Simulation::start(sea, 5.0, 0.0, 1, &queries).unwrap();
+        let mut deepest = 0.0f32;
+        let mut origin = [0.0; 2];
+        for n in 0..8 {
+            let hull = Hull {
+                position: [200.0 + 0.5 * n as f64, -40.0],
+                velocity: [4.0, 0.0],
+                length: 10.0,
+                beam: 3.0,
+                draft: 0.8,
+                ..Hull::default()
+            };
+            sim.set_wake([200.0, -40.0], &[hull]);
+            let frame = sim.next(0.125, None, &queries).unwrap();
+            assert_eq!(frame.error, None);
+            if frame.wake.active() {
+                origin = frame.wake.origin;
+                let low = frame.wake.texels.iter().map(|t| t[0].to_f32());
+                deepest = deepest.min(low.fold(0.0, f32::min));
+            }
+            assert!(!frame.streaks.texels.is_empty());
+            sim.give_back(frame);
+        }
+        assert!(deepest < -0.1, "the hull presses the water: {deepest}");
+        // The window (64 m) is centred on (200, -40) to a cell.
+        assert!(
+            (origin[0] - 168.0).abs() <= 1.0 && (origin[1] + 72.0).abs() <= 1.0,
+            "{origin:?}"
+        );
     }
 }

@@ -114,7 +114,7 @@ pub struct OceanUniforms {
     /// viewer's number of rings, Bevy's ring half-width in cells).
     pub tiling: [f32; 4],
     /// x: first wave number of `slope_table` (rad/m); y: 1/ln of the ratio between entries;
-    /// z: number of entries; w: unused.
+    /// z: number of entries; w: the share of the sea's foam that is active whitecaps.
     pub table: [f32; 4],
     /// Cascade c: x = L (m), y = L/N (m), z = N, w = mip levels.
     pub cascades: [[f32; 4]; MAX_CASCADES],
@@ -124,6 +124,15 @@ pub struct OceanUniforms {
     /// Entry i: x = k_i (rad/m); y, z = slope variance along and across the wind of the
     /// simulated waves with wave numbers above k_i.
     pub slope_table: [[f32; 4]; SLOPE_TABLE],
+    /// The wake window ([`WakeTexels::uniform`](crate::WakeTexels::uniform)): x, z of its
+    /// texel (0, 0) (m), 1/side (1/m), w = N, its samples a side (0: no window).
+    pub wake: [f32; 4],
+    /// The foam's streak field ([`streak_uniforms`](crate::streak_uniforms)): xy = the wind's
+    /// axis (x, z), zw = the field's origin across and along the wind (m).
+    pub streaks: [f32; 4],
+    /// x, y = 1/(spacing·texels) across and along (1/m); z, w = texels across and along (0:
+    /// no streak texture bound, the shader uses its own noise).
+    pub streak_scale: [f32; 4],
 }
 
 impl OceanUniforms {
@@ -174,8 +183,10 @@ impl OceanUniforms {
             k0,
             (SLOPE_TABLE - 1) as f32 / (k1 / k0.max(1e-6)).ln().max(1e-6),
             SLOPE_TABLE as f32,
-            0.0,
+            info.foam_active_share,
         ];
+        self.streaks = info.streaks;
+        self.streak_scale = info.streak_scale;
         for c in 0..MAX_CASCADES {
             if c >= info.cascades {
                 self.cascades[c] = [0.0; 4];

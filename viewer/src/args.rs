@@ -38,6 +38,10 @@ pub struct Options {
     pub mesh: u32,
     pub threads: usize,
     pub bodies: bool,
+    /// The boats' speed, m/s (0: moored).
+    pub boat_speed: f32,
+    /// The camera moves with the first boat.
+    pub follow: bool,
     pub hide_ui: bool,
     pub vsync: bool,
 }
@@ -162,6 +166,15 @@ struct Cli {
     /// No buoys or boats.
     #[arg(long)]
     no_bodies: bool,
+    /// The boats make no wakes (with boats, the sea has a wake window around the camera).
+    #[arg(long)]
+    no_wakes: bool,
+    /// The boats' speed ahead in m/s, 0 (moored) to 20.
+    #[arg(long, value_name = "M/S", default_value_t = 0.0, value_parser = within(0.0f32, 20.0))]
+    boat_speed: f32,
+    /// The camera moves with the first boat (keeps its offset from it).
+    #[arg(long)]
+    follow_boat: bool,
     /// Start without the panels (Tab toggles them).
     #[arg(long)]
     hide_ui: bool,
@@ -298,6 +311,7 @@ impl Options {
         })?;
         sea.choppiness = cli.choppiness.unwrap_or(sea.choppiness);
         sea.foam_coverage = cli.foam.unwrap_or(sea.foam_coverage);
+        sea.wakes = !cli.no_bodies && !cli.no_wakes;
         let hs = sea
             .spectrum()
             .map_err(|e| Cli::command().error(ErrorKind::ValueValidation, e))?
@@ -338,6 +352,8 @@ impl Options {
             mesh: cli.mesh,
             threads: cli.threads,
             bodies: !cli.no_bodies,
+            boat_speed: cli.boat_speed,
+            follow: cli.follow_boat,
             hide_ui: cli.hide_ui,
             vsync: !cli.no_vsync,
         })

@@ -5,6 +5,10 @@
 //! thread, right after the step of the frame they are drawn in) answers every body and the
 //! eye.
 //!
+//! The boats make wakes: each frame they are handed to the ocean as hulls
+//! ([`Fleet::hulls`], the render layer's `hull_of` of their bodies), moving ahead along their
+//! heading at [`Fleet::speed`].
+//!
 //! The buoys stay kinematic: a spar stands upright by its ballast, deep below its buoyancy,
 //! which the model's vertical columns (righted by their water-plane spread) do not hold, and
 //! following half the water's normal looks right at one query a buoy.
@@ -12,8 +16,8 @@
 use std::f32::consts::FRAC_PI_2;
 
 use glam::{Mat4, Quat, Vec3};
-use ocean_fft::SurfaceSample;
-use ocean_fft_render::{Body, Floater, Pose, SEA_WATER_DENSITY};
+use ocean_fft::{Hull, SurfaceSample};
+use ocean_fft_render::{hull_of, Body, Floater, Pose, SEA_WATER_DENSITY};
 
 use crate::gpu::BodyInstance;
 
@@ -32,8 +36,12 @@ struct Boat {
     heading: f32,
 }
 
-/// The bodies, at fixed (moored) horizontal positions.
+/// The bodies: buoys at fixed horizontal positions, boats moored or going ahead.
 pub struct Fleet {
+    /// The boats' speed ahead, m/s (0: moored).
+    pub speed: f32,
+    /// How far the first boat moved (x, z; m) in the last [`Fleet::place`].
+    pub lead_moved: [f32; 2],
     /// (x, z) of each buoy.
     buoys: Vec<[f32; 2]>,
     boats: Vec<Boat>,
@@ -63,7 +71,7 @@ fn boat_mesh_to_body() -> Mat4 {
 impl Fleet {
     /// A few buoys and boats in front of an eye at `eye` looking toward `heading` (degrees),
     /// none if `enabled` is false.
-    pub fn new(eye: Vec3, heading: f32, enabled: bool) -> Fleet {
+    pub fn new(eye: Vec3, heading: f32, enabled: bool, speed: f32) -> Fleet {
         let h = heading.to_radians();
         let at = |distance: f32, side: f32| {
             let (c, s) = (h.cos(), h.sin());
@@ -100,6 +108,8 @@ impl Fleet {
             })
             .collect();
         Fleet {
+            speed,
+            lead_moved: [0.0; 2],
             buoy_instances: vec![instance; buoys.len()],
             boat_instances: vec![instance; boats.len()],
             buoys,
@@ -153,7 +163,13 @@ impl Fleet {
             };
         }
         let mesh = boat_mesh_to_body();
-        for (boat, instance) in self.boats.iter_mut().zip(&mut self.boat_instances) {
+        self.lead_moved = [0.0; 2];
+        for (index, (boat, instance)) in self
+            .boats
+            .iter_mut()
+            .zip(&mut self.boat_instances)
+            .enumerate()
+        {
             let floater = &mut boat.floater;
             let n = floater.query_count();
             self.heights.clear();
@@ -168,6 +184,15 @@ impl Fleet {
             // The step keeps x, z and the spin about y; the heading is kept exactly against
             // the drift of many small tilts.
             floater.pose.set_heading(boat.heading);
+            if self.afloat {
+                let step = self.speed * dt;
+                let moved = [step * boat.heading.cos(), step * boat.heading.sin()];
+                floater.pose.position[0] += moved[0];
+                floater.pose.position[2] += moved[1];
+                if index == 0 {
+                    self.lead_moved = moved;
+                }
+            }
             let pose = floater.pose;
             let model = Mat4::from_rotation_translation(
                 Quat::from_array(pose.rotation),
@@ -180,6 +205,19 @@ impl Fleet {
         }
         self.afloat = true;
         samples[k].height
+    }
+
+    /// The boats as the ocean's hulls (their waterplanes, going ahead at [`Fleet::speed`]),
+    /// into `out`.
+    pub fn hulls(&self, out: &mut Vec<Hull>) {
+        out.clear();
+        out.extend(self.boats.iter().map(|boat| {
+            let v = [
+                self.speed * boat.heading.cos(),
+                self.speed * boat.heading.sin(),
+            ];
+            hull_of(&boat.floater.body, &boat.floater.pose, v)
+        }));
     }
 
     pub fn buoys(&self) -> &[BodyInstance] {

@@ -45,7 +45,7 @@ impl State {
         );
         if let Some((jobs, screen)) = egui {
             let plain = texture.create_view(&Default::default());
-            self.paint_egui(encoder, &plain, jobs, screen);
+            crate::ui::paint(&mut self.egui_renderer, encoder, &plain, (jobs, screen));
         }
         let padded = (size.0 * 4).div_ceil(256) * 256;
         let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {

@@ -7,12 +7,15 @@ use glam::Vec3;
 use wgpu::util::DeviceExt;
 
 use ocean_fft_render::clipmap::{grid_indices, HOLES, MAX_RINGS};
-use ocean_fft_render::{Frame, OceanUniforms, Tiling};
+use ocean_fft_render::{OceanUniforms, Tiling};
 
 use meshes::{boat, buoy, BodyVertex};
 
 mod meshes;
+mod textures;
 mod uniforms;
+
+use textures::OceanTextures;
 
 /// The reference shader: the shading functions, then the viewer's bindings and entry points.
 pub const SHADER: &str = concat!(
@@ -83,16 +86,6 @@ pub struct Bodies<'a> {
     pub boats: &'a [BodyInstance],
 }
 
-/// The cascade textures (two 2D arrays, a layer per cascade, with mipmaps).
-struct OceanTextures {
-    displacement: wgpu::Texture,
-    slope: wgpu::Texture,
-    bind_group: wgpu::BindGroup,
-    size: usize,
-    cascades: usize,
-    mips: usize,
-}
-
 /// Render targets of one size (multisampled colour and depth).
 struct Targets {
     size: (u32, u32),
@@ -110,7 +103,13 @@ pub struct Renderer {
     sampler: wgpu::Sampler,
     /// Without anisotropy, for the vertex stage's explicit-LOD lookups.
     vertex_sampler: wgpu::Sampler,
+    /// Clamped to the edge: the wake window's look-ups.
+    wake_sampler: wgpu::Sampler,
     textures: Option<OceanTextures>,
+    /// `OceanUniforms::wake` of the last upload.
+    wake: [f32; 4],
+    /// Whether the streak texture holds the ocean's field.
+    streaks_bound: bool,
     ocean_pipeline: wgpu::RenderPipeline,
     sky_pipeline: wgpu::RenderPipeline,
     body_pipeline: wgpu::RenderPipeline,
@@ -186,6 +185,32 @@ impl Renderer {
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                     count: None,
                 },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 5,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 6,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 7,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -213,6 +238,12 @@ impl Renderer {
         };
         let sampler = sampler_with(anisotropy);
         let vertex_sampler = sampler_with(1);
+        let wake_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("wake"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
 
         let pipeline = |label: &str,
                         vs: &str,
@@ -341,7 +372,10 @@ impl Renderer {
             layout,
             sampler,
             vertex_sampler,
+            wake_sampler,
             textures: None,
+            wake: [0.0; 4],
+            streaks_bound: false,
             ocean_pipeline,
             sky_pipeline,
             body_pipeline,
@@ -354,117 +388,6 @@ impl Renderer {
             targets: None,
             rings_drawn: (0, 0),
             ring_meshes: [None; MAX_RINGS],
-        }
-    }
-
-    /// Uploads a frame's texels (creating the textures when the ocean's size changed).
-    pub fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, frame: &Frame) {
-        let texels = &frame.texels;
-        let mips = texels.level_offsets.len();
-        let fits = self.textures.as_ref().is_some_and(|t| {
-            t.size == texels.size && t.cascades == texels.cascades && t.mips == mips
-        });
-        if !fits {
-            self.textures = Some(self.create_textures(device, texels.size, texels.cascades, mips));
-        }
-        let textures = self.textures.as_ref().expect("created above");
-        for (texture, data) in [
-            (&textures.displacement, &texels.displacement),
-            (&textures.slope, &texels.slope),
-        ] {
-            for level in texels.levels(data) {
-                let side = level.side as u32;
-                queue.write_texture(
-                    wgpu::TexelCopyTextureInfo {
-                        texture,
-                        mip_level: level.level as u32,
-                        origin: wgpu::Origin3d {
-                            x: 0,
-                            y: 0,
-                            z: level.layer as u32,
-                        },
-                        aspect: wgpu::TextureAspect::All,
-                    },
-                    bytemuck::cast_slice(level.texels),
-                    wgpu::TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(side * 8),
-                        rows_per_image: Some(side),
-                    },
-                    wgpu::Extent3d {
-                        width: side,
-                        height: side,
-                        depth_or_array_layers: 1,
-                    },
-                );
-            }
-        }
-    }
-
-    fn create_textures(
-        &self,
-        device: &wgpu::Device,
-        size: usize,
-        cascades: usize,
-        mips: usize,
-    ) -> OceanTextures {
-        let texture = |label: &str| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: size as u32,
-                    height: size as u32,
-                    depth_or_array_layers: cascades as u32,
-                },
-                mip_level_count: mips as u32,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba16Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            })
-        };
-        let displacement = texture("displacement + foam");
-        let slope = texture("slope + jacobian + foam");
-        let view = |t: &wgpu::Texture| {
-            t.create_view(&wgpu::TextureViewDescriptor {
-                dimension: Some(wgpu::TextureViewDimension::D2Array),
-                ..Default::default()
-            })
-        };
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ocean"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.globals.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&view(&displacement)),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&view(&slope)),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::Sampler(&self.sampler),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: wgpu::BindingResource::Sampler(&self.vertex_sampler),
-                },
-            ],
-        });
-        OceanTextures {
-            displacement,
-            slope,
-            bind_group,
-            size,
-            cascades,
-            mips,
         }
     }
 

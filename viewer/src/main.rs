@@ -38,7 +38,8 @@ use bodies::Fleet;
 use camera::Camera;
 use capture::save_capture;
 use gpu::{Bodies, Renderer, View};
-use ocean_fft_render::{OceanInfo, SeaSettings, Simulation};
+use ocean_fft::Hull;
+use ocean_fft_render::{wake_centre, OceanInfo, SeaSettings, Simulation};
 use ui::{Controls, Hud};
 
 fn main() {
@@ -89,6 +90,8 @@ struct State {
     camera: Camera,
     fleet: Fleet,
     queries: Vec<[f64; 2]>,
+    /// The boats' hulls handed to the wake each frame.
+    hulls: Vec<Hull>,
     controls: Controls,
     /// The sea last sent to the simulation.
     applied: sea::SeaParams,
@@ -287,7 +290,12 @@ impl State {
 
         let sea = options.sea.clone();
         let spectrum = sea.spectrum().map_err(|e| format!("sea: {e}"))?;
-        let mut fleet = Fleet::new(options.camera, options.heading, options.bodies);
+        let mut fleet = Fleet::new(
+            options.camera,
+            options.heading,
+            options.bodies,
+            options.boat_speed,
+        );
         let queries = fleet.queries(options.camera);
         let sim = Simulation::start(
             SeaSettings {
@@ -315,6 +323,8 @@ impl State {
             paused: false,
             show_panels: !options.hide_ui,
             error: None,
+            boat_speed: options.boat_speed,
+            boats: options.bodies,
         };
         let adapter_name: &'static str = Box::leak(
             format!("{} ({:?})", adapter_info.name, adapter_info.backend).into_boxed_str(),
@@ -333,6 +343,7 @@ impl State {
             camera,
             fleet,
             queries,
+            hulls: Vec::new(),
             controls,
             applied: sea,
             hud: Hud {
@@ -391,6 +402,14 @@ impl State {
         let change = self.sea_change();
         self.fleet
             .write_queries(self.camera.position, &mut self.queries);
+        self.fleet.speed = self.controls.boat_speed;
+        if self.applied.wakes {
+            self.fleet.hulls(&mut self.hulls);
+            let side = sea::wake_config().spacing * sea::wake_config().size as f32;
+            let eye = self.camera.position.to_array();
+            let centre = wake_centre(eye, self.camera.forward().to_array(), side);
+            self.sim.set_wake(centre, &self.hulls);
+        }
         let frame = self.sim.next(sea_dt, change, &self.queries)?;
         let wait = start.elapsed().as_secs_f64() * 1e3;
         if let Some(error) = &frame.error {
@@ -401,6 +420,10 @@ impl State {
         let upload = upload_start.elapsed().as_secs_f64() * 1e3;
         self.info = frame.info;
         self.water_under_eye = self.fleet.place(&frame.samples, sea_dt as f32);
+        if options.follow {
+            let [dx, dz] = self.fleet.lead_moved;
+            self.camera.position += Vec3::new(dx, 0.0, dz);
+        }
         let times = frame.times;
         self.sim.give_back(frame);
 
@@ -495,7 +518,12 @@ impl State {
             (jobs, screen, output.textures_delta.free.clone())
         });
         if let Some((jobs, screen, _)) = &paint {
-            self.paint_egui(&mut encoder, &plain_view, jobs, screen);
+            ui::paint(
+                &mut self.egui_renderer,
+                &mut encoder,
+                &plain_view,
+                (jobs, screen),
+            );
         }
         let capture = if last {
             options.screenshot.as_ref().map(|_| {
@@ -554,33 +582,6 @@ impl State {
             }
         }
         Ok(false)
-    }
-
-    fn paint_egui(
-        &mut self,
-        encoder: &mut wgpu::CommandEncoder,
-        target: &wgpu::TextureView,
-        jobs: &[egui::ClippedPrimitive],
-        screen: &egui_wgpu::ScreenDescriptor,
-    ) {
-        let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("egui"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        let mut pass = pass.forget_lifetime();
-        self.egui_renderer.render(&mut pass, jobs, screen);
     }
 }
 

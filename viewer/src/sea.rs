@@ -4,10 +4,22 @@
 
 use ocean_fft::{
     DepthFactor, Dispersion, Error, OceanConfig, SeaState, Spectrum, SpectrumKind, Spreading,
+    WakeConfig,
 };
 
 /// The fetch in m the panel starts from when a sea built without one switches to JONSWAP.
 const DEFAULT_FETCH: f32 = 100_000.0;
+
+/// The boats' wake window: 256² samples 0.75 m apart (192 m, the shortest wave 1.5 m long),
+/// wide enough for the Kelvin wedge of a boat at 8 m/s (transverse waves 41 m long) seen from
+/// 40 m above.
+pub fn wake_config() -> WakeConfig {
+    WakeConfig {
+        size: 256,
+        spacing: 0.75,
+        ..WakeConfig::default()
+    }
+}
 
 /// The spectrum's model.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -112,6 +124,8 @@ pub struct SeaParams {
     pub size: usize,
     /// Seed of the random amplitudes.
     pub seed: u64,
+    /// Whether the boats make wakes (the ocean's wake window, [`wake_config`]).
+    pub wakes: bool,
 }
 
 impl SeaParams {
@@ -195,6 +209,7 @@ impl SeaParams {
             lengths: config.lengths.clone(),
             size: config.size,
             seed: config.seed,
+            wakes: config.wakes.is_some(),
         }
     }
 
@@ -247,6 +262,7 @@ impl SeaParams {
             size: self.size,
             choppiness: self.choppiness,
             seed: self.seed,
+            wakes: self.wakes.then(wake_config),
             ..OceanConfig::default()
         };
         config.foam.coverage = self.foam_coverage;

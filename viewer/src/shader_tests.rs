@@ -48,7 +48,7 @@ fn the_bindings_and_the_uniform_layout_are_the_viewers() {
     let (module, _) = validate("ocean_common.wgsl + ocean.wgsl", SHADER);
     let mut layouter = naga::proc::Layouter::default();
     layouter.update(module.to_ctx()).expect("layouts");
-    let mut seen = [false; 5];
+    let mut seen = [false; 8];
     for (_, global) in module.global_variables.iter() {
         let binding = global.binding.as_ref().expect("every global is bound");
         assert_eq!(binding.group, 0, "{:?}", global.name);
@@ -98,12 +98,22 @@ fn the_bindings_and_the_uniform_layout_are_the_viewers() {
                     }
                 ));
             }
-            3 | 4 => assert!(matches!(inner, TypeInner::Sampler { comparison: false })),
+            5 | 7 => {
+                let TypeInner::Image { dim, arrayed, .. } = inner else {
+                    panic!("binding {} is not a texture", binding.binding);
+                };
+                assert_eq!(*dim, ImageDimension::D2);
+                assert!(
+                    !*arrayed,
+                    "the wake window and the streaks are one texture each"
+                );
+            }
+            3 | 4 | 6 => assert!(matches!(inner, TypeInner::Sampler { comparison: false })),
             other => panic!("unexpected binding {other}"),
         }
         seen[binding.binding as usize] = true;
     }
-    assert_eq!(seen, [true; 5], "bindings 0–4");
+    assert_eq!(seen, [true; 8], "bindings 0–7");
 }
 
 /// Every entry point translates to GLSL 4.50 with naga's GLSL back end (the route to Godot's

@@ -21,6 +21,9 @@ pub struct Controls {
     pub show_panels: bool,
     /// The last error of a change of sea.
     pub error: Option<String>,
+    /// The boats' speed, m/s (and whether there are boats).
+    pub boat_speed: f32,
+    pub boats: bool,
 }
 
 /// Smoothed timings for the HUD, ms.
@@ -212,6 +215,13 @@ fn panels(ui: &mut Ui, controls: &mut Controls, info: &OceanInfo) {
     }
     ui.separator();
 
+    if controls.boats {
+        ui.heading("Boats");
+        ui.checkbox(&mut controls.sea.wakes, "wakes");
+        slider(ui, &mut controls.boat_speed, 0.0..=20.0, "speed [m/s]");
+        ui.separator();
+    }
+
     ui.heading("Time");
     ui.checkbox(&mut controls.paused, "pause");
     log_slider(ui, &mut controls.time_scale, 0.05..=10.0, "time scale");
@@ -237,4 +247,31 @@ fn panels(ui: &mut Ui, controls: &mut Controls, info: &OceanInfo) {
     ui.label(
         "Fly: W A S D, E/Q up/down, Shift fast, drag to look, wheel: speed. Tab hides the panels.",
     );
+}
+
+/// Draws egui's `jobs` over `target` (the window's linear view).
+pub fn paint(
+    renderer: &mut egui_wgpu::Renderer,
+    encoder: &mut wgpu::CommandEncoder,
+    target: &wgpu::TextureView,
+    (jobs, screen): (&[egui::ClippedPrimitive], &egui_wgpu::ScreenDescriptor),
+) {
+    let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("egui"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: target,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Load,
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    let mut pass = pass.forget_lifetime();
+    renderer.render(&mut pass, jobs, screen);
 }

@@ -25,7 +25,8 @@
 #endif
 #import ocean_fft::common::{
     OceanLight, OceanUniforms, OceanVarying, ocean_light, ocean_morph, ocean_displacement,
-    ocean_varying, ocean_water_surface, ocean_shade,
+    ocean_varying, ocean_water_surface, ocean_shade, ocean_add_wake_displacement,
+    ocean_add_wake_surface, ocean_foam_surface,
 }
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(0) var displacement_foam: texture_2d_array<f32>;
@@ -35,6 +36,12 @@
 // Repeat, trilinear, anisotropic: the fragment stage's look-ups with gradients.
 @group(#{MATERIAL_BIND_GROUP}) @binding(3) var ocean_sampler: sampler;
 @group(#{MATERIAL_BIND_GROUP}) @binding(4) var<uniform> ocean: OceanUniforms;
+// The wake window (η, ∂y/∂x, ∂y/∂z, foam), clamped to the edge, linear.
+@group(#{MATERIAL_BIND_GROUP}) @binding(5) var wake: texture_2d<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(6) var wake_sampler: sampler;
+// The foam's streak field (R16F), repeat, linear.
+@group(#{MATERIAL_BIND_GROUP}) @binding(7) var streaks: texture_2d<f32>;
+@group(#{MATERIAL_BIND_GROUP}) @binding(8) var streak_sampler: sampler;
 
 // The light: Bevy's first directional light (colour × exposure, scaled to the reference
 // shader's sun) when there is one, the uniforms' sun otherwise; the sky and water colours of
@@ -63,8 +70,8 @@ fn vertex(v: Vertex) -> OceanVarying {
     let morphed = ocean_morph(v.position.xz, ocean.tiling.w);
     let xz = model[3].xz + morphed.xy * cell_size;
     let spacing = cell_size * (1.0 + morphed.z);
-    let displacement = ocean_displacement(
-        displacement_foam, slope_jacobian_foam, vertex_sampler, ocean, xz, spacing, view.world_position.xz);
+    let displacement = ocean_add_wake_displacement(wake, wake_sampler, ocean, xz, ocean_displacement(
+        displacement_foam, slope_jacobian_foam, vertex_sampler, ocean, xz, spacing, view.world_position.xz));
     var out = ocean_varying(xz, displacement);
     out.clip = position_world_to_clip(out.world);
     return out;
@@ -73,8 +80,10 @@ fn vertex(v: Vertex) -> OceanVarying {
 @fragment
 fn fragment(in: OceanVarying) -> @location(0) vec4<f32> {
     let eye = view.world_position;
-    let surface = ocean_water_surface(
+    let water = ocean_water_surface(
         slope_jacobian_foam, ocean_sampler, ocean, in.world, in.undisplaced, in.height, eye.xz);
+    let foamed = ocean_foam_surface(streaks, streak_sampler, ocean, in.undisplaced, water);
+    let surface = ocean_add_wake_surface(wake, wake_sampler, ocean, in.undisplaced, foamed);
     let to_eye = in.world - eye;
     let distance = length(to_eye);
     let dir = to_eye / distance;

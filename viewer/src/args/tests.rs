@@ -23,7 +23,11 @@ fn the_definition_is_consistent() {
 #[test]
 fn defaults_are_the_documented_ones() {
     let o = parse(&[]).unwrap();
-    assert_eq!(o.sea, SeaParams::preset("default").unwrap());
+    let mut sea = SeaParams::preset("default").unwrap();
+    // With boats (the default) the sea has a wake window.
+    sea.wakes = true;
+    assert_eq!(o.sea, sea);
+    assert_eq!((o.boat_speed, o.follow), (0.0, false));
     assert_eq!((o.frames, o.screenshot), (None, None));
     assert_eq!((o.width, o.height), (1280, 720));
     let hs = o.sea.spectrum().unwrap().significant_wave_height();
@@ -121,6 +125,17 @@ fn every_flag_sets_its_field() {
         (Some(1), Some(8), 32, 4)
     );
     assert!(!o.bodies && o.hide_ui && !o.vsync);
+}
+
+/// The boats' flags: a speed, the camera following them, and no wakes.
+#[test]
+fn the_boats_flags() {
+    let o = parse(&["--boat-speed", "8", "--follow-boat"]).unwrap();
+    assert_eq!((o.boat_speed, o.follow, o.sea.wakes), (8.0, true, true));
+    assert!(o.sea.config().wakes.is_some());
+    let o = parse(&["--no-wakes"]).unwrap();
+    assert!(!o.sea.wakes && o.sea.config().wakes.is_none());
+    error(&["--boat-speed", "25"], "--boat-speed");
 }
 
 #[test]

@@ -33,6 +33,10 @@ impl Renderer {
             ..Tiling::default()
         };
         g.ocean.set_ocean(info, [view.eye.x, view.eye.z], &tiling);
+        g.ocean.wake = self.wake;
+        if !self.streaks_bound {
+            g.ocean.streak_scale = [0.0; 4];
+        }
         let mut ring_list = [Ring::default(); MAX_RINGS];
         let count = rings(
             [view.eye.x, view.eye.z],
