@@ -54,6 +54,11 @@ cargo build --release --manifest-path "$root/Cargo.toml" -p bevy_ocean_fft --exa
 (cd "$work" && xvfb-run -a -s "-screen 0 1920x1080x24" "$root/target/release/examples/sea" \
     --frames 40 --anisotropy 1 --preset calm --boat-speed 8 --follow-boat \
     --camera 19.3,40,6.4 --look-at -2.2,0,-16.8 --screenshot "$images/wake_bevy.png")
+# From the first boat's deck (it starts at (-7, 0, -8) heading along (-0.48, 0, 0.88)): 2.5 m
+# above its stern, looking back along its track.
+(cd "$work" && xvfb-run -a -s "-screen 0 1920x1080x24" "$root/target/release/examples/sea" \
+    --frames 40 --anisotropy 1 --preset calm --boat-speed 8 --follow-boat \
+    --camera -5.56,2.5,-10.63 --look-at 7.4,0,-34.3 --screenshot "$images/wake_deck_bevy.png")
 
 ls -l "$images"
 du -ch "$images"/*.png | tail -n 1

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Makes the README's three viewer pictures, docs/images/viewer_{calm,fresh_breeze,storm}.png
-# (1280×720), and docs/images/wake_viewer.png, with the real-time viewer rendering headless
+# (1280×720), and docs/images/wake_viewer.png and wake_deck_viewer.png, with the real-time viewer rendering headless
 # under a virtual X server, with 4×
 # MSAA and trilinear filtering: on a machine without a GPU (Mesa's software Vulkan, lavapipe)
 # anisotropic filtering makes a frame take minutes instead of about a second (a GPU runs the
@@ -37,5 +37,8 @@ shot storm --preset storm --camera 150,25,-400 --heading 100 --pitch -9
 xvfb-run -a -s "-screen 0 1920x1080x24" "$viewer" --preset calm --frames 240 --boat-speed 8 \
     --follow-boat --camera 0,40,0 --heading 0 --pitch -34 --hide-ui \
     --screenshot "$images/wake_viewer.png"
+# From the boat's own deck, 3 m above its stern, looking back along its track.
+xvfb-run -a -s "-screen 0 1920x1080x24" "$viewer" --preset calm --frames 240 --boat-speed 8 \
+    --on-deck --pitch -10 --hide-ui --screenshot "$images/wake_deck_viewer.png"
 
-ls -l "$images"/viewer_*.png "$images"/wake_viewer.png
+ls -l "$images"/viewer_*.png "$images"/wake_viewer.png "$images"/wake_deck_viewer.png

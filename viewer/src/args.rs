@@ -42,6 +42,8 @@ pub struct Options {
     pub boat_speed: f32,
     /// The camera moves with the first boat.
     pub follow: bool,
+    /// The camera rides the first boat's stern, looking back along its track.
+    pub deck: bool,
     pub hide_ui: bool,
     pub vsync: bool,
 }
@@ -175,6 +177,10 @@ struct Cli {
     /// The camera moves with the first boat (keeps its offset from it).
     #[arg(long)]
     follow_boat: bool,
+    /// The camera rides the first boat: 3 m above its stern, looking back along its track
+    /// (--pitch and --fov still apply; --camera and --heading do not).
+    #[arg(long)]
+    on_deck: bool,
     /// Start without the panels (Tab toggles them).
     #[arg(long)]
     hide_ui: bool,
@@ -354,6 +360,7 @@ impl Options {
             bodies: !cli.no_bodies,
             boat_speed: cli.boat_speed,
             follow: cli.follow_boat,
+            deck: cli.on_deck,
             hide_ui: cli.hide_ui,
             vsync: !cli.no_vsync,
         })

@@ -119,6 +119,16 @@ impl Fleet {
         }
     }
 
+    /// The first boat's stern at its waterline (m) and its heading (radians from +x toward
+    /// +z), if there is a boat.
+    pub fn stern(&self) -> Option<(Vec3, f32)> {
+        let boat = self.boats.first()?;
+        let [x, y, z] = boat.floater.pose.position;
+        let back = 0.5 * BOAT_LENGTH;
+        let (c, s) = (boat.heading.cos(), boat.heading.sin());
+        Some((Vec3::new(x - back * c, y, z - back * s), boat.heading))
+    }
+
     /// Points queried every frame: one per buoy, one per column of each boat (as it floats
     /// now), and the eye last.
     pub fn queries(&mut self, eye: Vec3) -> Vec<[f64; 2]> {

@@ -424,6 +424,12 @@ impl State {
             let [dx, dz] = self.fleet.lead_moved;
             self.camera.position += Vec3::new(dx, 0.0, dz);
         }
+        if options.deck {
+            if let Some((stern, heading)) = self.fleet.stern() {
+                self.camera.position = stern + Vec3::Y * 3.0;
+                self.camera.yaw = heading + std::f32::consts::PI;
+            }
+        }
         let times = frame.times;
         self.sim.give_back(frame);
 

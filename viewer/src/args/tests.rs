@@ -132,6 +132,8 @@ fn every_flag_sets_its_field() {
 fn the_boats_flags() {
     let o = parse(&["--boat-speed", "8", "--follow-boat"]).unwrap();
     assert_eq!((o.boat_speed, o.follow, o.sea.wakes), (8.0, true, true));
+    assert!(!o.deck);
+    assert!(parse(&["--on-deck"]).unwrap().deck);
     assert!(o.sea.config().wakes.is_some());
     let o = parse(&["--no-wakes"]).unwrap();
     assert!(!o.sea.wakes && o.sea.config().wakes.is_none());
