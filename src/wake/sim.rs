@@ -76,6 +76,9 @@ pub(crate) struct WakeSim {
     pub(super) origin: [i64; 2],
     /// Ticks done: the state stands for the time `ticks · substep`.
     ticks: i64,
+    /// Counts the changes of the state (ticks, moves, loads), so that `write` knows when
+    /// the buffers it wrote last still hold.
+    pub(super) generation: u64,
 }
 
 impl WakeSim {
@@ -118,6 +121,7 @@ impl WakeSim {
             hull_time: time,
             origin: [0; 2],
             ticks: 0,
+            generation: 0,
         };
         sim.origin = sim.origin_for(0.0, 0.0);
         sim.jump(time);
@@ -166,6 +170,7 @@ impl WakeSim {
         while self.ticks < target {
             self.tick(self.ticks);
             self.ticks += 1;
+            self.generation += 1;
         }
     }
 
@@ -307,6 +312,7 @@ impl WakeSim {
             return false;
         }
         self.origin = origin;
+        self.generation += 1;
         let n = self.n;
         let scale = 1.0 / (n * n) as f32;
         shift_grid(&self.field, &mut self.work, n, shift, real);
@@ -323,11 +329,16 @@ impl WakeSim {
     }
 
     /// Writes what the queries read (the faded height, its slope and foam, the origin and
-    /// the time `time` (s)) into `out`. Allocates nothing.
+    /// the time `time` (s)) into `out`; the buffers only if the state changed since `out`
+    /// was last written. Allocates nothing.
     pub(crate) fn write(&self, out: &mut Wakes, time: f64) {
         let n = self.n;
         out.origin = self.origin.map(|cell| cell as f64 * self.spacing);
         out.time = time;
+        if out.generation == self.generation {
+            return;
+        }
+        out.generation = self.generation;
         let (field, fade) = (&self.field, &self.fade);
         let trail = &self.foam;
         // The faded height and foam, row by row (loops the compiler vectorises).

@@ -109,6 +109,7 @@ impl WakeSim {
         self.pressed = saved.pressed;
         self.set_hulls(&saved.hulls, saved.hull_time, determinism);
         self.origin = saved.origin;
+        self.generation += 1;
     }
 
     /// Still water and no foam (the hulls and the window's place are kept).
@@ -118,5 +119,6 @@ impl WakeSim {
         self.foam.fill(0.0);
         self.head.fill(0.0);
         self.pressed = false;
+        self.generation += 1;
     }
 }

@@ -10,7 +10,7 @@ use crate::error::{self, Error};
 /// [`origin`](Self::origin), at index `j * size + i` of each buffer (z the row, as the
 /// cascades'). Outside the window the wake is zero; it fades to zero across the outer half of
 /// the absorbing border, so the edges are seamless. The wake has no horizontal displacement.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Wakes {
     pub(crate) origin: [f64; 2],
     pub(crate) size: usize,
@@ -19,6 +19,23 @@ pub struct Wakes {
     pub(crate) height: Vec<f32>,
     pub(crate) slope: Vec<[f32; 2]>,
     pub(crate) foam: Vec<f32>,
+    /// The simulation's generation the buffers were written from (`u64::MAX`: none), so
+    /// that a step without a tick or a move does not write them again.
+    pub(crate) generation: u64,
+}
+
+/// Windows are equal when they lie at the same place and time and hold the same wake (the
+/// generation they were written from is bookkeeping).
+impl PartialEq for Wakes {
+    fn eq(&self, other: &Self) -> bool {
+        self.origin == other.origin
+            && self.size == other.size
+            && self.spacing == other.spacing
+            && self.time == other.time
+            && self.height == other.height
+            && self.slope == other.slope
+            && self.foam == other.foam
+    }
 }
 
 impl Wakes {
@@ -33,6 +50,7 @@ impl Wakes {
             height: error::try_vec(n, 0.0)?,
             slope: error::try_vec(n, [0.0; 2])?,
             foam: error::try_vec(n, 0.0)?,
+            generation: u64::MAX,
         })
     }
 
