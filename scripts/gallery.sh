@@ -49,6 +49,10 @@ cp "$work/out/wake_depth.png" "$images/wake_depth.png"
 cargo build --release --manifest-path "$root/Cargo.toml" -p bevy_ocean_fft --example sea
 (cd "$work" && xvfb-run -a -s "-screen 0 1920x1080x24" "$root/target/release/examples/sea" \
     --frames 60 --anisotropy 1 --screenshot "$images/bevy_sea.png")
+for preset in calm storm; do
+    (cd "$work" && xvfb-run -a -s "-screen 0 1920x1080x24" "$root/target/release/examples/sea" \
+        --frames 30 --anisotropy 1 --preset "$preset" --screenshot "$images/bevy_$preset.png")
+done
 # Its boats' wakes: the first boat at 8 m/s on a calm sea, the camera 40 m above following it
 # (Bevy's virtual time takes at most 0.25 s a frame: 40 frames are about 10 s of sea time).
 (cd "$work" && xvfb-run -a -s "-screen 0 1920x1080x24" "$root/target/release/examples/sea" \
