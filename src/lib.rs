@@ -164,6 +164,7 @@
 #![warn(clippy::missing_errors_doc)]
 
 mod cascade;
+pub mod coast;
 mod error;
 mod foam;
 #[cfg(test)]
@@ -179,6 +180,7 @@ mod serde_impls;
 mod spectrum;
 
 pub use cascade::{Cascade, CascadeConfig};
+pub use coast::{CoastField, DepthMap};
 pub use error::Error;
 pub use foam::{FoamConfig, FoamCoverage, FoamView};
 /// The `half` crate (with the `half` feature), whose `f16` the `pack_texels_f16` functions

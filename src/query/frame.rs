@@ -8,6 +8,7 @@ use std::sync::Arc;
 use super::config::{Interpolation, QueryConfig};
 use super::spline::{Source, Tiles};
 use crate::cascade::Cascade;
+use crate::coast::Coast;
 use crate::error::Error;
 use crate::foam::Foam;
 use crate::math::determinism::Determinism;
@@ -47,6 +48,8 @@ pub(crate) struct Frame {
     foam: Vec<f32>,
     foam_n: usize,
     foam_length: f32,
+    /// The depth map's factors the queries scale the cascades by (none: the open sea).
+    pub(crate) coast: Option<Coast>,
 }
 
 impl Frame {
@@ -87,6 +90,7 @@ impl Frame {
             foam: Vec::new(),
             foam_n: foam.n,
             foam_length: foam.length,
+            coast: None,
         })
     }
 
@@ -175,7 +179,17 @@ impl Fields<'_> {
     #[allow(clippy::manual_clamp)]
     pub(crate) fn foam_at(&self, x: f64, z: f64) -> f32 {
         let (values, n, length) = self.foam_grid();
-        periodic_bilinear(values, n, length, x, z).max(0.0).min(1.0)
+        let foam = periodic_bilinear(values, n, length, x, z).max(0.0).min(1.0);
+        match &self.frame().coast {
+            None => foam,
+            Some(coast) => {
+                // Whitecaps fade where the waves die (land, shelter); the surf adds the
+                // fraction of waves breaking on the bottom.
+                let t = self.frame().time;
+                let open = coast.factor(t, 0, x, z).min(1.0);
+                (foam * open).max(coast.breaking(t, x, z)).min(1.0)
+            }
+        }
     }
 
     /// The foam field [`Fields::foam_at`] interpolates: its values on an N×N grid, N, and
@@ -216,6 +230,7 @@ impl Frames {
     /// nothing), or, if a handle still holds that one too, a new frame is allocated (and the
     /// old one freed when its last handle drops).
     pub(crate) fn advance(&mut self, time: f64, query: QueryConfig) {
+        let coast = self.current.coast.clone();
         if Arc::get_mut(&mut self.current).is_none() {
             let next = match self.spare.take() {
                 // Handles never make weak references: a count of one means no handle.
@@ -227,7 +242,14 @@ impl Frames {
         }
         if let Some(frame) = Arc::get_mut(&mut self.current) {
             frame.reset(time, query);
+            frame.coast = coast;
         }
+    }
+
+    /// Makes the queries of the current frame (and those after it) read `coast`; handles
+    /// taken before keep the coast they saw.
+    pub(crate) fn set_coast(&mut self, coast: Option<Coast>) {
+        Arc::make_mut(&mut self.current).coast = coast;
     }
 }
 

@@ -68,54 +68,65 @@ fn accumulate<
 ) {
     let frame = fields.frame();
     let (per_metre, simd) = (frame.grids[c].per_metre, frame.simd);
-    let (displacement, [gx, gz], height, slope) = match taps::<JACOBIAN>(fields, c, x, z) {
-        Taps::Spline(tile, lx, lz, w) => {
-            let [displacement, gx, gz] = if DISPLACEMENT || JACOBIAN {
-                spline::displacement::<JACOBIAN>(simd, tile, lx, lz, &w)
-            } else {
-                [[0.0; 2]; 3]
-            };
-            let height = if HEIGHT {
-                spline::height(simd, tile, lx, lz, &w)
-            } else {
-                0.0
-            };
-            let slope = if SLOPE {
-                spline::slope(simd, tile, lx, lz, &w)
-            } else {
-                [0.0; 2]
-            };
-            (displacement, [gx, gz], height, slope)
-        }
-        Taps::Bilinear(bilinear, source, fx, fz) => {
-            let displacement = if DISPLACEMENT || JACOBIAN {
-                bilinear.vector(source.displacement).to_array()
-            } else {
-                [0.0; 2]
-            };
-            let gradient = if JACOBIAN {
-                let d = bilinear
-                    .index
-                    .map(|i| Vec2::from_array(source.displacement[i]));
-                let gx = (d[1] - d[0]) * (1.0 - fz) + (d[3] - d[2]) * fz;
-                let gz = (d[2] - d[0]) * (1.0 - fx) + (d[3] - d[1]) * fx;
-                [gx.to_array(), gz.to_array()]
-            } else {
-                [[0.0; 2]; 2]
-            };
-            let height = if HEIGHT {
-                bilinear.scalar(source.height)
-            } else {
-                0.0
-            };
-            let slope = if SLOPE {
-                bilinear.vector(source.slope).to_array()
-            } else {
-                [0.0; 2]
-            };
-            (displacement, gradient, height, slope)
-        }
-    };
+    let (mut displacement, [mut gx, mut gz], mut height, mut slope) =
+        match taps::<JACOBIAN>(fields, c, x, z) {
+            Taps::Spline(tile, lx, lz, w) => {
+                let [displacement, gx, gz] = if DISPLACEMENT || JACOBIAN {
+                    spline::displacement::<JACOBIAN>(simd, tile, lx, lz, &w)
+                } else {
+                    [[0.0; 2]; 3]
+                };
+                let height = if HEIGHT {
+                    spline::height(simd, tile, lx, lz, &w)
+                } else {
+                    0.0
+                };
+                let slope = if SLOPE {
+                    spline::slope(simd, tile, lx, lz, &w)
+                } else {
+                    [0.0; 2]
+                };
+                (displacement, [gx, gz], height, slope)
+            }
+            Taps::Bilinear(bilinear, source, fx, fz) => {
+                let displacement = if DISPLACEMENT || JACOBIAN {
+                    bilinear.vector(source.displacement).to_array()
+                } else {
+                    [0.0; 2]
+                };
+                let gradient = if JACOBIAN {
+                    let d = bilinear
+                        .index
+                        .map(|i| Vec2::from_array(source.displacement[i]));
+                    let gx = (d[1] - d[0]) * (1.0 - fz) + (d[3] - d[2]) * fz;
+                    let gz = (d[2] - d[0]) * (1.0 - fx) + (d[3] - d[1]) * fx;
+                    [gx.to_array(), gz.to_array()]
+                } else {
+                    [[0.0; 2]; 2]
+                };
+                let height = if HEIGHT {
+                    bilinear.scalar(source.height)
+                } else {
+                    0.0
+                };
+                let slope = if SLOPE {
+                    bilinear.vector(source.slope).to_array()
+                } else {
+                    [0.0; 2]
+                };
+                (displacement, gradient, height, slope)
+            }
+        };
+    if let Some(coast) = &frame.coast {
+        // The cascade's waves scaled by the coast's factor at the point (its gradient
+        // neglected: it varies over many wavelengths, see docs/theory.md, "Coasts").
+        let f = coast.factor(frame.time, c, x, z);
+        displacement = displacement.map(|v| v * f);
+        gx = gx.map(|v| v * f);
+        gz = gz.map(|v| v * f);
+        height *= f;
+        slope = slope.map(|v| v * f);
+    }
     if DISPLACEMENT || JACOBIAN {
         total.displacement[0] += displacement[0];
         total.displacement[1] += displacement[1];

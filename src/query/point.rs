@@ -76,9 +76,11 @@ const LANES_BUILT: bool = !cfg!(debug_assertions);
 /// (callers test [`LANES_BUILT`] first, so that a build without lanes never compiles them).
 #[inline(always)]
 fn in_lanes(fields: &Fields<'_>, range: std::ops::Range<usize>) -> bool {
-    fields.frame().grids[range]
-        .iter()
-        .all(|grid| grid.tiles.is_some())
+    // The lanes do not scale by a coast's factors: with a depth map, groups answer.
+    fields.frame().coast.is_none()
+        && fields.frame().grids[range]
+            .iter()
+            .all(|grid| grid.tiles.is_some())
 }
 
 /// [`sample`] over a range of cascades.

@@ -1,0 +1,57 @@
+//! The ocean's coast: its depth map and the waves' factors over it.
+
+use std::sync::Arc;
+
+use super::OceanState;
+use crate::coast::{self, Coast, CoastField, DepthMap};
+use crate::error::Error;
+
+impl OceanState {
+    /// Sets the depth of the water over a rectangle of the world (`None`: the open sea
+    /// everywhere, as without a map). The waves of each cascade shoal and break over it
+    /// (see [`CoastField`] and docs/theory.md, "Coasts"); every world query and the foam
+    /// carry it. Solved here, once (about a second for a 512² map), not at each step.
+    ///
+    /// A map set while a previous one (or none) is in use blends into it over
+    /// [`coast::BLEND_SECONDS`] of simulated time from now, so that a harbour built or a
+    /// tide (a uniform change of depth) shows no pop.
+    ///
+    /// Over land (depth ≤ 0) the queries answer the still water level: height 0, no
+    /// displacement, flat; [`Water::depth_at`](crate::Water::depth_at) says where that is.
+    ///
+    /// # Errors
+    /// Those of [`DepthMap::validate`]; [`Error::OutOfMemory`] if the system refuses the
+    /// factors' room. Nothing changes then.
+    pub fn set_depth_map(&mut self, map: Option<DepthMap>) -> Result<(), Error> {
+        let field = match map {
+            Some(map) => {
+                map.validate()?;
+                Some(Arc::new(coast::solve(map, &self.spectrum, &self.cascades)?))
+            }
+            None => None,
+        };
+        let previous = self
+            .frames
+            .current
+            .coast
+            .as_ref()
+            .and_then(|c| c.current.clone());
+        let coast = if field.is_none() && previous.is_none() {
+            None
+        } else {
+            Some(Coast::new(field, previous, self.time))
+        };
+        self.frames.set_coast(coast);
+        Ok(())
+    }
+
+    /// The waves over the current depth map (`None` without one): the factors per cascade
+    /// and the fraction of breaking waves a renderer uploads as textures over the map.
+    pub fn coast(&self) -> Option<&CoastField> {
+        self.frames
+            .current
+            .coast
+            .as_ref()
+            .and_then(|c| c.current.as_deref())
+    }
+}

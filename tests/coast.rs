@@ -1,0 +1,321 @@
+//! Coasts (issue 41): waves over a planar beach against an independent Battjes & Janssen
+//! model, land, bad maps, and no map at all.
+
+use ocean_fft::{DepthMap, Error, OceanState, SeaState};
+
+const G: f64 = 9.81;
+/// Beach slope 1:50, from `DEEP` m at the map's offshore edge to the shore.
+const SLOPE: f64 = 1.0 / 50.0;
+const DEEP: f64 = 40.0;
+const SPACING: f32 = 4.0;
+
+/// A planar beach facing the waves travelling along `theta`: depth falls along the
+/// direction from `DEEP` to 0 at distance DEEP/SLOPE, land beyond. The map is centred on
+/// the world origin's offshore side: along-direction coordinate s from 0 at the edge.
+fn beach(theta: f64) -> (DepthMap, impl Fn(f64, f64) -> [f64; 2]) {
+    let length = DEEP / SLOPE + 200.0;
+    let width = 400.0;
+    let nx = (length / f64::from(SPACING)) as usize + 1;
+    let nz = (width / f64::from(SPACING)) as usize + 1;
+    let (c, s) = (theta.cos(), theta.sin());
+    // Only axis-aligned directions give a map whose rows are along the beach; the presets
+    // blow along +x (checked below).
+    assert!(s.abs() < 1e-6 && c > 0.0, "preset direction {theta}");
+    let origin = [0.0, -width / 2.0];
+    let depth = (0..nz)
+        .flat_map(|_| (0..nx).map(|i| (DEEP - SLOPE * i as f64 * f64::from(SPACING)) as f32))
+        .collect();
+    let map = DepthMap {
+        origin,
+        spacing: SPACING,
+        size: [nx, nz],
+        depth,
+    };
+    (map, move |along: f64, across: f64| [along, across])
+}
+
+/// Wave number of angular frequency ω at depth d (Newton on ω² = g k tanh(k d)).
+fn wavenumber(omega: f64, d: f64) -> f64 {
+    let mut k = omega * omega / G / (omega * omega * d / G).sqrt().tanh().max(1e-9);
+    for _ in 0..50 {
+        let t = (k * d).tanh();
+        let f = G * k * t - omega * omega;
+        let df = G * t + G * k * d * (1.0 - t * t);
+        k -= f / df;
+    }
+    k
+}
+
+fn group_velocity(omega: f64, d: f64) -> f64 {
+    if d.is_infinite() {
+        return G / (2.0 * omega);
+    }
+    let k = wavenumber(omega, d);
+    let kd = k * d;
+    0.5 * omega / k * (1.0 + 2.0 * kd / (2.0 * kd).sinh())
+}
+
+/// Q_b from (1 − Q)/ln Q = −b² by the fixed point Q ← exp(−(1 − Q)/b²) from Q = 0 (its
+/// own solver, not the crate's bisection): the map rises, so from below it climbs to the
+/// smallest root, never to the spurious Q = 1.
+fn q_b(b: f64) -> f64 {
+    if b >= 1.0 {
+        return 1.0;
+    }
+    let mut q = 0.0_f64;
+    for _ in 0..100_000 {
+        let next = (-(1.0 - q) / (b * b)).exp();
+        if (next - q).abs() < 1e-13 {
+            return next;
+        }
+        q = next;
+    }
+    q
+}
+
+/// Battjes & Janssen (1978) with H_max = 0.88/k tanh(γ k d/0.88), γ = 0.29 + 0.76 k d
+/// (Ruessink, Walstra & Southgate 2003),
+/// one frequency (the peak), integrated with RK4 in the energy flux F = E c_g from deep water
+/// at the map's edge: H_s at distance `s` from the edge (depth DEEP − SLOPE s).
+fn bj_hs(hs0: f64, omega_p: f64, s_end: f64) -> f64 {
+    let fp = omega_p / std::f64::consts::TAU;
+    let depth = |s: f64| DEEP - SLOPE * s;
+    let h_rms0 = hs0 / 2.0_f64.sqrt();
+    // Flux (per ρg) F = H_rms² c_g / 8; dF/ds = −(α/4) f_p Q_b H_max².
+    let mut flux = h_rms0 * h_rms0 * group_velocity(omega_p, f64::INFINITY) / 8.0;
+    let rhs = |s: f64, flux: f64| {
+        let d = depth(s);
+        let cg = group_velocity(omega_p, d);
+        let h_rms = (8.0 * flux.max(0.0) / cg).sqrt();
+        let k = wavenumber(omega_p, d);
+        let gamma = 0.29 + 0.76 * k * d;
+        let h_max = 0.88 / k * (gamma * k * d / 0.88).tanh();
+        -0.25 * fp * q_b(h_rms / h_max) * h_max * h_max
+    };
+    let steps = (s_end / 0.25).ceil() as usize;
+    let ds = s_end / steps as f64;
+    for n in 0..steps {
+        let s = n as f64 * ds;
+        let k1 = rhs(s, flux);
+        let k2 = rhs(s + ds / 2.0, flux + ds / 2.0 * k1);
+        let k3 = rhs(s + ds / 2.0, flux + ds / 2.0 * k2);
+        let k4 = rhs(s + ds, flux + ds * k3);
+        flux += ds / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    }
+    let cg = group_velocity(omega_p, depth(s_end));
+    (8.0 * flux.max(0.0) / cg).sqrt() * 2.0_f64.sqrt()
+}
+
+/// H_s = 4 std(η) of virtual buoys: heights_at along a line of `count` points across the
+/// beach at distance `s` from the edge, at `times` instants 1.37 s apart.
+fn buoy_hs(ocean: &mut OceanState, s: f64, count: usize, times: usize) -> f64 {
+    let points: Vec<[f64; 2]> = (0..count)
+        .map(|n| [s, -120.0 + 240.0 * n as f64 / count as f64])
+        .collect();
+    let mut out = vec![0.0_f32; count];
+    let (mut sum, mut sum2, mut total) = (0.0_f64, 0.0_f64, 0.0_f64);
+    for t in 0..times {
+        ocean.set_time(100.0 + 1.37 * t as f64).unwrap();
+        ocean.water().heights_at(&points, &mut out).unwrap();
+        for &h in &out {
+            sum += f64::from(h);
+            sum2 += f64::from(h) * f64::from(h);
+            total += 1.0;
+        }
+    }
+    let mean = sum / total;
+    4.0 * (sum2 / total - mean * mean).max(0.0).sqrt()
+}
+
+fn beach_against_model(state: SeaState) {
+    let (spectrum, config) = state.build();
+    let hs0 = f64::from(spectrum.significant_wave_height());
+    let omega_p = f64::from(spectrum.peak_omega());
+    let mut ocean = OceanState::new(spectrum.clone(), config).unwrap();
+    let (map, _) = beach(f64::from(spectrum.wind_direction()));
+    ocean.set_depth_map(Some(map)).unwrap();
+    ocean.set_time(10.0).unwrap(); // past the blend from no map
+    for d in [20.0, 10.0, 5.0, 3.0, 2.0, 1.0] {
+        let s = (DEEP - d) / SLOPE;
+        let measured = buoy_hs(&mut ocean, s, 64, 200);
+        let model = bj_hs(hs0, omega_p, s);
+        println!(
+            "{}: d {d} m: buoys H_s {measured:.3} m, BJ {model:.3} m, ratio {:.3}, H_s/d {:.2}",
+            state.name(),
+            measured / model,
+            measured / d
+        );
+        // 20 %: the issue's bound. It covers the band-by-band shoaling against the model's
+        // single peak frequency (a few %), the grids' share of the spectrum (≥ 0.9 of its
+        // variance) and the sampling error of 64 × 200 correlated samples (about 5 %).
+        assert!(
+            (measured / model - 1.0).abs() < 0.2,
+            "{}: d {d}: {measured} vs {model}",
+            state.name()
+        );
+        if d <= 2.0 {
+            // Inside the surf zone: depth-limited (Thornton & Guza 1983 measured
+            // H_rms ≈ 0.42 d, H_s ≈ 0.59 d; the issue's band).
+            let ratio = measured / d;
+            assert!((0.3..=0.6).contains(&ratio), "H_s/d {ratio} at {d} m");
+        }
+    }
+    // Over land: the still level, exactly.
+    // 100 m past the shoreline, inside the map (which ends 200 m past it).
+    let land = DEEP / SLOPE + 100.0;
+    let mut out = [1.0_f32; 4];
+    ocean
+        .water()
+        .heights_at(
+            &[[land, 0.0], [land, 30.0], [land + 40.0, -10.0], [land, 5.0]],
+            &mut out,
+        )
+        .unwrap();
+    assert_eq!(out, [0.0; 4]);
+    assert!(ocean.water().depth_at(land, 0.0).unwrap().unwrap() <= 0.0);
+}
+
+#[test]
+fn fresh_breeze_on_a_planar_beach() {
+    beach_against_model(SeaState::FreshBreeze);
+}
+
+#[test]
+fn swell_on_a_planar_beach() {
+    beach_against_model(SeaState::Swell);
+}
+
+fn small_ocean() -> OceanState {
+    let (spectrum, mut config) = SeaState::ModerateBreeze.build();
+    config.size = 32;
+    OceanState::new(spectrum, config).unwrap()
+}
+
+fn good_map() -> DepthMap {
+    DepthMap {
+        origin: [-50.0, -50.0],
+        spacing: 2.0,
+        size: [50, 40],
+        depth: vec![5.0; 2000],
+    }
+}
+
+#[test]
+fn bad_maps_name_the_field_and_change_nothing() {
+    let mut ocean = small_ocean();
+    ocean.step(0.1).unwrap();
+    let before = ocean.water().height_at(3.0, 4.0).unwrap();
+    let cases: Vec<(DepthMap, &str)> = vec![
+        (
+            DepthMap {
+                spacing: 0.0,
+                ..good_map()
+            },
+            "spacing",
+        ),
+        (
+            DepthMap {
+                spacing: -1.0,
+                ..good_map()
+            },
+            "spacing",
+        ),
+        (
+            DepthMap {
+                spacing: f32::NAN,
+                ..good_map()
+            },
+            "spacing",
+        ),
+        (
+            DepthMap {
+                origin: [f64::INFINITY, 0.0],
+                ..good_map()
+            },
+            "origin",
+        ),
+        (
+            DepthMap {
+                size: [51, 40],
+                ..good_map()
+            },
+            "depth",
+        ),
+        (
+            DepthMap {
+                size: [1, 2000],
+                ..good_map()
+            },
+            "size",
+        ),
+        (
+            DepthMap {
+                size: [1 << 20, 1 << 20],
+                depth: vec![],
+                ..good_map()
+            },
+            "size",
+        ),
+        (
+            DepthMap {
+                size: [usize::MAX, 2],
+                depth: vec![],
+                ..good_map()
+            },
+            "size",
+        ),
+        (
+            DepthMap {
+                depth: {
+                    let mut d = vec![5.0; 2000];
+                    d[777] = f32::NAN;
+                    d
+                },
+                ..good_map()
+            },
+            "depth",
+        ),
+    ];
+    for (map, field) in cases {
+        let err = ocean.set_depth_map(Some(map.clone())).unwrap_err();
+        let name = match err {
+            Error::NonFinite { name }
+            | Error::OutOfRange { name, .. }
+            | Error::CountOutOfRange { name, .. }
+            | Error::LengthMismatch { name, .. } => name,
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(name, field, "{map:?}");
+        assert!(ocean.coast().is_none());
+        assert_eq!(ocean.water().height_at(3.0, 4.0).unwrap(), before);
+    }
+}
+
+#[test]
+fn no_map_keeps_the_bits_and_a_replaced_map_blends() {
+    let mut a = small_ocean();
+    let mut b = small_ocean();
+    b.set_depth_map(None).unwrap();
+    a.step(0.5).unwrap();
+    b.step(0.5).unwrap();
+    let points: Vec<[f64; 2]> = (0..64).map(|n| [n as f64 * 3.1, -n as f64 * 1.7]).collect();
+    let (mut ha, mut hb) = (vec![0.0; 64], vec![0.0; 64]);
+    a.water().heights_at(&points, &mut ha).unwrap();
+    b.water().heights_at(&points, &mut hb).unwrap();
+    assert_eq!(ha, hb);
+    // A map and then its removal: back to the same bits once the blend is over.
+    b.set_depth_map(Some(good_map())).unwrap();
+    let p = [-10.0, -10.0];
+    let start = b.water().height_at(p[0], p[1]).unwrap();
+    assert_eq!(
+        start,
+        a.water().height_at(p[0], p[1]).unwrap(),
+        "no pop at the change"
+    );
+    b.set_depth_map(None).unwrap();
+    a.set_time(20.0).unwrap();
+    b.set_time(20.0).unwrap();
+    a.water().heights_at(&points, &mut ha).unwrap();
+    b.water().heights_at(&points, &mut hb).unwrap();
+    assert_eq!(ha, hb);
+}
