@@ -1,5 +1,7 @@
 //! Coasts (issue 41): waves over a planar beach against an independent Battjes & Janssen
 //! model, land, bad maps, and no map at all.
+// Reference computations in the standard library's maths: tests are not simulation code.
+#![allow(clippy::disallowed_methods)]
 
 use ocean_fft::{DepthMap, Error, OceanState, SeaState};
 

@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use crate::cascade::Cascade;
 use crate::error::{self, Error};
+use crate::math::determinism::{with_math, Determinism, Math};
 use crate::spectrum::dispersion::Dispersion;
 use crate::spectrum::Spectrum;
 
@@ -256,9 +257,9 @@ struct Band {
 }
 
 /// Group velocity in m/s of waves of angular frequency `omega` under `dispersion`.
-fn group_velocity(dispersion: &Dispersion, omega: f64) -> f64 {
-    let k = dispersion.k_from_omega(omega as f32);
-    f64::from(dispersion.d_omega_dk(k))
+fn group_velocity<M: Math>(dispersion: &Dispersion, omega: f64) -> f64 {
+    let k = dispersion.k_from_omega_with::<M>(omega);
+    dispersion.d_omega_dk_with::<M>(k)
 }
 
 /// The ocean's dispersion law at depth `depth` (m).
@@ -272,8 +273,8 @@ fn at_depth(dispersion: Dispersion, depth: f64) -> Dispersion {
 
 /// Battjes & Janssen's (1978) fraction of breaking waves Q_b for b = H_rms/H_max: the root
 /// of (1 − Q)/(−ln Q) = b² (1 for b ≥ 1), by bisection on ln Q.
-pub(crate) fn breaking_fraction(b: f64) -> f64 {
-    if !(b > 0.0) {
+pub(crate) fn breaking_fraction<M: Math>(b: f64) -> f64 {
+    if b.is_nan() || b <= 0.0 {
         return 0.0;
     }
     if b >= 1.0 {
@@ -284,20 +285,20 @@ pub(crate) fn breaking_fraction(b: f64) -> f64 {
     let (mut lo, mut hi) = (-60.0_f64, 0.0_f64);
     for _ in 0..80 {
         let mid = 0.5 * (lo + hi);
-        let q = mid.exp();
+        let q = M::exp(mid);
         if (1.0 - q) + b2 * mid < 0.0 {
             lo = mid;
         } else {
             hi = mid;
         }
     }
-    lo.exp()
+    M::exp(lo)
 }
 
 /// Battjes & Janssen's largest wave height in metres at depth `d` (m) for the peak wave
 /// number `k` (rad/m): H_max = 0.88/k · tanh(γ k d / 0.88), γ of [`breaker_index`].
-pub(crate) fn max_height(k: f64, d: f64) -> f64 {
-    0.88 / k * (breaker_index(k, d) * k * d / 0.88).tanh()
+pub(crate) fn max_height<M: Math>(k: f64, d: f64) -> f64 {
+    0.88 / k * M::tanh(breaker_index(k, d) * k * d / 0.88)
 }
 
 /// The march's state at one cell: the energy of each band relative to the open sea's, and
@@ -308,14 +309,24 @@ struct State {
     depth: f64,
 }
 
-/// Solves the waves of `cascades` (drawn from `spectrum`) over `map` (validated).
+/// Solves the waves of `cascades` (drawn from `spectrum`) over `map` (validated), with the
+/// transcendental functions of `determinism`.
 pub(crate) fn solve(
+    map: DepthMap,
+    spectrum: &Spectrum,
+    cascades: &[Cascade],
+    determinism: Determinism,
+) -> Result<CoastField, Error> {
+    with_math!(determinism, M => solve_with::<M>(map, spectrum, cascades))
+}
+
+fn solve_with<M: Math>(
     map: DepthMap,
     spectrum: &Spectrum,
     cascades: &[Cascade],
 ) -> Result<CoastField, Error> {
     let dispersion = spectrum.dispersion();
-    let (bands, direction) = bands(cascades, &dispersion);
+    let (bands, direction) = bands::<M>(cascades, &dispersion);
     let count = bands.len();
     let [nx, nz] = map.size;
     let cells = nx * nz;
@@ -331,9 +342,9 @@ pub(crate) fn solve(
     // The open sea's group velocity of each band: the flux the waves bring into the map.
     let open: Vec<f64> = bands
         .iter()
-        .map(|b| group_velocity(&dispersion, b.omega))
+        .map(|b| group_velocity::<M>(&dispersion, b.omega))
         .collect();
-    let (ux, uz) = (f64::from(direction.cos()), f64::from(direction.sin()));
+    let (ux, uz) = (M::cos(direction), M::sin(direction));
     let (si, sj) = (
         if ux >= 0.0 { 1isize } else { -1 },
         if uz >= 0.0 { 1isize } else { -1 },
@@ -377,7 +388,7 @@ pub(crate) fn solve(
                 }
             }
             upstream.depth = depth_up;
-            let q = march(
+            let q = march::<M>(
                 &upstream,
                 depth,
                 length,
@@ -415,7 +426,7 @@ pub(crate) fn solve(
         cascades: count,
         factors,
         breaking,
-        direction,
+        direction: direction as f32,
     })
 }
 
@@ -424,7 +435,7 @@ pub(crate) fn solve(
 /// Janssen's dissipation, shared among the bands in proportion to their energy, over
 /// sub-steps of at most 2 m. Writes the bands' energies to `out`, returns Q_b at the cell.
 #[allow(clippy::too_many_arguments)]
-fn march(
+fn march<M: Math>(
     upstream: &State,
     depth: f64,
     length: f64,
@@ -442,7 +453,7 @@ fn march(
         if d.is_infinite() {
             open
         } else {
-            group_velocity(&at_depth(*dispersion, d), band.omega)
+            group_velocity::<M>(&at_depth(*dispersion, d), band.omega)
         }
     };
     let mut before: Vec<f64> = bands
@@ -469,13 +480,13 @@ fn march(
         if h_rms2 <= 0.0 {
             continue;
         }
-        let kp = f64::from(at_depth(*dispersion, d).k_from_omega(omega_peak as f32));
-        let h_max = max_height(kp, d);
-        q = breaking_fraction((h_rms2.sqrt()) / h_max);
+        let kp = at_depth(*dispersion, d).k_from_omega_with::<M>(omega_peak);
+        let h_max = max_height::<M>(kp, d);
+        q = breaking_fraction::<M>(h_rms2.sqrt() / h_max);
         // D/E = (α/4) f_p Q_b H_max² / (H_rms²/8): the same relative loss rate for every band.
         let rate = 2.0 * ALPHA * f_peak * q * h_max * h_max / h_rms2;
         for (k, e) in out.iter_mut().enumerate() {
-            *e *= (-rate * ds / before[k]).exp();
+            *e *= M::exp(-rate * ds / before[k]);
         }
     }
     q
@@ -483,7 +494,7 @@ fn march(
 
 /// Each cascade's band (variance, mean frequency from its h0) and the mean direction the
 /// waves travel toward (radians), energy-weighted over every cascade.
-fn bands(cascades: &[Cascade], dispersion: &Dispersion) -> (Vec<Band>, f32) {
+fn bands<M: Math>(cascades: &[Cascade], dispersion: &Dispersion) -> (Vec<Band>, f64) {
     let (mut sx, mut sz) = (0.0_f64, 0.0_f64);
     let bands = cascades
         .iter()
@@ -504,16 +515,16 @@ fn bands(cascades: &[Cascade], dispersion: &Dispersion) -> (Vec<Band>, f32) {
                     }
                 };
                 let (kx, kz) = (m(index % n) * dk, m(index / n) * dk);
-                let k = kx.hypot(kz);
+                let k = M::hypot(kx, kz);
                 total += w;
-                weighted += w * f64::from(dispersion.omega(k as f32));
+                weighted += w * dispersion.omega_with::<M>(k);
                 sx += w * kx / k;
                 sz += w * kz / k;
             }
             let omega = if total > 0.0 {
                 weighted / total
             } else {
-                f64::from(dispersion.omega((dk * n as f64 / 4.0) as f32))
+                dispersion.omega_with::<M>(dk * n as f64 / 4.0)
             };
             Band {
                 variance: cascade.expected_variance(),
@@ -521,25 +532,26 @@ fn bands(cascades: &[Cascade], dispersion: &Dispersion) -> (Vec<Band>, f32) {
             }
         })
         .collect();
-    (bands, sz.atan2(sx) as f32)
+    (bands, M::atan2(sz, sx))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::determinism::Std;
 
     /// Q_b solves (1 − Q)/(−ln Q) = b²: put the root back into the relation.
     #[test]
     fn breaking_fraction_solves_its_relation() {
         for b in [0.2, 0.4, 0.6, 0.8, 0.95, 0.999] {
-            let q = breaking_fraction(b);
+            let q = breaking_fraction::<Std>(b);
             assert!(q > 0.0 && q < 1.0, "{b}: {q}");
-            let back = (1.0 - q) / (-q.ln());
+            let back = (1.0 - q) / (-Std::ln(q));
             // Bisection to 2⁻⁸⁰ of 60 in ln Q: far below 1e-9 relative.
             assert!((back - b * b).abs() < 1e-9 * b * b, "{b}: {back}");
         }
-        assert_eq!(breaking_fraction(1.2), 1.0);
-        assert_eq!(breaking_fraction(0.0), 0.0);
+        assert_eq!(breaking_fraction::<Std>(1.2), 1.0);
+        assert_eq!(breaking_fraction::<Std>(0.0), 0.0);
     }
 
     /// H_max tends to γ d in shallow water (tanh x ≈ x) and to 0.88/k in deep water.
@@ -547,7 +559,7 @@ mod tests {
     fn max_height_limits() {
         let (k, d) = (1e-3, 1.0);
         let gamma = breaker_index(k, d);
-        assert!((max_height(k, d) / (gamma * d) - 1.0).abs() < 1e-6);
-        assert!((max_height(1.0, 100.0) * 1.0 / 0.88 - 1.0).abs() < 1e-12);
+        assert!((max_height::<Std>(k, d) / (gamma * d) - 1.0).abs() < 1e-6);
+        assert!((max_height::<Std>(1.0, 100.0) / 0.88 - 1.0).abs() < 1e-12);
     }
 }

@@ -26,7 +26,12 @@ impl OceanState {
         let field = match map {
             Some(map) => {
                 map.validate()?;
-                Some(Arc::new(coast::solve(map, &self.spectrum, &self.cascades)?))
+                Some(Arc::new(coast::solve(
+                    map,
+                    &self.spectrum,
+                    &self.cascades,
+                    self.config.determinism,
+                )?))
             }
             None => None,
         };
