@@ -321,3 +321,114 @@ fn no_map_keeps_the_bits_and_a_replaced_map_blends() {
     b.water().heights_at(&points, &mut hb).unwrap();
     assert_eq!(ha, hb);
 }
+
+/// A map replacing another blends linearly over BLEND_SECONDS: half-way, each cascade's
+/// factor is the mean of the two, so a height is the mean of the heights under each map
+/// alone (the fields are linear in the factors).
+#[test]
+fn a_replaced_map_blends_without_a_pop() {
+    let shallow = DepthMap {
+        depth: vec![0.6; 2000],
+        ..good_map()
+    };
+    let mut old = small_ocean();
+    old.set_depth_map(Some(good_map())).unwrap();
+    let mut new = small_ocean();
+    new.set_depth_map(Some(shallow.clone())).unwrap();
+    let mut both = small_ocean();
+    both.set_depth_map(Some(good_map())).unwrap();
+    // Each first map has blended in from the open sea by t = 5 s; then `both` changes.
+    for ocean in [&mut old, &mut new, &mut both] {
+        ocean.set_time(5.0).unwrap();
+    }
+    both.set_depth_map(Some(shallow)).unwrap();
+    let half = ocean_fft::coast::BLEND_SECONDS / 2.0;
+    for ocean in [&mut old, &mut new, &mut both] {
+        ocean.set_time(5.0 + half).unwrap();
+    }
+    let mut checked = 0;
+    for n in 0..40 {
+        let [x, z] = [-40.0 + 2.0 * n as f64, -30.0 + 1.3 * n as f64];
+        let (a, b) = (
+            old.water().at_rest(x, z).unwrap().height,
+            new.water().at_rest(x, z).unwrap().height,
+        );
+        let mid = both.water().at_rest(x, z).unwrap().height;
+        // f32 sums of three cascades of centimetre waves: 1e-5 m covers their rounding.
+        assert!(
+            (mid - 0.5 * (a + b)).abs() < 1e-5,
+            "{x} {z}: {mid} vs {a} {b}"
+        );
+        checked += usize::from(a != b);
+    }
+    assert!(checked > 30, "the two maps must differ where checked");
+}
+
+/// Over land the surface is the still level, flat, without foam; in the surf zone the foam
+/// is at least the fraction of breaking waves.
+#[test]
+fn land_is_still_and_surf_foams() {
+    let (spectrum, config) = SeaState::FreshBreeze.build();
+    let mut ocean = OceanState::new(spectrum, config).unwrap();
+    let (map, _) = beach(0.0);
+    ocean.set_depth_map(Some(map)).unwrap();
+    ocean.set_time(30.0).unwrap();
+    let land = DEEP / SLOPE + 100.0;
+    let s = ocean.water().surface_at(land, 7.0).unwrap();
+    assert_eq!(
+        (s.height, s.displacement, s.slope, s.foam),
+        (0.0, [0.0; 2], [0.0; 2], 0.0)
+    );
+    assert_eq!(s.normal, [0.0, 1.0, 0.0]);
+    let coast = ocean.coast().unwrap();
+    let nx = coast.map().size[0];
+    // The cell 1.5 m deep on the centre row: breaking (Q_b > 0.1 under a 2.5 m sea).
+    let i = ((DEEP - 1.5) / SLOPE / f64::from(SPACING)) as usize;
+    let j = coast.map().size[1] / 2;
+    let q = coast.breaking()[j * nx + i];
+    assert!(q > 0.1, "Q_b {q}");
+    let x = f64::from(SPACING) * i as f64;
+    let z = coast.map().origin[1] + f64::from(SPACING) * j as f64;
+    let foam = ocean.water().at_rest(x, z).unwrap().foam;
+    assert!(foam >= q - 1e-6, "foam {foam} below Q_b {q}");
+    // Offshore of the map, the open sea's factors.
+    assert!(coast.factors()[j * nx * coast.cascade_count()..][..3]
+        .iter()
+        .all(|&f| f == 1.0));
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+    /// Any map with one bad field is refused naming it, and nothing changes.
+    #[test]
+    fn any_bad_field_is_named(
+        which in 0usize..4,
+        bad in proptest::prop_oneof![
+            proptest::prelude::Just(f32::NAN),
+            proptest::prelude::Just(f32::INFINITY),
+            proptest::prelude::Just(f32::NEG_INFINITY),
+            -1e6f32..=0.0,
+        ],
+        cell in 0usize..2000,
+        extra in 1usize..50,
+    ) {
+        let mut map = good_map();
+        let field = match which {
+            0 => { map.spacing = bad; "spacing" }
+            1 if !bad.is_finite() => { map.depth[cell] = bad; "depth" }
+            1 | 2 => { map.depth.truncate(2000 - extra.min(1999)); "depth" }
+            _ => { map.origin[cell % 2] = f64::from(if bad.is_finite() { f32::NAN } else { bad }); "origin" }
+        };
+        let mut ocean = small_ocean();
+        let err = ocean.set_depth_map(Some(map)).unwrap_err();
+        let name = match err {
+            Error::NonFinite { name }
+            | Error::OutOfRange { name, .. }
+            | Error::CountOutOfRange { name, .. }
+            | Error::LengthMismatch { name, .. } => name,
+            other => panic!("{other:?}"),
+        };
+        proptest::prop_assert_eq!(name, field);
+        proptest::prop_assert!(ocean.coast().is_none());
+    }
+}
