@@ -141,8 +141,22 @@ fn beach_against_model(state: SeaState) {
         let s = (DEEP - d) / SLOPE;
         let measured = buoy_hs(&mut ocean, s, 64, 200);
         let model = bj_hs(hs0, omega_p, s);
+        // What the factors promise, 4 (Σ f_c² m0_c)^½, to tell the march from the sampling.
+        let coast = ocean.coast().unwrap();
+        let i = (s / f64::from(SPACING)).round() as usize;
+        let cell = coast.map().size[1] / 2 * coast.map().size[0] + i;
+        let n = coast.cascade_count();
+        let promised = 4.0
+            * ocean
+                .cascades()
+                .iter()
+                .zip(&coast.factors()[cell * n..][..n])
+                .map(|(c, &f)| c.expected_variance() * f64::from(f * f))
+                .sum::<f64>()
+                .sqrt();
         println!(
-            "{}: d {d} m: buoys H_s {measured:.3} m, BJ {model:.3} m, ratio {:.3}, H_s/d {:.2}",
+            "{}: d {d} m: buoys H_s {measured:.3} m, factors {promised:.3} m, BJ {model:.3} m, \
+             ratio {:.3}, H_s/d {:.2}",
             state.name(),
             measured / model,
             measured / d
