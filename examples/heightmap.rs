@@ -12,8 +12,9 @@
 //!   from [−1, 1] to [0, 255] with **R = n_x, G = n_z, B = n_y** (the usual tangent-space
 //!   layout with the surface's up axis y in blue, so flat water is (128, 128, 255));
 //! - `out/foam.png`: 8-bit foam of the whole ocean (active whitecaps and residual foam
-//!   together, [0, 1] → [0, 255]; the field lives on the largest cascade's grid, 3.9 m here,
-//!   and is interpolated between its points).
+//!   together, [0, 1] → [0, 255]) as `foam_view().foam_at` places it: whitecaps on the
+//!   short crests the finer cascades compress and streaks along the wind, patterned at the
+//!   finest cascade's scale, with the coverage of the calibration.
 //!
 //! In each picture the top 512 rows are the window (pixel (i, j) covers x ∈ [i, i + 1)·s,
 //! z ∈ [j, j + 1)·s, s = 0.78 m; image rows are z) and a 32-pixel band below holds a scale bar
@@ -87,14 +88,20 @@ fn main() -> Result<()> {
     let mut normal = vec![[0.0f32; 3]; n * n];
     let mut foam = vec![0.0f32; n * n];
     let weight = 1.0 / (SUPER * SUPER) as f32;
+    let foam_view = ocean.foam_view();
+    let spacing = window / fine as f64;
     for (p, sample) in samples.iter().enumerate() {
-        let (i, j) = ((p % fine) / SUPER, (p / fine) / SUPER);
+        let (c, r) = (p % fine, p / fine);
+        let (i, j) = (c / SUPER, r / SUPER);
         let pixel = j * n + i;
         height[pixel] += sample.height * weight;
         for (sum, c) in normal[pixel].iter_mut().zip(sample.normal) {
             *sum += c;
         }
-        foam[pixel] += sample.foam * weight;
+        // The foam itself at the sample's rest point (patterned at the breaking scale), not
+        // the coarse fraction `sample.foam` of the foam grid's 3.9 m cells.
+        let (x0, z0) = ((c as f64 + 0.5) * spacing, (r as f64 + 0.5) * spacing);
+        foam[pixel] += foam_view.foam_at(x0, z0)?.total * weight;
     }
     let sampled = start.elapsed().as_secs_f32() - simulated;
 

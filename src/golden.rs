@@ -26,6 +26,7 @@ use crate::ocean::{OceanConfig, OceanState};
 use crate::query::{Interpolation, QueryConfig};
 use crate::spectrum::dispersion::Dispersion;
 use crate::spectrum::{DepthFactor, Spectrum, Spreading};
+use crate::wake::{Hull, WakeConfig};
 
 /// One hash per buffer of a cascade: h0, height, displacement, slope, normal, Jacobian, and
 /// the scalars computed once (expected variance, sub-grid slope variance, mean level).
@@ -63,7 +64,7 @@ fn ocean_hashes(ocean: &OceanState) -> Vec<(String, u64)> {
         cascade_hashes(cascade, &mut out, &format!("cascade {c} "));
     }
     let mut hash = BitHash::new();
-    hash.f32s(ocean.foam().iter().copied());
+    hash.f32s(ocean.foam_view().total().iter().copied());
     hash.f32s(ocean.foam_view().breaking().iter().copied());
     out.push(("foam".into(), hash.finish()));
     let points = [[0.0, 0.0], [12.5, -40.25], [-333.3, 517.9], [2048.0, 77.7]];
@@ -81,6 +82,14 @@ fn ocean_hashes(ocean: &OceanState) -> Vec<(String, u64)> {
         hash.bytes(&(location.iterations as u64).to_le_bytes());
     }
     out.push(("queries".into(), hash.finish()));
+    if let Some(wakes) = ocean.wakes() {
+        let mut hash = BitHash::new();
+        hash.f64s(wakes.origin());
+        hash.f32s(wakes.height().iter().copied());
+        hash.f32s(wakes.slope().iter().flatten().copied());
+        hash.f32s(wakes.foam().iter().copied());
+        out.push(("wake".into(), hash.finish()));
+    }
     out
 }
 
@@ -182,6 +191,37 @@ fn oceans() -> Vec<(&'static str, OceanState, Vec<f64>)> {
     )
     .unwrap();
     e.set_spectrum(storm, 0.5).unwrap();
+    // Wakes: two hulls crossing a 64² window in finite depth, the window moved once.
+    let mut f = OceanState::new(
+        Spectrum::tma(8.0, 80_000.0, 12.0).unwrap(),
+        deterministic(OceanConfig {
+            size: 32,
+            wakes: Some(WakeConfig {
+                size: 64,
+                spacing: 1.0,
+                substep: 0.05,
+                ..WakeConfig::default()
+            }),
+            ..OceanConfig::default()
+        }),
+    )
+    .unwrap();
+    let hull = Hull {
+        position: [-12.0, 4.0],
+        velocity: [5.0, -0.5],
+        heading: -0.1,
+        ..Hull::default()
+    };
+    let tug = Hull {
+        position: [6.0, -9.0],
+        velocity: [0.0, 2.0],
+        heading: 1.5,
+        length: 7.0,
+        beam: 3.0,
+        draft: 0.8,
+    };
+    f.set_hulls(&[hull, tug]).unwrap();
+    f.set_wake_centre(3.3, -1.2).unwrap();
     let steps = vec![1.0 / 60.0, 1.0 / 30.0, 0.5, 0.0, 1.0 / 60.0, 3.25];
     vec![
         ("jonswap 64²", a, steps.clone()),
@@ -189,6 +229,7 @@ fn oceans() -> Vec<(&'static str, OceanState, Vec<f64>)> {
         ("elfouhaily 34²", c, steps),
         ("live 32²", d, vec![1.0 / 30.0; 30]),
         ("second order 48²", e, vec![1.0 / 30.0; 20]),
+        ("wakes 32²", f, vec![1.0 / 30.0; 45]),
     ]
 }
 
@@ -293,6 +334,30 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("second order 48²", "cascade 1 scalars", 0x5d402f7d4e26b4b1),
     ("second order 48²", "foam", 0xbc77167197e33bdc),
     ("second order 48²", "queries", 0x6bcdd19b83418b17),
+    ("wakes 32²", "cascade 0 h0", 0x422e0575e1d5f01c),
+    ("wakes 32²", "cascade 0 height", 0x942486e09c817997),
+    ("wakes 32²", "cascade 0 displacement", 0xdf208c2a71892222),
+    ("wakes 32²", "cascade 0 slope", 0x66e7f04e3c318ea2),
+    ("wakes 32²", "cascade 0 normal", 0x736d53378ab4178a),
+    ("wakes 32²", "cascade 0 jacobian", 0x552b519dd836c325),
+    ("wakes 32²", "cascade 0 scalars", 0xabb5eaa32d7a1290),
+    ("wakes 32²", "cascade 1 h0", 0x4089a30fabcaad6b),
+    ("wakes 32²", "cascade 1 height", 0xa765fbdb23b02565),
+    ("wakes 32²", "cascade 1 displacement", 0xa1ab29f5a7512d68),
+    ("wakes 32²", "cascade 1 slope", 0xe71631728732f23a),
+    ("wakes 32²", "cascade 1 normal", 0x5275fc80c8bdc799),
+    ("wakes 32²", "cascade 1 jacobian", 0xaa1fb3b4acda797b),
+    ("wakes 32²", "cascade 1 scalars", 0x3a7d8c41d6c7264e),
+    ("wakes 32²", "cascade 2 h0", 0xd7ff0ca16f33f7c1),
+    ("wakes 32²", "cascade 2 height", 0x0eda4fb4697de41b),
+    ("wakes 32²", "cascade 2 displacement", 0xf26584760460dcb1),
+    ("wakes 32²", "cascade 2 slope", 0x7f13d14926c970ff),
+    ("wakes 32²", "cascade 2 normal", 0xd8f0ebbcdd66f05d),
+    ("wakes 32²", "cascade 2 jacobian", 0xcd801cfd0ca610d0),
+    ("wakes 32²", "cascade 2 scalars", 0xeacb18e709c43852),
+    ("wakes 32²", "foam", 0x8b18672ae7cc3325),
+    ("wakes 32²", "queries", 0xe35c09d279f7de53),
+    ("wakes 32²", "wake", 0xe14db6f41a23f4a6),
 ];
 
 #[test]

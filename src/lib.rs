@@ -34,7 +34,7 @@
 //!   normal and Jacobian.
 //! - [`OceanState`]: several cascades on disjoint wave-number bands, the time, the foam (one
 //!   field for the whole ocean with whitecaps calibrated against measurements, residual foam
-//!   drawn into streaks and a breaking intensity: [`OceanState::foam`],
+//!   drawn into streaks and a breaking intensity: [`FoamView::total`],
 //!   [`OceanState::foam_view`], [`FoamConfig`]), and the world queries of its [`Water`]
 //!   ([`OceanState::water`]: [`Water::height_at`] at a world point, [`Water::at_rest`] at a
 //!   rest point), also from other threads through a [`Surface`] handle.
@@ -178,6 +178,7 @@ mod query;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod spectrum;
+mod wake;
 
 pub use cascade::{Cascade, CascadeConfig};
 pub use coast::{CoastField, DepthMap};
@@ -193,6 +194,7 @@ pub use presets::SeaState;
 pub use query::{Interpolation, Location, QueryConfig, Surface, SurfaceSample, Water};
 pub use spectrum::dispersion::{Dispersion, GRAVITY};
 pub use spectrum::{DepthFactor, SlopeVariance, Spectrum, SpectrumKind, SpectrumParams, Spreading};
+pub use wake::{Hull, WakeConfig, Wakes};
 
 // The Rust blocks of the guide's chapters (docs/guide/) are doc-tests when every optional
 // feature is on (the serde block of spectra.md needs `serde`), as CI runs them:
@@ -217,6 +219,8 @@ mod guide_doc_tests {
     struct Weather;
     #[doc = include_str!("../docs/guide/cascades.md")]
     struct Cascades;
+    #[doc = include_str!("../docs/guide/wakes.md")]
+    struct Wakes;
 }
 
 // The README's example is a doc-test with or without features.

@@ -142,7 +142,7 @@ fn beach_against_model(state: SeaState) {
         let measured = buoy_hs(&mut ocean, s, 64, 200);
         let model = bj_hs(hs0, omega_p, s);
         // What the factors promise, 4 (Σ f_c² m0_c)^½, to tell the march from the sampling.
-        let coast = ocean.coast().unwrap();
+        let coast = ocean.textures().coast().unwrap();
         let i = (s / f64::from(SPACING)).round() as usize;
         let cell = coast.map().size[1] / 2 * coast.map().size[0] + i;
         let n = coast.cascade_count();
@@ -302,7 +302,7 @@ fn bad_maps_name_the_field_and_change_nothing() {
             other => panic!("{other:?}"),
         };
         assert_eq!(name, field, "{map:?}");
-        assert!(ocean.coast().is_none());
+        assert!(ocean.textures().coast().is_none());
         assert_eq!(ocean.water().height_at(3.0, 4.0).unwrap(), before);
     }
 }
@@ -394,7 +394,7 @@ fn land_is_still_and_surf_foams() {
         (0.0, [0.0; 2], [0.0; 2], 0.0)
     );
     assert_eq!(s.normal, [0.0, 1.0, 0.0]);
-    let coast = ocean.coast().unwrap();
+    let coast = ocean.textures().coast().unwrap();
     let nx = coast.map().size[0];
     // The cell 1.5 m deep on the centre row: breaking (Q_b > 0.1 under a 2.5 m sea).
     let i = ((DEEP - 1.5) / SLOPE / f64::from(SPACING)) as usize;
@@ -443,6 +443,65 @@ proptest::proptest! {
             other => panic!("{other:?}"),
         };
         proptest::prop_assert_eq!(name, field);
-        proptest::prop_assert!(ocean.coast().is_none());
+        proptest::prop_assert!(ocean.textures().coast().is_none());
+    }
+}
+
+/// With wakes and a depth map, every query carries both: the cascades scaled by the coast's
+/// factors, then the wake added where the query lands (as without a map: the wake is not
+/// scaled, it is made by the hulls in the water there).
+#[test]
+fn queries_carry_the_coast_and_the_wake_together() {
+    use ocean_fft::{Hull, OceanConfig, WakeConfig};
+    let (spectrum, config) = SeaState::ModerateBreeze.build();
+    let config = |wakes: bool| OceanConfig {
+        size: 32,
+        wakes: wakes.then(|| WakeConfig {
+            size: 64,
+            spacing: 1.0,
+            substep: 0.05,
+            ..WakeConfig::default()
+        }),
+        ..config.clone()
+    };
+    let build = |wakes: bool, map: bool| {
+        let mut ocean = OceanState::new(spectrum.clone(), config(wakes)).unwrap();
+        if wakes {
+            ocean.set_hulls(&[Hull::default()]).unwrap();
+        }
+        if map {
+            ocean.set_depth_map(Some(good_map())).unwrap();
+        }
+        // Past the map's blend (2 s from t = 0).
+        ocean.step(2.5).unwrap();
+        ocean
+    };
+    let (both, wake, coast, open) = (
+        build(true, true),
+        build(true, false),
+        build(false, true),
+        build(false, false),
+    );
+    let wakes = both.wakes().unwrap();
+    // Inside the wake window (±32 m) and the map (x −50…48, z −50…28); the last point is on
+    // the map only, outside the window.
+    let points = [[0.5, 0.25], [3.0, -1.7], [-9.2, 2.0], [-40.0, -45.0]];
+    let mut batch = vec![0.0; points.len()];
+    both.water().heights_at(&points, &mut batch).unwrap();
+    for (&[x, z], &batched) in points.iter().zip(&batch) {
+        let (h, _) = wakes.at(x, z);
+        assert_eq!(h != 0.0, x.abs() < 30.0, "({x}, {z})");
+        let all = both.water().height_at(x, z).unwrap();
+        let coast_only = coast.water().height_at(x, z).unwrap();
+        assert_eq!(all, coast_only + h, "({x}, {z})");
+        assert_eq!(batched, all, "the batch answers as the point query");
+        // The coast acts here: 5 m of water shortens the breeze's waves (factors ≠ 1).
+        let open_h = open.water().height_at(x, z).unwrap();
+        assert_ne!(coast_only, open_h, "({x}, {z})");
+        let wake_h = wake.water().height_at(x, z).unwrap();
+        assert_eq!(wake_h, open_h + wake.wakes().unwrap().at(x, z).0);
+        let s = both.water().surface_at(x, z).unwrap();
+        let c = coast.water().surface_at(x, z).unwrap();
+        assert_eq!(s.height, c.height + h);
     }
 }

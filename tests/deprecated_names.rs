@@ -3,7 +3,7 @@
 #![allow(deprecated)]
 
 use ocean_fft::gpu::TexelLayout;
-use ocean_fft::{OceanConfig, OceanState, Spectrum, SurfaceSample};
+use ocean_fft::{Hull, OceanConfig, OceanState, Spectrum, SurfaceSample, WakeConfig};
 
 fn ocean() -> OceanState {
     let config = OceanConfig {
@@ -15,11 +15,41 @@ fn ocean() -> OceanState {
     ocean
 }
 
+/// [`ocean`] with a wake window (128 m wide around the origin: the first two of
+/// [`POINTS`] inside it, the third outside) and a hull moving through it.
+fn ocean_with_wakes() -> OceanState {
+    let config = OceanConfig {
+        size: 16,
+        wakes: Some(WakeConfig::default()),
+        ..OceanConfig::default()
+    };
+    let mut ocean = OceanState::new(Spectrum::jonswap(15.0, 200_000.0).unwrap(), config).unwrap();
+    let hull = Hull {
+        velocity: [4.0, 1.0],
+        ..Hull::default()
+    };
+    ocean.pre_roll(5.0, 0.25).unwrap();
+    ocean.set_hulls(&[hull]).unwrap();
+    for _ in 0..20 {
+        ocean.step(0.1).unwrap();
+    }
+    assert!(ocean.wakes().unwrap().at(0.0, 0.0).0 != 0.0);
+    ocean
+}
+
 const POINTS: [[f64; 2]; 3] = [[0.0, 0.0], [12.5, -40.0], [300.0, 77.0]];
 
 #[test]
 fn the_old_query_names_answer_as_the_water_view() {
-    let mut ocean = ocean();
+    old_query_names_answer_as_the_water_view(ocean());
+}
+
+#[test]
+fn the_old_query_names_answer_as_the_water_view_with_wakes() {
+    old_query_names_answer_as_the_water_view(ocean_with_wakes());
+}
+
+fn old_query_names_answer_as_the_water_view(mut ocean: OceanState) {
     let water = ocean.water();
     for [x, z] in POINTS {
         assert_eq!(ocean.sample(x, z).unwrap(), water.at_rest(x, z).unwrap());

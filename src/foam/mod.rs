@@ -7,19 +7,22 @@
 mod calibration;
 mod change;
 mod config;
+mod detail;
 mod intensity;
 mod model;
 mod moments;
 mod rows;
 mod state;
+mod streaks;
 #[cfg(test)]
 mod tests;
 mod transport;
-mod view;
+pub(crate) mod view;
 
 pub use calibration::FoamCalibration;
 pub use config::FoamConfig;
 pub(crate) use state::{memory_bytes, Foam};
+pub use streaks::FoamStreaks;
 pub use view::FoamView;
 
 /// How much of the surface is covered by foam: area fractions in [0, 1], each grid point
@@ -34,6 +37,6 @@ pub struct FoamCoverage {
     /// Residual foam not under active foam: the mean of r·(1 − a), older foam and streaks
     /// that photographs of whitecaps leave out.
     pub residual: f32,
-    /// All foam: the mean of [`OceanState::foam`](crate::OceanState::foam), `active + residual`.
+    /// All foam: the mean of [`FoamView::total`](crate::FoamView::total), `active + residual`.
     pub total: f32,
 }

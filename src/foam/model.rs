@@ -71,6 +71,18 @@ impl FoamSea {
         }
     }
 
+    /// θ_w in rad, toward which the wind blows.
+    pub(super) fn wind_direction(&self) -> f64 {
+        self.wind_direction
+    }
+
+    /// The variance of the compression −(D_xx + D_zz) at unit choppiness of the cascades the
+    /// foam grid does not resolve (cascades 1 and up).
+    pub(super) fn unresolved_compression(&self) -> f64 {
+        let v = &self.unresolved.value;
+        v[0][0] + v[1][1] + 2.0 * v[0][1]
+    }
+
     /// The U10 in m/s the whitecaps answer to under `config`.
     pub(super) fn wind_speed(&self, config: &FoamConfig) -> f32 {
         config.wind_speed.unwrap_or(self.wind_speed)

@@ -14,6 +14,7 @@ use crate::math::exp::exp;
 use crate::math::fft2d::{transpose_into, RowFft, ROWS_PER_TASK};
 use crate::math::simd::Simd;
 
+use super::detail::{Detail, DETAIL_BYTES};
 use super::intensity::Params;
 use super::model::{FoamChange, FoamSea, Model};
 use super::rows::{pack_rows, repack_halves, total_row, unpack_halves};
@@ -85,13 +86,15 @@ pub(crate) struct Foam {
     pub(super) determinism: Determinism,
     /// The SIMD level of the element loops.
     pub(super) simd: Simd,
+    /// Where inside a cell the foam lies (`detail.rs`).
+    pub(super) detail: Detail,
 }
 
 /// Bytes the foam of an ocean of size `n` holds: active, residual,
 /// total and breaking (4 bytes each per point), the transport's complex grid (8 bytes per
 /// point) and its transposed half (N/2 + 1 rows of N, 8 bytes each), FFT scratch for one
 /// task per block of rows, small tables, and the displacement gradient cascade 0 keeps for
-/// it (12 bytes per point, see [`Foam::update_source`]).
+/// it (12 bytes per point, see [`Foam::update_source`]), and the detail's tables.
 pub(crate) fn memory_bytes(n: usize, determinism: Determinism) -> usize {
     let points = n.saturating_mul(n);
     let scratch = if n <= crate::math::grid::MAX_SIZE {
@@ -107,6 +110,7 @@ pub(crate) fn memory_bytes(n: usize, determinism: Determinism) -> usize {
         .saturating_add(half.saturating_mul(8))
         .saturating_add(tasks.saturating_mul(scratch).saturating_mul(8))
         .saturating_add(tables)
+        .saturating_add(DETAIL_BYTES)
 }
 
 impl Foam {
@@ -163,6 +167,7 @@ impl Foam {
             change: None,
             determinism,
             simd: Simd::detect(),
+            detail: Detail::new::<M>(cascades, sea.wind_direction()),
         };
         cascades[0].fill_gradient(&mut foam.gradient);
         foam.refresh();
@@ -219,6 +224,9 @@ impl Foam {
             return;
         }
         let n = self.n;
+        for (offset, drift) in self.detail.offset.iter_mut().zip(self.transport.drift) {
+            *offset += drift * dt;
+        }
         let moving = self.transport.is_active();
         if moving {
             // A game steps by the same dt frame after frame: the tables (2N sines and cosines
@@ -517,6 +525,21 @@ impl Foam {
         self.residual.copy_from_slice(residual);
     }
 
+    /// The streak field of the foam's detail as a renderer samples it.
+    pub(crate) fn streaks(&self) -> super::FoamStreaks<'_> {
+        self.detail.streaks()
+    }
+
+    /// How far the streak field of the foam's detail has drifted, `[x, z]` m.
+    pub(crate) fn drift_offset(&self) -> [f64; 2] {
+        self.detail.offset
+    }
+
+    /// Sets the streak field's drift (a restored snapshot's).
+    pub(crate) fn set_drift_offset(&mut self, offset: [f64; 2]) {
+        self.detail.offset = offset;
+    }
+
     /// Removes all foam from the state; the total and the coverage follow at the next
     /// [`refresh`](Self::refresh) or step.
     pub(crate) fn clear_state(&mut self) {
@@ -536,15 +559,26 @@ impl Foam {
         let length = f64::from(self.length);
         crate::math::periodic::periodic_bilinear(values, self.n, length, x, z).max(0.0)
     }
+}
 
-    /// Active foam a at undisplaced world (x, z), in [0, 1].
-    pub(crate) fn active_at(&self, x: f64, z: f64) -> f32 {
-        self.interpolate(&self.active, x, z).min(1.0)
-    }
-
-    /// The total foam at undisplaced world (x, z), in [0, 1].
-    #[inline(always)]
-    pub(crate) fn foam_at(&self, x: f64, z: f64) -> f32 {
-        self.interpolate(&self.total, x, z).min(1.0)
+impl Foam {
+    /// The foam at undisplaced world (x, z) with its detail: the coarse fractions a and r
+    /// interpolated bilinearly from the foam grid, placed by the compression of `cascades` ≥ 1
+    /// (the ocean's, whose cascade 0 is the foam's grid) and by the streak field.
+    pub(crate) fn detail_at(&self, cascades: &[Cascade], x: f64, z: f64) -> FoamCoverage {
+        let length = f64::from(self.length);
+        let coarse = |values: &[f32]| {
+            // NaN becomes 0, as the coarse lookup always made it.
+            let v = crate::math::periodic::periodic_bilinear(values, self.n, length, x, z);
+            if v.is_nan() {
+                0.0
+            } else {
+                v.clamp(0.0, 1.0)
+            }
+        };
+        let (a, r) = (coarse(&self.active), coarse(&self.residual));
+        let variance = self.sea.unresolved_compression();
+        let u = self.detail.compression_at(cascades, variance, x, z);
+        self.detail.foam(a, r, u, self.detail.streak_at(x, z))
     }
 }

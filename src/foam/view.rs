@@ -4,6 +4,7 @@
 use super::calibration::FoamCalibration;
 use super::state::Foam;
 use super::FoamCoverage;
+use crate::cascade::Cascade;
 use crate::error::Error;
 
 /// The foam of an ocean, read-only: what
@@ -22,13 +23,26 @@ use crate::error::Error;
 /// let foam = ocean.foam_view();
 /// let here = foam.foam_at(40.0, -12.0)?;            // at rest point (x0, z0) in m
 /// assert!((here.active + here.residual - here.total).abs() < 1e-6);
-/// assert_eq!(here.total, ocean.water().at_rest(40.0, -12.0)?.foam);
+/// let fraction = ocean.water().at_rest(40.0, -12.0)?.foam; // the coarse coverage there
+/// assert!((0.0..=1.0).contains(&here.total) && (0.0..=1.0).contains(&fraction));
 /// assert!(foam.coverage().active > 0.0);            // whitecaps somewhere
 /// # Ok::<(), ocean_fft::Error>(())
 /// ```
 #[derive(Clone, Copy)]
 pub struct FoamView<'a> {
     foam: &'a Foam,
+    /// The ocean's cascades: the finer ones place the foam's detail.
+    cascades: &'a [Cascade],
+    /// The foam the wake window adds, with an ocean's wakes.
+    extra: Option<&'a dyn ExtraFoam>,
+}
+
+/// Foam added to the ocean's at a rest point: the wake window's trail, where the water of
+/// that point lands.
+pub(crate) trait ExtraFoam: Sync {
+    /// The extra foam in [0, 1] at the rest point (`x0`, `z0`) (m, finite), laid over the
+    /// ocean's as residual foam.
+    fn trail_at(&self, x0: f64, z0: f64) -> f32;
 }
 
 impl std::fmt::Debug for FoamView<'_> {
@@ -42,13 +56,21 @@ impl std::fmt::Debug for FoamView<'_> {
 }
 
 impl<'a> FoamView<'a> {
-    /// The view of `foam`.
-    pub(crate) fn new(foam: &'a Foam) -> FoamView<'a> {
-        FoamView { foam }
+    /// The view of `foam` on the ocean of `cascades`, with the `extra` foam of its wakes.
+    pub(crate) fn new(
+        foam: &'a Foam,
+        cascades: &'a [Cascade],
+        extra: Option<&'a dyn ExtraFoam>,
+    ) -> FoamView<'a> {
+        FoamView {
+            foam,
+            cascades,
+            extra,
+        }
     }
 
     /// All foam in [0, 1] — active whitecaps and residual foam together, a + r(1 − a) — on
-    /// the foam grid (the same slice as [`OceanState::foam`](crate::OceanState::foam)).
+    /// the foam grid (the slice a shader gets in cascade 0's texels).
     pub fn total(&self) -> &'a [f32] {
         self.foam.total()
     }
@@ -76,25 +98,35 @@ impl<'a> FoamView<'a> {
     }
 
     /// The foam at the rest (undisplaced) point (`x0`, `z0`) in metres (any finite
-    /// coordinates: the foam grid wraps with cascade 0's period), interpolated bilinearly
-    /// from the foam grid: the active whitecaps a, the residual foam not under them
-    /// r·(1 − a), and all foam ([`total`](Self::total); the same value as
-    /// [`Water::at_rest`](crate::Water::at_rest)'s `foam`), each a fraction of the surface
-    /// there, as [`coverage`](Self::coverage) gives them for the whole ocean. To draw fresh
-    /// whitecaps apart from older foam; for a world point, find its rest point with
-    /// [`Water::locate`](crate::Water::locate) first.
+    /// coordinates), patterned at the finest breaking scale: the active whitecaps a, the
+    /// residual foam not under them r·(1 − a), and all foam, each in [0, 1] — white (1) on
+    /// foam, 0 on water, with soft edges — so that their means over a stretch of sea are the
+    /// fractions of [`coverage`](Self::coverage). Whitecaps lie where the finer cascades
+    /// compress the surface most (their Jacobians), as many as the coarse active foam on the
+    /// foam grid ([`active`](Self::active)) says; residual foam lies in thin streaks along the
+    /// wind, as much as the coarse residual foam says, carried with the water (its wind
+    /// drift, and the orbital motion of the rest point itself) and fading with it
+    /// (docs/theory.md, §15.8). [`Water::at_rest`](crate::Water::at_rest)'s `foam` (and a
+    /// [`Surface`](crate::Surface)'s) is the coarse coverage, the expectation of this
+    /// `total`. To draw fresh whitecaps apart from older foam; for a world point, find its
+    /// rest point with [`Water::locate`](crate::Water::locate) first.
+    /// With [`OceanConfig::wakes`](crate::OceanConfig::wakes), the wake's foam trail where
+    /// that point's water lands is part of the residual foam and of the total (the fields of
+    /// this view are the ocean's alone; the trail's is [`Wakes::foam`](crate::Wakes::foam)).
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn foam_at(&self, x0: f64, z0: f64) -> Result<FoamCoverage, Error> {
         check_point(x0, z0)?;
-        let active = self.foam.active_at(x0, z0);
-        let total = self.foam.foam_at(x0, z0);
-        Ok(FoamCoverage {
-            active,
-            residual: (total - active).max(0.0),
-            total,
-        })
+        let mut foam = self.foam.detail_at(self.cascades, x0, z0);
+        if let Some(extra) = self.extra {
+            let trail = extra.trail_at(x0, z0);
+            if trail > 0.0 {
+                foam.total += trail * (1.0 - foam.total);
+                foam.residual = (foam.total - foam.active).max(0.0);
+            }
+        }
+        Ok(foam)
     }
 
     /// The breaking intensity in 1/s at the rest (undisplaced) point (`x0`, `z0`) in metres

@@ -14,6 +14,7 @@ mod ocean;
 
 use rayon::prelude::*;
 
+pub use crate::foam::FoamStreaks;
 pub use engine::Engine;
 pub use ocean::Textures;
 

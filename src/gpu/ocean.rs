@@ -1,8 +1,11 @@
 //! What a renderer reads from a whole ocean ([`Textures`]): every cascade's texels with the
 //! ocean's foam in cascade 0's, and the sub-grid slope variance for the sun's glitter.
 
-use super::{Sources, TexelLayout};
+use rayon::prelude::*;
+
+use super::{FoamStreaks, Sources, TexelLayout};
 use crate::cascade::Cascade;
+use crate::coast::CoastField;
 use crate::error::{self, Error};
 use crate::ocean::OceanState;
 use crate::spectrum::SlopeVariance;
@@ -98,10 +101,10 @@ impl OceanState {
     }
 }
 
-impl Textures<'_> {
+impl<'a> Textures<'a> {
     /// Packs cascade `cascade` (0 the largest) into interleaved RGBA32F texels of `layout`
     /// (see [`TexelLayout`]), texel (i, j) of that cascade's N×N grid at `out[j * N + i]`.
-    /// The ocean's one foam field lives on cascade 0's grid ([`OceanState::foam`]), so the
+    /// The ocean's one foam field lives on cascade 0's grid ([`FoamView::total`](crate::FoamView::total)), so the
     /// layouts with foam carry it in cascade 0's texels and 0 in every other cascade's (a
     /// shader that sums the foam channels, or combines them as 1 − Π(1 − f), gets the foam).
     /// Copies the values bit for bit. Row blocks in parallel; allocates nothing inside a
@@ -155,13 +158,63 @@ impl Textures<'_> {
             .unwrap_or_default()
     }
 
+    /// Packs the wake window ([`OceanState::wakes`]) into interleaved RGBA32F texels
+    /// `[η, ∂y/∂x, ∂y/∂z, foam]` — the wake's height in metres (y up), its slope
+    /// (dimensionless) and its foam coverage in [0, 1] — texel (i, j) of the window's N×N
+    /// grid at `out[j * N + i]`, for world (x₀ + i·Δ, z₀ + j·Δ) with (x₀, z₀) =
+    /// [`Wakes::origin`](crate::Wakes::origin) and Δ = [`Wakes::spacing`](crate::Wakes::spacing)
+    /// (upload them with the texture; the window
+    /// moves by whole cells). A shader adds the height and slope to the cascades' sums, and
+    /// combines the foam f with the ocean's as f_ocean + f·(1 − f_ocean), as the queries do.
+    /// The texels are zero outside the window: sample with clamp-to-border (or clamp to the
+    /// edge: the wake is faded to zero there). Copies the values bit for bit; rows in
+    /// parallel; allocates nothing inside a rayon pool.
+    ///
+    /// # Errors
+    /// [`Error::NotApplicable`] naming `wakes` without
+    /// [`OceanConfig::wakes`](crate::OceanConfig::wakes); [`Error::LengthMismatch`] naming
+    /// `out` unless `out.len()` is N². Nothing is written then.
+    pub fn pack_wakes(&self, out: &mut [[f32; 4]]) -> Result<(), Error> {
+        let wakes = self.ocean.wakes().ok_or(Error::NotApplicable {
+            name: "wakes",
+            reason: "the ocean was built without `OceanConfig::wakes`",
+        })?;
+        let n = wakes.size();
+        error::length("out", out.len(), n * n)?;
+        let (height, slope, foam) = (wakes.height(), wakes.slope(), wakes.foam());
+        out.par_chunks_mut(n)
+            .zip(height.par_chunks(n))
+            .zip(slope.par_chunks(n).zip(foam.par_chunks(n)))
+            .for_each(|((texels, height), (slope, foam))| {
+                let cells = texels.iter_mut().zip(height).zip(slope.iter().zip(foam));
+                for ((texel, &h), (&[sx, sz], &f)) in cells {
+                    *texel = [h, sx, sz, f];
+                }
+            });
+        Ok(())
+    }
+
+    /// The waves over the ocean's depth map
+    /// ([`OceanState::set_depth_map`](crate::OceanState::set_depth_map); `None` without
+    /// one): the amplitude factor of each cascade and the fraction of breaking waves Q_b at
+    /// each cell of the map, what a renderer uploads as textures over the map. Costs nothing.
+    pub fn coast(&self) -> Option<&'a CoastField> {
+        self.ocean.coast_field()
+    }
+
+    /// The streak field of the foam's detail and where it lies now ([`FoamStreaks`]): the
+    /// texels to upload once, the placement to set each frame. Costs nothing.
+    pub fn foam_streaks(&self) -> FoamStreaks<'a> {
+        self.ocean.foam.streaks()
+    }
+
     /// Checks a pack of cascade `cascade` into a buffer of `len` texels; its sources and N.
     fn sources(&self, cascade: usize, len: usize) -> Result<(Sources<'_>, usize), Error> {
         let cascades = self.ocean.cascades();
         error::index("cascade", cascade, cascades.len())?;
         let c = &cascades[cascade];
         error::length("out", len, c.size() * c.size())?;
-        let foam = (cascade == 0).then(|| self.ocean.foam());
+        let foam = (cascade == 0).then(|| self.ocean.foam.total());
         Ok((Sources::new(c, foam), c.size()))
     }
 }

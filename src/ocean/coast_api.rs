@@ -50,9 +50,9 @@ impl OceanState {
         Ok(())
     }
 
-    /// The waves over the current depth map (`None` without one): the factors per cascade
-    /// and the fraction of breaking waves a renderer uploads as textures over the map.
-    pub fn coast(&self) -> Option<&CoastField> {
+    /// The waves over the current depth map (`None` without one); public as
+    /// [`Textures::coast`](crate::gpu::Textures::coast).
+    pub(crate) fn coast_field(&self) -> Option<&CoastField> {
         self.frames
             .current
             .coast

@@ -8,6 +8,7 @@ use crate::foam::FoamConfig;
 use crate::math::determinism::Determinism;
 use crate::math::grid;
 use crate::query::config::{Interpolation, QueryConfig};
+use crate::wake::WakeConfig;
 
 /// Parameters of an [`OceanState`](crate::OceanState): passive data, validated by
 /// [`OceanState::new`](crate::OceanState::new).
@@ -111,6 +112,13 @@ pub struct OceanConfig {
     /// with it off.
     #[cfg_attr(feature = "serde", serde(default))]
     pub second_order: bool,
+    /// The wake layer (default: `None`, and then nothing of the ocean changes, its bits and
+    /// its cost included): a window of linear waves in which hulls
+    /// ([`OceanState::set_hulls`](crate::OceanState::set_hulls)) make Kelvin wakes that
+    /// every world query includes (see [`WakeConfig`]). Configs saved without it read back
+    /// without wakes.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub wakes: Option<WakeConfig>,
 }
 
 /// The value of a missing `band_split` (with the `serde` feature).
@@ -136,6 +144,7 @@ impl Default for OceanConfig {
             memory_limit: CascadeConfig::DEFAULT_MEMORY_LIMIT,
             determinism: Determinism::SameMachine,
             second_order: false,
+            wakes: None,
         }
     }
 }
@@ -188,7 +197,8 @@ impl OceanConfig {
     /// [`CascadeConfig::validate`] for `size`, each length ([`Error::NotDecreasing`] unless
     /// the lengths strictly decrease), `choppiness`, `k_min`, `k_max` and `repeat_period`;
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for `band_split`; those of
-    /// [`FoamConfig::validate`] and [`QueryConfig::validate`]; [`Error::EmptyBand`] if a
+    /// [`FoamConfig::validate`], [`QueryConfig::validate`] and [`WakeConfig::validate`];
+    /// [`Error::EmptyBand`] if a
     /// cascade's band is empty; [`Error::MemoryLimit`] if the ocean would hold more than
     /// `memory_limit` bytes.
     pub fn validate(&self) -> Result<(), Error> {
@@ -231,6 +241,9 @@ impl OceanConfig {
             )?;
         }
         self.query.validate()?;
+        if let Some(wakes) = &self.wakes {
+            wakes.validate()?;
+        }
         for &(lower, upper) in self.bands_unchecked().iter() {
             if upper <= lower {
                 return Err(Error::EmptyBand {
@@ -265,6 +278,7 @@ impl OceanConfig {
             .saturating_mul(self.lengths.len())
             .saturating_add(foam)
             .saturating_add(second)
+            .saturating_add(self.wakes.as_ref().map_or(0, WakeConfig::memory_bytes))
     }
 
     /// The config of cascade `index` (its length, band, seed and determinism mode).

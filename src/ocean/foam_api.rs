@@ -3,17 +3,16 @@
 //! old foam methods, forwarded for a release.
 
 use crate::error::Error;
+use crate::foam::view::ExtraFoam;
 use crate::foam::{FoamCalibration, FoamCoverage, FoamView};
 
 use super::OceanState;
 
 impl OceanState {
-    /// The foam of the whole ocean in [0, 1] — active whitecaps and residual foam together,
-    /// a + r(1 − a) — on the grid of cascade 0 (the largest): index j·N + i is its grid point
-    /// (i·L/N, j·L/N) in metres, and the field tiles the plane with that cascade's period L.
-    /// Only cascade 0's textures carry foam ([`OceanState::textures`]). The rest of the foam
-    /// (its parts, breaking, coverage, values at a point) is in
-    /// [`foam_view`](Self::foam_view).
+    /// Deprecated: [`FoamView::total`] through [`OceanState::foam_view`] (moved off the
+    /// page to leave room for the coasts, issue 41).
+    #[deprecated(since = "0.4.0", note = "use `ocean.foam_view().total()`")]
+    #[doc(hidden)]
     pub fn foam(&self) -> &[f32] {
         self.foam.total()
     }
@@ -23,7 +22,8 @@ impl OceanState {
     /// [`FoamView`]). Costs nothing.
     #[inline]
     pub fn foam_view(&self) -> FoamView<'_> {
-        FoamView::new(&self.foam)
+        let wakes = self.wake.as_ref().map(|_| self as &dyn ExtraFoam);
+        FoamView::new(&self.foam, &self.cascades, wakes)
     }
 
     /// Deprecated: [`FoamView::active`] through [`OceanState::foam_view`].
@@ -79,5 +79,19 @@ impl OceanState {
     #[doc(hidden)]
     pub fn foam_calibration(&self) -> FoamCalibration {
         self.foam_view().calibration()
+    }
+}
+
+/// The wake's foam trail where the water of a rest point lands (the ocean's displacement
+/// there; the wake moves the water up and down only).
+impl ExtraFoam for OceanState {
+    fn trail_at(&self, x0: f64, z0: f64) -> f32 {
+        let Some(wakes) = self.wakes() else {
+            return 0.0;
+        };
+        self.water().at_rest(x0, z0).map_or(0.0, |sample| {
+            let [dx, dz] = sample.displacement;
+            wakes.foam_at(x0 + f64::from(dx), z0 + f64::from(dz))
+        })
     }
 }

@@ -230,13 +230,17 @@ impl OceanState {
     }
 
     /// Changes the foam's settings while the ocean runs: the whitecaps are calibrated afresh
-    /// for the sea as it is, drift and streaks follow, the foam on the water is kept. A
+    /// for the sea as it is, drift and streaks follow, the wake's foam trail fades with the
+    /// new residual lifetime, the foam on the water is kept. A
     /// change of weather in progress goes on with the new settings. Allocates nothing.
     ///
     /// # Errors
     /// Those of [`FoamConfig::validate`]; nothing changes then.
     pub fn set_foam_config(&mut self, config: FoamConfig) -> Result<(), Error> {
         self.foam.set_config(&config)?;
+        if let Some(wake) = &mut self.wake {
+            wake.set_foam_lifetime(config.residual_decay, self.config.determinism);
+        }
         self.config.foam = config;
         Ok(())
     }

@@ -13,12 +13,14 @@ mod live;
 mod query_api;
 mod snapshot;
 mod time;
+mod wake_api;
 
 use crate::cascade::{Cascade, LoopError};
 use crate::error::{self, Error};
 use crate::foam::Foam;
 use crate::query::frame::{Frame, Frames};
 use crate::spectrum::Spectrum;
+use crate::wake::sim::WakeSim;
 
 pub use config::OceanConfig;
 pub use diagnostics::Diagnostics;
@@ -42,6 +44,8 @@ pub use snapshot::OceanSnapshot;
 ///   breaking, values at a point, coverage, calibration), [`clear_foam`](Self::clear_foam).
 /// - **Buffers and textures**: [`cascades`](Self::cascades) (each cascade's buffers),
 ///   [`textures`](Self::textures) (texels with the foam, the sub-grid slope variance).
+/// - **Wakes** (with [`OceanConfig::wakes`]): [`set_hulls`](Self::set_hulls),
+///   [`set_wake_centre`](Self::set_wake_centre), [`wakes`](Self::wakes).
 /// - **Snapshots**: [`snapshot`](Self::snapshot), [`restore`](Self::restore) (and
 ///   [`OceanSnapshot::capture`] to refill one without allocating).
 /// - **Diagnostics**: [`diagnostics`](Self::diagnostics) (what the grids hold of the sea, the
@@ -82,6 +86,8 @@ pub struct OceanState {
     pub(crate) applied_choppiness: f32,
     /// A change of weather in progress ([`OceanState::set_spectrum`]).
     pub(crate) change: Option<live::Change>,
+    /// The wake layer ([`OceanConfig::wakes`]); its buffers live in the current frame.
+    pub(crate) wake: Option<WakeSim>,
 }
 
 impl OceanState {
@@ -121,7 +127,23 @@ impl OceanState {
             }
         }
         let foam = Foam::new(&mut cascades, &config.foam, &spectrum)?;
-        let frame = Frame::new(config.query, config.determinism, &cascades, &foam, 0.0)?;
+        let mut frame = Frame::new(config.query, config.determinism, &cascades, &foam, 0.0)?;
+        let wake = match &config.wakes {
+            Some(wakes) => {
+                let sim = WakeSim::new(
+                    wakes,
+                    spectrum.dispersion(),
+                    config.determinism,
+                    0.0,
+                    config.foam.residual_decay,
+                )?;
+                let mut output = sim.new_output()?;
+                sim.write(&mut output, 0.0);
+                frame.wake = Some(output);
+                Some(sim)
+            }
+            None => None,
+        };
         let frames = Frames::new(frame);
         Ok(OceanState {
             spectrum,
@@ -132,6 +154,7 @@ impl OceanState {
             frames,
             time: 0.0,
             change: None,
+            wake,
         })
     }
 
@@ -141,6 +164,7 @@ impl OceanState {
         self.foam.clear();
         // Handles taken before keep the foam they saw.
         self.frames.advance(self.time, self.config.query);
+        self.write_wake();
     }
 
     /// Simulated time in seconds.

@@ -13,12 +13,12 @@ use super::OceanState;
 /// follows from these, so [`OceanState::restore`] brings an ocean back to exactly the bits it
 /// had when the snapshot was taken, and it then steps to the same bits as the original did.
 ///
-/// A snapshot holds 8 bytes per point of the foam grid (cascade 0's N×N). Take one with
-/// [`OceanState::snapshot`], or refill one without allocating with
-/// [`capture`](Self::capture). With the `serde` feature it can be saved and loaded; a
-/// loaded snapshot is checked when it is restored. For a restore that is bit-exact, the format
-/// must read numbers back exactly: binary formats do, and so does `serde_json` with its
-/// `float_roundtrip` feature (its default parser may be one ulp off).
+/// A snapshot holds 8 bytes per point of the foam grid (cascade 0's N×N) and the drift of
+/// the foam's streaks. Take one with [`OceanState::snapshot`], or refill one without
+/// allocating with [`capture`](Self::capture). With the `serde` feature it can be saved and
+/// loaded; a loaded snapshot is checked when it is restored. For a restore that is bit-exact,
+/// the format must read numbers back exactly: binary formats do, and so does `serde_json`
+/// with its `float_roundtrip` feature (its default parser may be one ulp off).
 ///
 /// ```
 /// use ocean_fft::{OceanConfig, OceanState, Spectrum};
@@ -47,6 +47,10 @@ pub struct OceanSnapshot {
     active: Vec<f32>,
     /// Residual foam on the foam grid.
     residual: Vec<f32>,
+    /// How far the foam's streak field has drifted, `[x, z]` m (absent from snapshots saved
+    /// before 0.4: 0).
+    #[cfg_attr(feature = "serde", serde(default))]
+    foam_drift: [f64; 2],
 }
 
 impl OceanSnapshot {
@@ -66,6 +70,7 @@ impl OceanSnapshot {
         self.active.extend_from_slice(ocean.foam.active());
         self.residual.clear();
         self.residual.extend_from_slice(ocean.foam.residual());
+        self.foam_drift = ocean.foam.drift_offset();
     }
 }
 
@@ -79,6 +84,7 @@ impl OceanState {
             applied_choppiness: 0.0,
             active: Vec::new(),
             residual: Vec::new(),
+            foam_drift: [0.0; 2],
         };
         snapshot.capture(self);
         snapshot
@@ -100,7 +106,9 @@ impl OceanState {
     /// snapshot comes from an ocean with another foam grid; for a snapshot loaded from a file,
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for a time beyond
     /// [`Cascade::MAX_TIME`](crate::Cascade::MAX_TIME) or a foam value outside [0, 1], and the
-    /// errors of [`set_choppiness`](Self::set_choppiness). Nothing changes then.
+    /// errors of [`set_choppiness`](Self::set_choppiness); [`Error::NonFinite`] naming
+    /// `snapshot.foam_drift` for a drift of the foam's streaks that is not finite. Nothing
+    /// changes then.
     pub fn restore(&mut self, snapshot: &OceanSnapshot) -> Result<(), Error> {
         self.foam.check_state(
             ("snapshot.active", &snapshot.active),
@@ -109,7 +117,13 @@ impl OceanState {
         let t = check_time("snapshot.time", snapshot.time)?;
         self.check_choppiness(snapshot.applied_choppiness)?;
         self.check_choppiness(snapshot.choppiness)?;
+        if snapshot.foam_drift.iter().any(|v| !v.is_finite()) {
+            return Err(Error::NonFinite {
+                name: "snapshot.foam_drift",
+            });
+        }
         self.foam.set_state(&snapshot.active, &snapshot.residual);
+        self.foam.set_drift_offset(snapshot.foam_drift);
         // The buffers as they were (with the choppiness they were computed with), then the
         // choppiness set since, for the next update.
         self.set_choppiness_checked(snapshot.applied_choppiness);

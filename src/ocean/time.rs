@@ -122,7 +122,7 @@ impl OceanState {
     /// other.step(3.0)?;
     /// other.set_time(100.0)?;
     /// other.pre_roll(20.0, 0.05)?;
-    /// assert_eq!(ocean.foam(), other.foam());
+    /// assert_eq!(ocean.foam_view().total(), other.foam_view().total());
     /// # Ok::<(), ocean_fft::Error>(())
     /// ```
     ///
@@ -173,8 +173,15 @@ impl OceanState {
                 FoamMotion::Jump => self.foam.refresh(),
                 FoamMotion::Keep => {}
             }
+            if let Some(wake) = &mut self.wake {
+                match (foam, scope) {
+                    (FoamMotion::Integrate(_), Scope::All) => wake.advance(t),
+                    _ => wake.jump(t),
+                }
+            }
             self.time = t;
             self.frames.advance(t, self.config.query);
+            self.write_wake();
         });
     }
 

@@ -116,6 +116,7 @@ pub(crate) fn sample_rows(
                 let points: [[f64; 2]; lanes::LANES] =
                     std::array::from_fn(|c| [x + (first + c) as f64 * spacing, z]);
                 run_batch(simd, fields, &points[..out.len()], out, &query);
+                query.add_wakes(fields, &points[..out.len()], out);
             }
         });
 }
@@ -138,8 +139,10 @@ pub(crate) fn for_each_point<Q: PointQuery>(
 ) {
     let simd = fields.frame().simd;
     let query = &query;
-    let chunk =
-        |out: &mut [Q::Output], points: &[[f64; 2]]| run_batch(simd, fields, points, out, query);
+    let chunk = |out: &mut [Q::Output], points: &[[f64; 2]]| {
+        run_batch(simd, fields, points, out, query);
+        query.add_wakes(fields, points, out);
+    };
     if points.len() < PARALLEL_BATCH {
         chunk(out, points);
     } else {

@@ -14,6 +14,7 @@ use crate::foam::Foam;
 use crate::math::determinism::Determinism;
 use crate::math::periodic::{cell_on, periodic_bilinear, Period};
 use crate::math::simd::Simd;
+use crate::wake::Wakes;
 
 /// One cascade's part of a frame.
 #[derive(Debug, Clone)]
@@ -50,6 +51,9 @@ pub(crate) struct Frame {
     foam_length: f32,
     /// The depth map's factors the queries scale the cascades by (none: the open sea).
     pub(crate) coast: Option<Coast>,
+    /// The wake window's buffers at this frame's time (`None` without wakes): the ocean
+    /// writes them after each move in time, and the queries add them.
+    pub(crate) wake: Option<Wakes>,
 }
 
 impl Frame {
@@ -91,6 +95,7 @@ impl Frame {
             foam_n: foam.n,
             foam_length: foam.length,
             coast: None,
+            wake: None,
         })
     }
 

@@ -6,9 +6,10 @@ use super::inversion::{
     evaluate_group, height_at, locate, located_group, sample, surface_at, surface_sample, GROUP,
 };
 use super::lanes::{self, Shuffle};
-use super::results::{Location, SurfaceSample};
+use super::results::{surface, Location, SurfaceSample};
 use crate::error::Error;
 use crate::math::simd::Kernel;
+use crate::wake::Wakes;
 
 /// Checks a world point: both coordinates finite (any finite value: the cascades wrap).
 pub(crate) fn check_point(x: f64, z: f64) -> Result<(), Error> {
@@ -26,6 +27,23 @@ pub(crate) fn check_point(x: f64, z: f64) -> Result<(), Error> {
 pub(crate) trait PointQuery: Sync {
     type Output: Send;
     fn at(&self, fields: &Fields<'_>, x: f64, z: f64) -> Self::Output;
+
+    /// Adds the wake window's `wakes` to `out`, the answer at world (x, z) (nothing by
+    /// default: a [`Location`] has no wake).
+    #[inline(always)]
+    fn add_wake(&self, wakes: &Wakes, x: f64, z: f64, out: &mut Self::Output) {
+        let _ = (wakes, x, z, out);
+    }
+
+    /// [`PointQuery::add_wake`] of each of `points` to `out`, if the frame has a wake.
+    #[inline(always)]
+    fn add_wakes(&self, fields: &Fields<'_>, points: &[[f64; 2]], out: &mut [Self::Output]) {
+        if let Some(wakes) = &fields.frame().wake {
+            for (value, &[x, z]) in out.iter_mut().zip(points) {
+                self.add_wake(wakes, x, z, value);
+            }
+        }
+    }
 
     /// [`PointQuery::at`] of each of `points` (at most [`GROUP`]) into `out`, with the same
     /// bits; the queries that read the spline interleave the points (see [`located_group`]).
@@ -99,6 +117,16 @@ impl PointQuery for Sample {
         sample(fields, x, z, self.0.clone())
     }
 
+    /// The wake where the water of the undisplaced point (x, z) lands (with cascade 0, which
+    /// carries the wake as it carries the foam).
+    #[inline(always)]
+    fn add_wake(&self, wakes: &Wakes, x: f64, z: f64, out: &mut SurfaceSample) {
+        if self.0.start == 0 && !self.0.is_empty() {
+            let [dx, dz] = out.displacement;
+            add_wake_to(wakes, x + f64::from(dx), z + f64::from(dz), out);
+        }
+    }
+
     #[inline(always)]
     fn group(&self, fields: &Fields<'_>, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
         let sums =
@@ -145,6 +173,11 @@ impl PointQuery for SurfaceAt {
     }
 
     #[inline(always)]
+    fn add_wake(&self, wakes: &Wakes, x: f64, z: f64, out: &mut SurfaceSample) {
+        add_wake_to(wakes, x, z, out);
+    }
+
+    #[inline(always)]
     fn group(&self, fields: &Fields<'_>, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
         let (searches, sums) = located_group::<true>(fields, points);
         for ((value, sum), search) in out.iter_mut().zip(&sums).zip(&searches) {
@@ -179,6 +212,11 @@ impl PointQuery for HeightAt {
     }
 
     #[inline(always)]
+    fn add_wake(&self, wakes: &Wakes, x: f64, z: f64, out: &mut f32) {
+        *out += wakes.at(x, z).0;
+    }
+
+    #[inline(always)]
     fn group(&self, fields: &Fields<'_>, points: &[[f64; 2]], out: &mut [f32]) {
         let (_, sums) = located_group::<false>(fields, points);
         for (value, sum) in out.iter_mut().zip(&sums) {
@@ -208,17 +246,36 @@ impl PointQuery for HeightAt {
 /// query and a [`Surface`](super::surface::Surface)'s share one compiled copy.
 #[inline(never)]
 pub(crate) fn run<Q: PointQuery>(fields: &Fields<'_>, query: Q, x: f64, z: f64) -> Q::Output {
-    fields.frame().simd.run_kernel(One {
+    let frame = fields.frame();
+    let mut out = frame.simd.run_kernel(One {
         fields,
-        query,
+        query: &query,
         point: [x, z],
-    })
+    });
+    if let Some(wakes) = &frame.wake {
+        query.add_wake(wakes, x, z, &mut out);
+    }
+    out
+}
+
+/// Adds the wake at world (x, z) to a surface sample: its height, its slope, the normal of
+/// the summed slope, and its foam w over the ocean's f as f + w·(1 − f) (unchanged outside
+/// the window).
+#[inline(always)]
+pub(crate) fn add_wake_to(wakes: &Wakes, x: f64, z: f64, out: &mut SurfaceSample) {
+    let (height, slope, foam) = wakes.sample(x, z);
+    if height == 0.0 && slope == [0.0; 2] && foam == 0.0 {
+        return;
+    }
+    let slope = [out.slope[0] + slope[0], out.slope[1] + slope[1]];
+    let foam = out.foam + foam * (1.0 - out.foam);
+    *out = surface(out.height + height, out.displacement, slope, foam);
 }
 
 /// One point's query, as a [`Kernel`].
 struct One<'a, Q> {
     fields: &'a Fields<'a>,
-    query: Q,
+    query: &'a Q,
     point: [f64; 2],
 }
 
