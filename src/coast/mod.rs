@@ -5,11 +5,13 @@
 
 use std::sync::Arc;
 
-use crate::cascade::Cascade;
+use crate::cascade::MAX_CASCADES;
 use crate::error::{self, Error};
-use crate::math::determinism::{with_math, Determinism, Math};
-use crate::spectrum::dispersion::Dispersion;
-use crate::spectrum::Spectrum;
+
+mod solve;
+
+pub use solve::breaker_index;
+pub(crate) use solve::solve;
 
 /// The water depth over a rectangle of the world: what
 /// [`OceanState::set_depth_map`](crate::OceanState::set_depth_map) takes.
@@ -78,17 +80,21 @@ impl DepthMap {
 
     /// The map's bilinear weights at world (x, z): the cell (i, j) below-left of it and the
     /// fractions (fx, fz), or `None` outside the map.
-    fn cell(&self, x: f64, z: f64) -> Option<(usize, usize, f32, f32)> {
-        let spacing = f64::from(self.spacing);
-        let gx = (x - self.origin[0]) / spacing;
-        let gz = (z - self.origin[1]) / spacing;
+    /// `inverse` is 1/`spacing` (a product is cheaper than a quotient, and the queries ask
+    /// at every point).
+    #[inline]
+    fn cell(&self, x: f64, z: f64, inverse: f64) -> Option<(usize, usize, f32, f32)> {
+        let gx = (x - self.origin[0]) * inverse;
+        let gz = (z - self.origin[1]) * inverse;
         let (nx, nz) = ((self.size[0] - 1) as f64, (self.size[1] - 1) as f64);
         if !(0.0..=nx).contains(&gx) || !(0.0..=nz).contains(&gz) {
             return None;
         }
-        // The last row and column use the cell before them, at fraction 1.
-        let i = (gx.floor() as usize).min(self.size[0] - 2);
-        let j = (gz.floor() as usize).min(self.size[1] - 2);
+        // The last row and column use the cell before them, at fraction 1. (gx, gz ≥ 0
+        // here: the cast truncates as `floor` would, without its call on a CPU without
+        // SSE4.1.)
+        let i = (gx as usize).min(self.size[0] - 2);
+        let j = (gz as usize).min(self.size[1] - 2);
         Some((i, j, (gx - i as f64) as f32, (gz - j as f64) as f32))
     }
 }
@@ -100,21 +106,6 @@ pub const EDGE_RAMP_CELLS: usize = 8;
 /// Simulated seconds over which a replaced map's factors blend into the new map's.
 pub const BLEND_SECONDS: f64 = 2.0;
 
-/// Breaker index γ of H_max = 0.88/k · tanh(γ k d / 0.88) at the peak wave number k and
-/// depth d: γ = 0.29 + 0.76 k d, fitted by Ruessink, Walstra & Southgate (2003) to field
-/// data of random waves breaking on beaches (a constant γ = 0.73, Battjes & Stive 1985,
-/// keeps the inner surf zone of a gentle beach too high: H_s/d near 0.8 under a swell).
-pub fn breaker_index(k: f64, d: f64) -> f64 {
-    0.29 + 0.76 * k * d
-}
-
-/// Battjes & Janssen's (1978) dissipation coefficient α (order one, their value).
-const ALPHA: f64 = 1.0;
-
-/// Shallowest depth in metres the march evaluates the dispersion at (a wet cell shallower
-/// than this is treated as this deep; it keeps the group velocity finite and positive).
-const MIN_DEPTH: f64 = 0.05;
-
 /// The waves over one depth map: the amplitude factor of each cascade and the fraction of
 /// breaking waves Q_b at each cell of the map (see docs/theory.md, "Coasts"). What a
 /// renderer uploads as a texture over the map: [`factors`](Self::factors) holds, cell after
@@ -122,6 +113,8 @@ const MIN_DEPTH: f64 = 0.05;
 #[derive(Debug, Clone)]
 pub struct CoastField {
     map: DepthMap,
+    /// 1/`map.spacing` in 1/m.
+    inverse: f64,
     cascades: usize,
     factors: Vec<f32>,
     breaking: Vec<f32>,
@@ -163,6 +156,31 @@ impl CoastField {
         self.bilinear(x, z, 1.0, |cell| self.factors[cell * self.cascades + c])
     }
 
+    /// The factor of every cascade at world (x, z) into `out` (bilinear between cells, 1
+    /// outside the map; entries past [`cascade_count`](Self::cascade_count) untouched):
+    /// [`factor`](Self::factor)'s values, the cell found once for all cascades.
+    #[inline]
+    fn factors_into(&self, x: f64, z: f64, out: &mut Factors) {
+        let count = self.cascades.min(MAX_CASCADES);
+        match self.map.cell(x, z, self.inverse) {
+            Some((i, j, fx, fz)) => {
+                // The four corners' factors, each `count` contiguous values: bilerp's
+                // operations, one bounds check.
+                let (stride, row) = (self.cascades, self.map.size[0] * self.cascades);
+                let start = (j * self.map.size[0] + i) * stride;
+                let f = &self.factors[start..start + row + 2 * stride];
+                for (c, out) in out[..count].iter_mut().enumerate() {
+                    let (a, b) = (f[c], f[stride + c]);
+                    let (d, e) = (f[row + c], f[row + stride + c]);
+                    let bottom = a + (b - a) * fx;
+                    let top = d + (e - d) * fx;
+                    *out = bottom + (top - bottom) * fz;
+                }
+            }
+            None => out[..count].fill(1.0),
+        }
+    }
+
     /// Q_b at world (x, z), 0 outside the map.
     #[inline]
     pub(crate) fn breaking_at(&self, x: f64, z: f64) -> f32 {
@@ -173,13 +191,13 @@ impl CoastField {
     pub(crate) fn depth_at(&self, x: f64, z: f64) -> Option<f32> {
         let depth = &self.map.depth;
         self.map
-            .cell(x, z)
+            .cell(x, z, self.inverse)
             .map(|(i, j, fx, fz)| bilerp(|cell| depth[cell], self.map.size[0], i, j, fx, fz))
     }
 
     #[inline]
     fn bilinear(&self, x: f64, z: f64, outside: f32, value: impl Fn(usize) -> f32) -> f32 {
-        match self.map.cell(x, z) {
+        match self.map.cell(x, z, self.inverse) {
             Some((i, j, fx, fz)) => bilerp(value, self.map.size[0], i, j, fx, fz),
             None => outside,
         }
@@ -193,6 +211,9 @@ fn bilerp(value: impl Fn(usize) -> f32, nx: usize, i: usize, j: usize, fx: f32, 
     let top = value(c + nx) + (value(c + nx + 1) - value(c + nx)) * fx;
     bottom + (top - bottom) * fz
 }
+
+/// The coast's factor of each cascade at one point (no unit; 1 for the open sea).
+pub(crate) type Factors = [f32; MAX_CASCADES];
 
 /// The coast the queries read: the current field, and while a map is being replaced the
 /// one before it, blended over [`BLEND_SECONDS`] from `start`.
@@ -235,6 +256,58 @@ impl Coast {
         old + (new - old) * w
     }
 
+    /// The factors of all cascades at world (x, z) and time `t` (1 for a cascade the
+    /// fields have no factor for): [`Coast::factor`] of each, with the same bits, the map's
+    /// cell found once.
+    #[inline]
+    pub(crate) fn factors(&self, t: f64, x: f64, z: f64) -> Factors {
+        let [factors] = self.factors_many(t, &[x], &[z]);
+        factors
+    }
+
+    /// [`Coast::factors`] at N points (`x[p]`, `z[p]`): each point's the same operations, so the
+    /// same bits, the blend's weight found once. Out of line: the queries call it once per
+    /// point (or eight in lanes) and evaluation, from every SIMD level and field
+    /// combination, and it holds no vector work worth a copy each.
+    #[inline(never)]
+    pub(crate) fn factors_many<const N: usize>(
+        &self,
+        t: f64,
+        x: &[f64; N],
+        z: &[f64; N],
+    ) -> [Factors; N] {
+        let mut new = [[1.0; MAX_CASCADES]; N];
+        if let Some(field) = self.current.as_deref() {
+            for p in 0..N {
+                field.factors_into(x[p], z[p], &mut new[p]);
+            }
+        }
+        let w = self.weight(t);
+        if w >= 1.0 {
+            return new;
+        }
+        for p in 0..N {
+            let mut old = [1.0; MAX_CASCADES];
+            if let Some(field) = self.previous.as_deref() {
+                field.factors_into(x[p], z[p], &mut old);
+            }
+            for (new, old) in new[p].iter_mut().zip(old) {
+                *new = old + (*new - old) * w;
+            }
+        }
+        new
+    }
+
+    /// The foam coverage `foam` (in [0, 1]) of the open sea at world (x, z) and time `t`
+    /// over the coast: the whitecaps fade where the waves die (land, shelter: cascade 0's
+    /// factor below 1), and the surf adds the fraction of waves breaking on the bottom.
+    #[inline(never)]
+    #[allow(clippy::manual_clamp)]
+    pub(crate) fn foam(&self, t: f64, x: f64, z: f64, foam: f32) -> f32 {
+        let open = self.factor(t, 0, x, z).min(1.0);
+        (foam * open).max(self.breaking(t, x, z)).min(1.0)
+    }
+
     /// The factor of cascade `c` at world (x, z) and time `t`.
     #[inline]
     pub(crate) fn factor(&self, t: f64, c: usize, x: f64, z: f64) -> f32 {
@@ -245,321 +318,5 @@ impl Coast {
     #[inline]
     pub(crate) fn breaking(&self, t: f64, x: f64, z: f64) -> f32 {
         self.blend(t, 0.0, |field| field.breaking_at(x, z))
-    }
-}
-
-/// What the march needs of one cascade's band: its variance (m²) and its energy-weighted
-/// mean angular frequency (rad/s).
-#[derive(Debug, Clone, Copy)]
-struct Band {
-    variance: f64,
-    omega: f64,
-}
-
-/// Group velocity in m/s of waves of angular frequency `omega` under `dispersion`.
-fn group_velocity<M: Math>(dispersion: &Dispersion, omega: f64) -> f64 {
-    let k = dispersion.k_from_omega_with::<M>(omega);
-    dispersion.d_omega_dk_with::<M>(k)
-}
-
-/// The ocean's dispersion law at depth `depth` (m).
-fn at_depth(dispersion: Dispersion, depth: f64) -> Dispersion {
-    let depth = depth.max(MIN_DEPTH) as f32;
-    match dispersion {
-        Dispersion::Capillary { .. } => Dispersion::Capillary { depth },
-        _ => Dispersion::FiniteDepth { depth },
-    }
-}
-
-/// Battjes & Janssen's (1978) fraction of breaking waves Q_b for b = H_rms/H_max: the root
-/// of (1 − Q)/(−ln Q) = b² (1 for b ≥ 1), by bisection on ln Q.
-pub(crate) fn breaking_fraction<M: Math>(b: f64) -> f64 {
-    if b.is_nan() || b <= 0.0 {
-        return 0.0;
-    }
-    if b >= 1.0 {
-        return 1.0;
-    }
-    let b2 = b * b;
-    // g(Q) = (1 − Q) + b² ln Q rises from −∞ at 0 to 0 at Q = 1 through one root below 1.
-    let (mut lo, mut hi) = (-60.0_f64, 0.0_f64);
-    for _ in 0..80 {
-        let mid = 0.5 * (lo + hi);
-        let q = M::exp(mid);
-        if (1.0 - q) + b2 * mid < 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    M::exp(lo)
-}
-
-/// Battjes & Janssen's largest wave height in metres at depth `d` (m) for the peak wave
-/// number `k` (rad/m): H_max = 0.88/k · tanh(γ k d / 0.88), γ of [`breaker_index`].
-pub(crate) fn max_height<M: Math>(k: f64, d: f64) -> f64 {
-    0.88 / k * M::tanh(breaker_index(k, d) * k * d / 0.88)
-}
-
-/// The march's state at one cell: the energy of each band relative to the open sea's, and
-/// the depth (m) it was reached at.
-#[derive(Debug, Clone)]
-struct State {
-    energy: Vec<f64>,
-    depth: f64,
-}
-
-/// Solves the waves of `cascades` (drawn from `spectrum`) over `map` (validated), with the
-/// transcendental functions of `determinism`.
-pub(crate) fn solve(
-    map: DepthMap,
-    spectrum: &Spectrum,
-    cascades: &[Cascade],
-    determinism: Determinism,
-) -> Result<CoastField, Error> {
-    with_math!(determinism, M => solve_with::<M>(map, spectrum, cascades))
-}
-
-fn solve_with<M: Math>(
-    map: DepthMap,
-    spectrum: &Spectrum,
-    cascades: &[Cascade],
-) -> Result<CoastField, Error> {
-    let dispersion = spectrum.dispersion();
-    let (bands, direction) = bands::<M>(cascades, &dispersion);
-    let count = bands.len();
-    let [nx, nz] = map.size;
-    let cells = nx * nz;
-    let mut factors = error::try_vec(cells * count, 0.0_f32)?;
-    let mut breaking = error::try_vec(cells, 0.0_f32)?;
-    let mut energy = error::try_vec(cells * count, 0.0_f64)?;
-    let omega_peak = f64::from(spectrum.peak_omega());
-    let f_peak = omega_peak / std::f64::consts::TAU;
-    let open_depth = match dispersion {
-        Dispersion::Deep => f64::INFINITY,
-        Dispersion::FiniteDepth { depth } | Dispersion::Capillary { depth } => f64::from(depth),
-    };
-    // The open sea's group velocity of each band: the flux the waves bring into the map.
-    let open: Vec<f64> = bands
-        .iter()
-        .map(|b| group_velocity::<M>(&dispersion, b.omega))
-        .collect();
-    let (ux, uz) = (M::cos(direction), M::sin(direction));
-    let (si, sj) = (
-        if ux >= 0.0 { 1isize } else { -1 },
-        if uz >= 0.0 { 1isize } else { -1 },
-    );
-    let (a, b) = (ux.abs(), uz.abs());
-    let spacing = f64::from(map.spacing);
-    let at = |i: isize, j: isize| -> Option<usize> {
-        (i >= 0 && j >= 0 && (i as usize) < nx && (j as usize) < nz)
-            .then(|| j as usize * nx + i as usize)
-    };
-    let mut upstream = State {
-        energy: vec![0.0; count],
-        depth: 0.0,
-    };
-    let mut shoaled = vec![0.0; count];
-    for jj in 0..nz as isize {
-        let j = if sj > 0 { jj } else { nz as isize - 1 - jj };
-        for ii in 0..nx as isize {
-            let i = if si > 0 { ii } else { nx as isize - 1 - ii };
-            let cell = j as usize * nx + i as usize;
-            let depth = f64::from(map.depth[cell]);
-            if depth <= 0.0 {
-                continue; // land: no waves, nothing carried on
-            }
-            // The ray back from this cell along −u crosses the column i − si (if a ≥ b) or
-            // the row j − sj; the state there is interpolated between the two cells on it.
-            let (near, far, t, length) = if a >= b {
-                (at(i - si, j), at(i - si, j - sj), b / a, spacing / a)
-            } else {
-                (at(i, j - sj), at(i - si, j - sj), a / b, spacing / b)
-            };
-            let mut depth_up = 0.0;
-            for (k, e) in upstream.energy.iter_mut().enumerate() {
-                let value = |c: Option<usize>| c.map_or(1.0, |c| energy[c * count + k]);
-                *e = value(near) * (1.0 - t) + value(far) * t;
-            }
-            for (c, w) in [(near, 1.0 - t), (far, t)] {
-                // Skipped at weight 0: the open sea's depth may be infinite.
-                if w > 0.0 {
-                    depth_up += w * c.map_or(open_depth, |c| f64::from(map.depth[c]));
-                }
-            }
-            upstream.depth = depth_up;
-            let q = march::<M>(
-                &upstream,
-                depth,
-                length,
-                &bands,
-                &open,
-                &dispersion,
-                omega_peak,
-                f_peak,
-                &mut shoaled,
-            );
-            energy[cell * count..][..count].copy_from_slice(&shoaled);
-            breaking[cell] = q as f32;
-        }
-    }
-    for j in 0..nz {
-        for i in 0..nx {
-            let cell = j * nx + i;
-            let wet = map.depth[cell] > 0.0;
-            let edge = i.min(j).min(nx - 1 - i).min(nz - 1 - j);
-            let w = (edge as f64 / EDGE_RAMP_CELLS as f64).min(1.0);
-            let w = w * w * (3.0 - 2.0 * w);
-            for k in 0..count {
-                let f = energy[cell * count + k].sqrt();
-                factors[cell * count + k] = if wet {
-                    (1.0 + (f - 1.0) * w) as f32
-                } else {
-                    0.0
-                };
-            }
-            breaking[cell] = (f64::from(breaking[cell]) * w) as f32;
-        }
-    }
-    Ok(CoastField {
-        map,
-        cascades: count,
-        factors,
-        breaking,
-        direction: direction as f32,
-    })
-}
-
-/// One step of the march from the `upstream` state to a cell `depth` m deep, `length` m
-/// downstream: linear shoaling (the energy flux E c_g of each band kept) and Battjes &
-/// Janssen's dissipation, shared among the bands in proportion to their energy, over
-/// sub-steps of at most 2 m. Writes the bands' energies to `out`, returns Q_b at the cell.
-#[allow(clippy::too_many_arguments)]
-fn march<M: Math>(
-    upstream: &State,
-    depth: f64,
-    length: f64,
-    bands: &[Band],
-    open: &[f64],
-    dispersion: &Dispersion,
-    omega_peak: f64,
-    f_peak: f64,
-    out: &mut [f64],
-) -> f64 {
-    out.copy_from_slice(&upstream.energy);
-    let steps = (length / 2.0).ceil().clamp(1.0, 16.0) as usize;
-    let ds = length / steps as f64;
-    let group = |band: &Band, open: f64, d: f64| {
-        if d.is_infinite() {
-            open
-        } else {
-            group_velocity::<M>(&at_depth(*dispersion, d), band.omega)
-        }
-    };
-    let mut before: Vec<f64> = bands
-        .iter()
-        .zip(open)
-        .map(|(band, &open)| group(band, open, upstream.depth.max(MIN_DEPTH)))
-        .collect();
-    let start = if upstream.depth.is_finite() {
-        upstream.depth.max(MIN_DEPTH)
-    } else {
-        depth.max(MIN_DEPTH)
-    };
-    let mut q = 0.0;
-    for s in 1..=steps {
-        let d = (start + (depth - start) * s as f64 / steps as f64).max(MIN_DEPTH);
-        let mut variance = 0.0;
-        for (k, band) in bands.iter().enumerate() {
-            let cg = group(band, open[k], d);
-            out[k] *= before[k] / cg;
-            before[k] = cg;
-            variance += out[k] * band.variance;
-        }
-        let h_rms2 = 8.0 * variance;
-        if h_rms2 <= 0.0 {
-            continue;
-        }
-        let kp = at_depth(*dispersion, d).k_from_omega_with::<M>(omega_peak);
-        let h_max = max_height::<M>(kp, d);
-        q = breaking_fraction::<M>(h_rms2.sqrt() / h_max);
-        // D/E = (α/4) f_p Q_b H_max² / (H_rms²/8): the same relative loss rate for every band.
-        let rate = 2.0 * ALPHA * f_peak * q * h_max * h_max / h_rms2;
-        for (k, e) in out.iter_mut().enumerate() {
-            *e *= M::exp(-rate * ds / before[k]);
-        }
-    }
-    q
-}
-
-/// Each cascade's band (variance, mean frequency from its h0) and the mean direction the
-/// waves travel toward (radians), energy-weighted over every cascade.
-fn bands<M: Math>(cascades: &[Cascade], dispersion: &Dispersion) -> (Vec<Band>, f64) {
-    let (mut sx, mut sz) = (0.0_f64, 0.0_f64);
-    let bands = cascades
-        .iter()
-        .map(|cascade| {
-            let n = cascade.size();
-            let dk = f64::from(cascade.delta_k());
-            let (mut total, mut weighted) = (0.0_f64, 0.0_f64);
-            for (index, h) in cascade.h0().iter().enumerate() {
-                let w = f64::from(h.norm_sqr());
-                if w == 0.0 {
-                    continue;
-                }
-                let m = |i: usize| {
-                    if i < n / 2 {
-                        i as f64
-                    } else {
-                        i as f64 - n as f64
-                    }
-                };
-                let (kx, kz) = (m(index % n) * dk, m(index / n) * dk);
-                let k = M::hypot(kx, kz);
-                total += w;
-                weighted += w * dispersion.omega_with::<M>(k);
-                sx += w * kx / k;
-                sz += w * kz / k;
-            }
-            let omega = if total > 0.0 {
-                weighted / total
-            } else {
-                dispersion.omega_with::<M>(dk * n as f64 / 4.0)
-            };
-            Band {
-                variance: cascade.expected_variance(),
-                omega,
-            }
-        })
-        .collect();
-    (bands, M::atan2(sz, sx))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::math::determinism::Std;
-
-    /// Q_b solves (1 − Q)/(−ln Q) = b²: put the root back into the relation.
-    #[test]
-    fn breaking_fraction_solves_its_relation() {
-        for b in [0.2, 0.4, 0.6, 0.8, 0.95, 0.999] {
-            let q = breaking_fraction::<Std>(b);
-            assert!(q > 0.0 && q < 1.0, "{b}: {q}");
-            let back = (1.0 - q) / (-Std::ln(q));
-            // Bisection to 2⁻⁸⁰ of 60 in ln Q: far below 1e-9 relative.
-            assert!((back - b * b).abs() < 1e-9 * b * b, "{b}: {back}");
-        }
-        assert_eq!(breaking_fraction::<Std>(1.2), 1.0);
-        assert_eq!(breaking_fraction::<Std>(0.0), 0.0);
-    }
-
-    /// H_max tends to γ d in shallow water (tanh x ≈ x) and to 0.88/k in deep water.
-    #[test]
-    fn max_height_limits() {
-        let (k, d) = (1e-3, 1.0);
-        let gamma = breaker_index(k, d);
-        assert!((max_height::<Std>(k, d) / (gamma * d) - 1.0).abs() < 1e-6);
-        assert!((max_height::<Std>(1.0, 100.0) / 0.88 - 1.0).abs() < 1e-12);
     }
 }

@@ -187,13 +187,7 @@ impl Fields<'_> {
         let foam = periodic_bilinear(values, n, length, x, z).max(0.0).min(1.0);
         match &self.frame().coast {
             None => foam,
-            Some(coast) => {
-                // Whitecaps fade where the waves die (land, shelter); the surf adds the
-                // fraction of waves breaking on the bottom.
-                let t = self.frame().time;
-                let open = coast.factor(t, 0, x, z).min(1.0);
-                (foam * open).max(coast.breaking(t, x, z)).min(1.0)
-            }
+            Some(coast) => coast.foam(self.frame().time, x, z, foam),
         }
     }
 

@@ -3,7 +3,8 @@
 
 use super::frame::Fields;
 use super::inversion::{
-    evaluate_group, height_at, locate, located_group, sample, surface_at, surface_sample, GROUP,
+    coast_factors, evaluate_group, height_at, locate, located_group, sample, surface_at,
+    surface_sample, GROUP,
 };
 use super::lanes::{self, Shuffle};
 use super::results::{surface, Location, SurfaceSample};
@@ -94,11 +95,9 @@ const LANES_BUILT: bool = !cfg!(debug_assertions);
 /// (callers test [`LANES_BUILT`] first, so that a build without lanes never compiles them).
 #[inline(always)]
 fn in_lanes(fields: &Fields<'_>, range: std::ops::Range<usize>) -> bool {
-    // The lanes do not scale by a coast's factors: with a depth map, groups answer.
-    fields.frame().coast.is_none()
-        && fields.frame().grids[range]
-            .iter()
-            .all(|grid| grid.tiles.is_some())
+    fields.frame().grids[range]
+        .iter()
+        .all(|grid| grid.tiles.is_some())
 }
 
 /// [`sample`] over a range of cascades.
@@ -129,8 +128,15 @@ impl PointQuery for Sample {
 
     #[inline(always)]
     fn group(&self, fields: &Fields<'_>, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
+        let mut factors = [None; GROUP];
+        if fields.frame().coast.is_some() {
+            for (factors, &[x, z]) in factors.iter_mut().zip(points) {
+                *factors = coast_factors(fields, x, z);
+            }
+        }
+        let range = self.0.clone();
         let sums =
-            evaluate_group::<true, true>(fields, |p| points[p], points.len(), self.0.clone());
+            evaluate_group::<true, true>(fields, |p| points[p], points.len(), range, &factors);
         for ((value, sum), &[x, z]) in out.iter_mut().zip(&sums).zip(points) {
             let foam = if self.0.contains(&0) {
                 fields.foam_at(x, z)
