@@ -308,6 +308,16 @@ impl Coast {
         (foam * open).max(self.breaking(t, x, z)).min(1.0)
     }
 
+    /// The coarse active and residual foam fractions `a`, `r` (in [0, 1]) of the open sea
+    /// at world (x, z) and time `t` over the coast, before the foam's detail patterns them:
+    /// the whitecaps and the residual foam fade where the waves die (cascade 0's factor
+    /// below 1), and the surf is active foam covering the fraction Q_b of breaking waves.
+    #[inline(never)]
+    pub(crate) fn surf(&self, t: f64, x: f64, z: f64, a: f32, r: f32) -> (f32, f32) {
+        let open = self.factor(t, 0, x, z).min(1.0);
+        ((a * open).max(self.breaking(t, x, z)).min(1.0), r * open)
+    }
+
     /// The factor of cascade `c` at world (x, z) and time `t`.
     #[inline]
     pub(crate) fn factor(&self, t: f64, c: usize, x: f64, z: f64) -> f32 {

@@ -53,10 +53,11 @@ impl OceanState {
     /// The waves over the current depth map (`None` without one); public as
     /// [`Textures::coast`](crate::gpu::Textures::coast).
     pub(crate) fn coast_field(&self) -> Option<&CoastField> {
-        self.frames
-            .current
-            .coast
-            .as_ref()
-            .and_then(|c| c.current.as_deref())
+        self.coast_state().and_then(|c| c.current.as_deref())
+    }
+
+    /// The coast the queries read (the current field and the one it replaces), if any.
+    pub(crate) fn coast_state(&self) -> Option<&Coast> {
+        self.frames.current.coast.as_ref()
     }
 }

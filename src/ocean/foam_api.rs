@@ -23,7 +23,8 @@ impl OceanState {
     #[inline]
     pub fn foam_view(&self) -> FoamView<'_> {
         let wakes = self.wake.as_ref().map(|_| self as &dyn ExtraFoam);
-        FoamView::new(&self.foam, &self.cascades, wakes)
+        let coast = self.coast_state().map(|coast| (coast, self.time));
+        FoamView::new(&self.foam, &self.cascades, wakes, coast)
     }
 
     /// Deprecated: [`FoamView::active`] through [`OceanState::foam_view`].
