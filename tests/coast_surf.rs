@@ -123,3 +123,35 @@ fn foam_at_draws_the_surf_and_nothing_on_land() {
     // cell rather than interpolated adds less than its change over half a cell (~0.02).
     assert!((foam - q).abs() < 0.08, "mean foam {foam} against Q_b {q}");
 }
+
+/// A change of weather keeps the map's factors until the map is set again, which then solves
+/// them for the new sea; going back in time (restore) keeps the map set last.
+#[test]
+fn weather_keeps_the_factors_until_set_again_and_restore_keeps_the_map() {
+    use ocean_fft::Spectrum;
+    let mut ocean = ocean();
+    let early = ocean.snapshot(); // t = 0
+    ocean.step(5.0).unwrap();
+    ocean.set_depth_map(Some(beach(0.0))).unwrap(); // set at t = 5 s
+    ocean.step(2.5).unwrap();
+    let surf = |o: &OceanState| o.textures().coast().unwrap().breaking().iter().sum::<f32>();
+    let breeze = surf(&ocean);
+    // A stronger sea (20 m/s over 300 km, beside the preset's), at once.
+    let storm = Spectrum::jonswap(20.0, 300_000.0).unwrap();
+    ocean.set_spectrum_unfitted(storm, 0.0).unwrap();
+    ocean.step(0.5).unwrap();
+    assert_eq!(surf(&ocean), breeze, "not solved again by the change");
+    ocean.set_depth_map(Some(beach(0.0))).unwrap();
+    let stormy = surf(&ocean);
+    println!("sum of Q_b: breeze {breeze:.1}, storm {stormy:.1}");
+    assert!(stormy > 1.5 * breeze, "the storm breaks further out");
+
+    // Back to t = 0, before the map was set (at 5 s and again at 8 s): the map holds, land
+    // is still water.
+    ocean.restore(&early).unwrap();
+    assert_eq!(ocean.time(), 0.0);
+    for k in 0..20 {
+        let (x, z) = (1020.0 + f64::from(k) * 5.3, 10.0 + f64::from(k) * 2.9);
+        assert_eq!(ocean.water().height_at(x, z).unwrap(), 0.0, "({x}, {z})");
+    }
+}

@@ -238,10 +238,17 @@ impl Coast {
         }
     }
 
-    /// Weight of the current field at time `t`, in [0, 1].
+    /// Weight of the current field at time `t`, in [0, 1]: 0 when it was set, 1 from
+    /// [`BLEND_SECONDS`] later on, and 1 before it was set.
     #[inline]
     fn weight(&self, t: f64) -> f32 {
-        ((t - self.start) / BLEND_SECONDS).clamp(0.0, 1.0) as f32
+        let w = (t - self.start) / BLEND_SECONDS;
+        // Before the change (the time moved back): the map set last, not the one it replaced.
+        if w < 0.0 {
+            1.0
+        } else {
+            w.min(1.0) as f32
+        }
     }
 
     /// `value` of the blended fields at time `t` (`outside` where a field is absent).
