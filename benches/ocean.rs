@@ -54,6 +54,11 @@
 //!   on (`step_off_1t`, `step_on_1t`, `step_off_2t`, `step_on_2t`) at N = 128, 256 and 512,
 //!   each pair one right after the other.
 //!
+//! - `ocean_coast`: the default ocean at 256² on one thread without and with a 512² depth
+//!   map (a 1:50 beach, 4 m cells) over the queried points: `step_open`/`step_map`,
+//!   `height_at_open`/`height_at_map`, `heights_at_10k_open`/`heights_at_10k_map`, and
+//!   `set_depth_map_512` (the solve, once per map).
+//!
 //! `cargo bench -p ocean-fft-benches --bench ocean [-- GROUP]`; the first line printed names
 //! the CPU.
 
@@ -70,7 +75,8 @@ use std::time::Duration;
 use criterion::{BatchSize, BenchmarkId, Criterion, SamplingMode, Throughput};
 use ocean_fft::inspect::{Complex32, Fft2d};
 use ocean_fft::{
-    Determinism, FoamConfig, Interpolation, OceanConfig, OceanState, Spectrum, SurfaceSample,
+    DepthMap, Determinism, FoamConfig, Interpolation, OceanConfig, OceanState, Spectrum,
+    SurfaceSample,
 };
 
 const SIZES: [usize; 5] = [64, 128, 256, 512, 1024];
@@ -702,5 +708,75 @@ fn main() {
     full_coverage(&mut criterion);
     live(&mut criterion);
     second_order(&mut criterion);
+    coast(&mut criterion);
     criterion.final_summary();
+}
+
+/// A 512² planar beach (slope 1:50, 4 m cells) from 40 m deep at x = −1000 m to land.
+fn beach_map() -> DepthMap {
+    let n = 512;
+    let depth = (0..n * n)
+        .map(|c| (40.0 - (c % n) as f32 * 4.0 / 50.0).max(-1.0))
+        .collect();
+    DepthMap {
+        origin: [-1000.0, -1000.0],
+        spacing: 4.0,
+        size: [n, n],
+        depth,
+    }
+}
+
+fn coast(c: &mut Criterion) {
+    let mut group = c.benchmark_group("ocean_coast");
+    group
+        .sample_size(20)
+        .sampling_mode(SamplingMode::Flat)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("pool");
+    // Points over the map's water (x from −900 to 0 m: 32 m to 12 m deep).
+    let points: Vec<[f64; 2]> = (0..10_000)
+        .map(|i| {
+            [
+                f64::from(i % 100) * 9.0 - 900.0,
+                f64::from(i / 100) * 7.0 - 300.0,
+            ]
+        })
+        .collect();
+    let mut heights = vec![0.0f32; points.len()];
+    for (name, map) in [("open", None), ("map", Some(beach_map()))] {
+        let mut state = ocean(256, false);
+        state.set_depth_map(map).expect("map");
+        state.step(3.0).expect("step");
+        group.bench_function(format!("step_{name}"), |b| {
+            pool.install(|| b.iter(|| state.step(black_box(1.0 / 60.0)).expect("step")))
+        });
+        group.bench_function(format!("height_at_{name}"), |b| {
+            b.iter(|| {
+                state
+                    .water()
+                    .height_at(black_box(-423.4), black_box(-56.7))
+                    .expect("height_at")
+            })
+        });
+        group.bench_function(format!("heights_at_10k_{name}"), |b| {
+            pool.install(|| {
+                b.iter(|| {
+                    state
+                        .water()
+                        .heights_at(&points, &mut heights)
+                        .expect("heights_at")
+                })
+            })
+        });
+    }
+    let mut state = ocean(256, false);
+    let map = beach_map();
+    group.bench_function("set_depth_map_512", |b| {
+        b.iter(|| state.set_depth_map(Some(map.clone())).expect("map"))
+    });
+    group.finish();
 }

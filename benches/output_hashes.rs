@@ -196,7 +196,7 @@ fn main() {
                         }
                     }
                     for (buffer, values) in [
-                        ("foam", ocean.foam()),
+                        ("foam", ocean.foam_view().total()),
                         ("active", ocean.foam_view().active()),
                         ("residual", ocean.foam_view().residual()),
                         ("breaking", ocean.foam_view().breaking()),

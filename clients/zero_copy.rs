@@ -55,7 +55,7 @@ fn scalar_buffers_are_f32_slices_and_bytes_for_the_gpu() {
     assert_eq!(ocean.cascades().len(), 3);
     // The foam buffers live on cascade 0's grid.
     let foam = [
-        ocean.foam(),
+        ocean.foam_view().total(),
         ocean.foam_view().active(),
         ocean.foam_view().residual(),
         ocean.foam_view().breaking(),

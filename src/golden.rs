@@ -64,7 +64,7 @@ fn ocean_hashes(ocean: &OceanState) -> Vec<(String, u64)> {
         cascade_hashes(cascade, &mut out, &format!("cascade {c} "));
     }
     let mut hash = BitHash::new();
-    hash.f32s(ocean.foam().iter().copied());
+    hash.f32s(ocean.foam_view().total().iter().copied());
     hash.f32s(ocean.foam_view().breaking().iter().copied());
     out.push(("foam".into(), hash.finish()));
     let points = [[0.0, 0.0], [12.5, -40.25], [-333.3, 517.9], [2048.0, 77.7]];
@@ -82,6 +82,16 @@ fn ocean_hashes(ocean: &OceanState) -> Vec<(String, u64)> {
         hash.bytes(&(location.iterations as u64).to_le_bytes());
     }
     out.push(("queries".into(), hash.finish()));
+    if let Some(coast) = ocean.textures().coast() {
+        let mut hash = BitHash::new();
+        hash.f32s(coast.factors().iter().copied());
+        hash.f32s(coast.breaking().iter().copied());
+        hash.f32s([coast.direction()]);
+        let mut texels = vec![[0.0f32; 4]; coast.map().depth.len()];
+        ocean.textures().pack_coast(&mut texels).unwrap();
+        hash.f32s(texels.iter().flatten().copied());
+        out.push(("coast".into(), hash.finish()));
+    }
     if let Some(wakes) = ocean.wakes() {
         let mut hash = BitHash::new();
         hash.f64s(wakes.origin());
@@ -99,7 +109,8 @@ fn ocean_hashes(ocean: &OceanState) -> Vec<(String, u64)> {
 /// period and bilinear queries, and an Elfouhaily ocean of one 34² cascade (34 = 2·17: a
 /// prime-length FFT path) with capillary dispersion, Hasselmann spreading and a short-wave
 /// fade; each stepped through a fixed sequence of time steps (foam depends on it); and a 32²
-/// ocean in the middle of a change of weather (`OceanState::set_spectrum`).
+/// ocean in the middle of a change of weather (`OceanState::set_spectrum`), one with wakes,
+/// and one with a depth map in the middle of its blend.
 fn oceans() -> Vec<(&'static str, OceanState, Vec<f64>)> {
     let deterministic = |config: OceanConfig| OceanConfig {
         determinism: Determinism::CrossPlatform,
@@ -222,6 +233,25 @@ fn oceans() -> Vec<(&'static str, OceanState, Vec<f64>)> {
     };
     f.set_hulls(&[hull, tug]).unwrap();
     f.set_wake_centre(3.3, -1.2).unwrap();
+    // A coast: a 1:20 beach under two of the query points (depth 20 m at x = −100 m to land
+    // from x = 100 m), the map set at t = 0 and queried 1 s into its 2 s blend.
+    let mut g = OceanState::new(
+        Spectrum::jonswap(12.0, 120_000.0).unwrap(),
+        deterministic(OceanConfig {
+            size: 32,
+            ..OceanConfig::default()
+        }),
+    )
+    .unwrap();
+    g.set_depth_map(Some(crate::coast::DepthMap {
+        origin: [-100.0, -100.0],
+        spacing: 5.0,
+        size: [60, 40],
+        depth: (0..60 * 40)
+            .map(|c| 20.0 - (c % 60) as f32 * 5.0 / 20.0)
+            .collect(),
+    }))
+    .unwrap();
     let steps = vec![1.0 / 60.0, 1.0 / 30.0, 0.5, 0.0, 1.0 / 60.0, 3.25];
     vec![
         ("jonswap 64²", a, steps.clone()),
@@ -230,6 +260,7 @@ fn oceans() -> Vec<(&'static str, OceanState, Vec<f64>)> {
         ("live 32²", d, vec![1.0 / 30.0; 30]),
         ("second order 48²", e, vec![1.0 / 30.0; 20]),
         ("wakes 32²", f, vec![1.0 / 30.0; 45]),
+        ("coast 32²", g, vec![1.0 / 30.0; 30]),
     ]
 }
 
@@ -358,6 +389,30 @@ const GOLDEN: &[(&str, &str, u64)] = &[
     ("wakes 32²", "foam", 0x8b18672ae7cc3325),
     ("wakes 32²", "queries", 0xe35c09d279f7de53),
     ("wakes 32²", "wake", 0xe14db6f41a23f4a6),
+    ("coast 32²", "cascade 0 h0", 0xbc3f785f365aca01),
+    ("coast 32²", "cascade 0 height", 0x022730f9104c4a8c),
+    ("coast 32²", "cascade 0 displacement", 0xc4a34e9d0881f260),
+    ("coast 32²", "cascade 0 slope", 0x61e244cefc2e41e4),
+    ("coast 32²", "cascade 0 normal", 0x9e547c49ab807f71),
+    ("coast 32²", "cascade 0 jacobian", 0xcc2f73e4ddc86e11),
+    ("coast 32²", "cascade 0 scalars", 0xee5496a7c7b23f88),
+    ("coast 32²", "cascade 1 h0", 0x032b2bb6df10c260),
+    ("coast 32²", "cascade 1 height", 0x02aae1e9f561c9c5),
+    ("coast 32²", "cascade 1 displacement", 0x72e27c8969bb747f),
+    ("coast 32²", "cascade 1 slope", 0x1465babb2c870f04),
+    ("coast 32²", "cascade 1 normal", 0x31cb8e9419f5bac0),
+    ("coast 32²", "cascade 1 jacobian", 0x23e9fb625afb4865),
+    ("coast 32²", "cascade 1 scalars", 0x82eb6c0bd2d84fc7),
+    ("coast 32²", "cascade 2 h0", 0xbcbe022d6ebfb126),
+    ("coast 32²", "cascade 2 height", 0x23349be0c4e0332e),
+    ("coast 32²", "cascade 2 displacement", 0xefaaf911c78901a3),
+    ("coast 32²", "cascade 2 slope", 0x588579a8e7a9e5de),
+    ("coast 32²", "cascade 2 normal", 0x31fff53e0c42e593),
+    ("coast 32²", "cascade 2 jacobian", 0x72f034cdbf2bcaca),
+    ("coast 32²", "cascade 2 scalars", 0xa9b6a87e3a0cca83),
+    ("coast 32²", "foam", 0x7729b42e98658eb2),
+    ("coast 32²", "queries", 0x6dd914170808ee8f),
+    ("coast 32²", "coast", 0x814f18ead19e4b21),
 ];
 
 #[test]

@@ -34,7 +34,7 @@
 //!   normal and Jacobian.
 //! - [`OceanState`]: several cascades on disjoint wave-number bands, the time, the foam (one
 //!   field for the whole ocean with whitecaps calibrated against measurements, residual foam
-//!   drawn into streaks and a breaking intensity: [`OceanState::foam`],
+//!   drawn into streaks and a breaking intensity: [`FoamView::total`],
 //!   [`OceanState::foam_view`], [`FoamConfig`]), and the world queries of its [`Water`]
 //!   ([`OceanState::water`]: [`Water::height_at`] at a world point, [`Water::at_rest`] at a
 //!   rest point), also from other threads through a [`Surface`] handle.
@@ -164,6 +164,7 @@
 #![warn(clippy::missing_errors_doc)]
 
 mod cascade;
+pub mod coast;
 mod error;
 mod foam;
 #[cfg(test)]
@@ -180,6 +181,7 @@ mod spectrum;
 mod wake;
 
 pub use cascade::{Cascade, CascadeConfig};
+pub use coast::{CoastField, DepthMap};
 pub use error::Error;
 pub use foam::{FoamConfig, FoamCoverage, FoamView};
 /// The `half` crate (with the `half` feature), whose `f16` the `pack_texels_f16` functions

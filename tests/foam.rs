@@ -214,13 +214,18 @@ fn foam_is_frame_rate_independent() {
     }
     assert_eq!(once.time(), twice.time());
     let (mut difference, mut norm, mut worst) = (0.0, 0.0, 0.0f32);
-    for (&x, &y) in once.foam().iter().zip(twice.foam()) {
+    for (&x, &y) in once
+        .foam_view()
+        .total()
+        .iter()
+        .zip(twice.foam_view().total())
+    {
         assert!((0.0..=1.0).contains(&x) && (0.0..=1.0).contains(&y));
         difference += f64::from(x - y).powi(2);
         norm += f64::from(x).powi(2);
         worst = worst.max((x - y).abs());
     }
-    let points = once.foam().len() as f64;
+    let points = once.foam_view().total().len() as f64;
     let (rms_difference, rms) = ((difference / points).sqrt(), (norm / points).sqrt());
     let (mean_once, mean_twice) = (mean_once / steps as f64, mean_twice / steps as f64);
     let relative_mean = (mean_once / mean_twice - 1.0).abs();
@@ -305,14 +310,14 @@ fn pre_roll_is_independent_of_history() {
         b.step(0.1).unwrap();
     }
     b.set_time(300.0).unwrap();
-    assert_ne!(a.foam(), b.foam());
+    assert_ne!(a.foam_view().total(), b.foam_view().total());
     for ocean in [&mut a, &mut b] {
         ocean.pre_roll(25.0, 1.0 / 20.0).unwrap();
         assert_eq!(ocean.time(), 300.0);
     }
     let bits = |o: &OceanState| {
         [
-            o.foam(),
+            o.foam_view().total(),
             o.foam_view().active(),
             o.foam_view().residual(),
             o.foam_view().breaking(),
@@ -349,7 +354,7 @@ fn pre_roll_equals_clearing_and_stepping() {
     assert_eq!(stepped.time(), rolled.time());
     let bits = |o: &OceanState| {
         let mut all: Vec<u32> = [
-            o.foam(),
+            o.foam_view().total(),
             o.foam_view().active(),
             o.foam_view().residual(),
             o.foam_view().breaking(),
@@ -389,7 +394,7 @@ fn queries_and_coverage_read_the_foam_buffers() {
     let length = f64::from(ocean.cascades()[0].length());
     let h = length / n as f64;
     let (foam, active, residual, breaking) = (
-        ocean.foam(),
+        ocean.foam_view().total(),
         ocean.foam_view().active(),
         ocean.foam_view().residual(),
         ocean.foam_view().breaking(),
@@ -463,7 +468,7 @@ fn foam_is_bit_identical_across_thread_counts() {
             let c = ocean.foam_view().coverage();
             let mut bits: Vec<u32> = [c.active, c.residual, c.total].map(f32::to_bits).to_vec();
             for buffer in [
-                ocean.foam(),
+                ocean.foam_view().total(),
                 ocean.foam_view().active(),
                 ocean.foam_view().residual(),
                 ocean.foam_view().breaking(),

@@ -260,7 +260,7 @@ fn largest_accepted(low: f32, accepted: impl Fn(f32) -> bool) -> Option<f32> {
 fn foam_fault(ocean: &OceanState) -> Option<String> {
     let unit = |v: &f32| (0.0..=1.0).contains(v);
     for (name, buffer) in [
-        ("foam", ocean.foam()),
+        ("foam", ocean.foam_view().total()),
         ("active_foam", ocean.foam_view().active()),
         ("residual_foam", ocean.foam_view().residual()),
     ] {

@@ -85,7 +85,11 @@ fn every_layout_copies_its_source_buffers_bit_for_bit() {
     for (c, cascade) in ocean.cascades().iter().enumerate() {
         let n = cascade.size();
         let zeros = vec![0.0; n * n];
-        let foam = if c == 0 { ocean.foam() } else { &zeros };
+        let foam = if c == 0 {
+            ocean.foam_view().total()
+        } else {
+            &zeros
+        };
         foamy_texels += foam.iter().filter(|&&f| f > 0.01).count();
         for &layout in TexelLayout::ALL {
             let mut texels = vec![[f32::NAN; 4]; n * n];
@@ -159,7 +163,11 @@ mod f16_packing {
         for (c, cascade) in ocean.cascades().iter().enumerate() {
             let n = cascade.size();
             let zeros = vec![0.0; n * n];
-            let foam = if c == 0 { ocean.foam() } else { &zeros };
+            let foam = if c == 0 {
+                ocean.foam_view().total()
+            } else {
+                &zeros
+            };
             for &layout in TexelLayout::ALL {
                 let mut texels = vec![[f16::NAN; 4]; n * n];
                 ocean.textures().pack_f16(c, layout, &mut texels).unwrap();

@@ -9,7 +9,7 @@ use ocean_fft::{Error, OceanConfig, OceanState, Spectrum};
 fn assert_foam_finite(ocean: &OceanState, when: &str) {
     let unit = |v: &f32| (0.0..=1.0).contains(v);
     for (name, buffer) in [
-        ("foam", ocean.foam()),
+        ("foam", ocean.foam_view().total()),
         ("active_foam", ocean.foam_view().active()),
         ("residual_foam", ocean.foam_view().residual()),
     ] {

@@ -130,7 +130,7 @@ fn issue_8_foam_settings_that_made_nan_are_refused() {
         ] {
             ocean.step(dt).unwrap();
             for buffer in [
-                ocean.foam(),
+                ocean.foam_view().total(),
                 ocean.foam_view().active(),
                 ocean.foam_view().residual(),
             ] {

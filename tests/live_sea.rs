@@ -385,13 +385,13 @@ fn bad_changes_are_errors_that_change_nothing() {
     assert!(ocean.set_foam_config(bad_foam).is_err());
     assert_eq!(ocean.diagnostics().transition_progress(), None);
     assert_same_sea(&ocean, &reference, "after refused changes");
-    assert_eq!(ocean.foam(), reference.foam());
+    assert_eq!(ocean.foam_view().total(), reference.foam_view().total());
     assert_eq!(ocean.config(), reference.config());
     ocean.step(0.5).unwrap();
     let mut reference = reference;
     reference.step(0.5).unwrap();
     assert_same_sea(&ocean, &reference, "a step later");
-    assert_eq!(ocean.foam(), reference.foam());
+    assert_eq!(ocean.foam_view().total(), reference.foam_view().total());
 }
 
 /// New foam settings take effect while the ocean runs: doubling the coverage doubles the
@@ -403,7 +403,7 @@ fn foam_settings_are_live() {
     let spectrum = Spectrum::pierson_moskowitz(14.0).unwrap();
     let mut ocean = OceanState::new(spectrum.clone(), config.clone()).unwrap();
     ocean.pre_roll(10.0, 0.1).unwrap();
-    let foam = ocean.foam().to_vec();
+    let foam = ocean.foam_view().total().to_vec();
     let target = ocean.foam_view().calibration().target;
     let doubled = FoamConfig {
         coverage: 2.0,
@@ -411,7 +411,7 @@ fn foam_settings_are_live() {
         ..FoamConfig::default()
     };
     ocean.set_foam_config(doubled).unwrap();
-    assert_eq!(ocean.foam(), &foam[..], "the foam is kept");
+    assert_eq!(ocean.foam_view().total(), &foam[..], "the foam is kept");
     assert!((ocean.foam_view().calibration().target / target - 2.0).abs() < 1e-5);
     assert_eq!(ocean.config().foam, doubled);
     let built = OceanState::new(

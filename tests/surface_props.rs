@@ -305,7 +305,7 @@ fn ocean_bits(ocean: &OceanState) -> Vec<u64> {
         bits.extend(cascade_bits(cascade));
     }
     for buffer in [
-        ocean.foam(),
+        ocean.foam_view().total(),
         ocean.foam_view().active(),
         ocean.foam_view().residual(),
         ocean.foam_view().breaking(),
@@ -343,7 +343,7 @@ fn ocean_finite(ocean: &OceanState) -> bool {
         && subgrid.along.is_finite()
         && subgrid.across.is_finite()
         && [
-            ocean.foam(),
+            ocean.foam_view().total(),
             ocean.foam_view().active(),
             ocean.foam_view().residual(),
         ]

@@ -269,7 +269,7 @@ impl<'a> Simulator<'a> {
         self.ocean.set_time(0.0).map_err(internal)?;
         self.ocean.clear_foam();
         // The ocean's one foam field (cascade 0's texels carry it, the others carry none).
-        let mut before = self.ocean.foam().to_vec();
+        let mut before = self.ocean.foam_view().total().to_vec();
         let mut loops = 0;
         let mut change = f64::INFINITY;
         let needed = self.sea.config.foam.coverage > 0.0;
@@ -281,7 +281,7 @@ impl<'a> Simulator<'a> {
             self.ocean.set_time(0.0).map_err(internal)?;
             loops += 1;
             change = 0.0;
-            for (b, &a) in before.iter_mut().zip(self.ocean.foam()) {
+            for (b, &a) in before.iter_mut().zip(self.ocean.foam_view().total()) {
                 change = change.max(f64::from((*b - a).abs()));
                 *b = a;
             }

@@ -223,7 +223,7 @@ fn exr_files_hold_the_simulation_buffers_within_half_float_rounding() {
         assert_half("B", &channels["B"], d.iter().map(|v| v[1]));
         // The ocean's one foam field is on cascade 0's grid; the other cascades carry 0.
         let foam: Vec<f32> = if c == 0 {
-            ocean.foam().to_vec()
+            ocean.foam_view().total().to_vec()
         } else {
             vec![0.0; 32 * 32]
         };
@@ -297,7 +297,11 @@ fn png_files_decode_with_the_sidecar_scales() {
             check(
                 "foam",
                 f64::from(disp[i][3]) / 65535.0,
-                if c == 0 { ocean.foam()[i] } else { 0.0 },
+                if c == 0 {
+                    ocean.foam_view().total()[i]
+                } else {
+                    0.0
+                },
                 0.5,
             );
             for (&p, &n) in normal[i].iter().zip(&cascade.normal()[i]) {
@@ -354,7 +358,11 @@ fn a_loop_closes_in_every_channel_with_the_foam_in_its_periodic_steady_state() {
         for c in 0..3 {
             let file = read_exr(&dir.join(format!("storm_c{c}_{frame:04}.exr")));
             let zeros = vec![0.0; 32 * 32];
-            let foam = if c == 0 { ocean.foam() } else { &zeros[..] };
+            let foam = if c == 0 {
+                ocean.foam_view().total()
+            } else {
+                &zeros[..]
+            };
             // f16 rounding (≤ 2⁻¹² on [0, 1]) plus the stop rule's ε = 1e-3 (the default)
             // plus the start's remainder (4e-6) and f32 drift of a 2000-step history.
             for (i, (&got, &want)) in file["A"].iter().zip(foam).enumerate() {

@@ -37,6 +37,6 @@ pub struct FoamCoverage {
     /// Residual foam not under active foam: the mean of r·(1 − a), older foam and streaks
     /// that photographs of whitecaps leave out.
     pub residual: f32,
-    /// All foam: the mean of [`OceanState::foam`](crate::OceanState::foam), `active + residual`.
+    /// All foam: the mean of [`FoamView::total`](crate::FoamView::total), `active + residual`.
     pub total: f32,
 }

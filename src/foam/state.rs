@@ -8,6 +8,7 @@ use rayon::prelude::*;
 use std::ops::Bound::Included;
 
 use crate::cascade::Cascade;
+use crate::coast::Coast;
 use crate::error::{self, Error};
 use crate::math::determinism::{with_math, Determinism, Math};
 use crate::math::exp::exp;
@@ -565,7 +566,13 @@ impl Foam {
     /// The foam at undisplaced world (x, z) with its detail: the coarse fractions a and r
     /// interpolated bilinearly from the foam grid, placed by the compression of `cascades` ≥ 1
     /// (the ocean's, whose cascade 0 is the foam's grid) and by the streak field.
-    pub(crate) fn detail_at(&self, cascades: &[Cascade], x: f64, z: f64) -> FoamCoverage {
+    pub(crate) fn detail_at(
+        &self,
+        cascades: &[Cascade],
+        x: f64,
+        z: f64,
+        coast: Option<(&Coast, f64)>,
+    ) -> FoamCoverage {
         let length = f64::from(self.length);
         let coarse = |values: &[f32]| {
             // NaN becomes 0, as the coarse lookup always made it.
@@ -577,6 +584,11 @@ impl Foam {
             }
         };
         let (a, r) = (coarse(&self.active), coarse(&self.residual));
+        // Over a depth map: the surf's coarse fractions (`Coast::surf`), patterned alike.
+        let (a, r) = match coast {
+            Some((coast, t)) => coast.surf(t, x, z, a, r),
+            None => (a, r),
+        };
         let variance = self.sea.unresolved_compression();
         let u = self.detail.compression_at(cascades, variance, x, z);
         self.detail.foam(a, r, u, self.detail.streak_at(x, z))

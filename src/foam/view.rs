@@ -5,6 +5,7 @@ use super::calibration::FoamCalibration;
 use super::state::Foam;
 use super::FoamCoverage;
 use crate::cascade::Cascade;
+use crate::coast::Coast;
 use crate::error::Error;
 
 /// The foam of an ocean, read-only: what
@@ -35,6 +36,8 @@ pub struct FoamView<'a> {
     cascades: &'a [Cascade],
     /// The foam the wake window adds, with an ocean's wakes.
     extra: Option<&'a dyn ExtraFoam>,
+    /// The ocean's coast and its time (s), with a depth map.
+    coast: Option<(&'a Coast, f64)>,
 }
 
 /// Foam added to the ocean's at a rest point: the wake window's trail, where the water of
@@ -61,16 +64,18 @@ impl<'a> FoamView<'a> {
         foam: &'a Foam,
         cascades: &'a [Cascade],
         extra: Option<&'a dyn ExtraFoam>,
+        coast: Option<(&'a Coast, f64)>,
     ) -> FoamView<'a> {
         FoamView {
             foam,
             cascades,
             extra,
+            coast,
         }
     }
 
     /// All foam in [0, 1] — active whitecaps and residual foam together, a + r(1 − a) — on
-    /// the foam grid (the same slice as [`OceanState::foam`](crate::OceanState::foam)).
+    /// the foam grid (the slice a shader gets in cascade 0's texels).
     pub fn total(&self) -> &'a [f32] {
         self.foam.total()
     }
@@ -113,12 +118,18 @@ impl<'a> FoamView<'a> {
     /// With [`OceanConfig::wakes`](crate::OceanConfig::wakes), the wake's foam trail where
     /// that point's water lands is part of the residual foam and of the total (the fields of
     /// this view are the ocean's alone; the trail's is [`Wakes::foam`](crate::Wakes::foam)).
+    /// Over a depth map ([`OceanState::set_depth_map`](crate::OceanState::set_depth_map))
+    /// the whitecaps and residual foam fade where the waves die (cascade 0's factor below
+    /// 1, land), and the surf is active foam: the coarse active fraction there is at least
+    /// the fraction Q_b of waves breaking on the bottom
+    /// ([`CoastField::breaking`](crate::CoastField::breaking)), patterned like the
+    /// whitecaps, so that its mean along the beach follows Q_b.
     ///
     /// # Errors
     /// [`Error::NonFinite`] for a NaN or infinite coordinate.
     pub fn foam_at(&self, x0: f64, z0: f64) -> Result<FoamCoverage, Error> {
         check_point(x0, z0)?;
-        let mut foam = self.foam.detail_at(self.cascades, x0, z0);
+        let mut foam = self.foam.detail_at(self.cascades, x0, z0, self.coast);
         if let Some(extra) = self.extra {
             let trail = extra.trail_at(x0, z0);
             if trail > 0.0 {
@@ -142,7 +153,11 @@ impl<'a> FoamView<'a> {
     }
 
     /// The area fractions covered by active whitecaps, residual foam and all foam (summed in
-    /// a fixed order over the foam grid when the foam last changed; costs nothing here).
+    /// a fixed order over the foam grid when the foam last changed; costs nothing here): the
+    /// open sea's, calibrated against measured whitecap coverage. A depth map does not change
+    /// it; the surf's coverage over the map is the mean of
+    /// [`CoastField::breaking`](crate::CoastField::breaking) there, which
+    /// [`foam_at`](Self::foam_at) draws.
     pub fn coverage(&self) -> FoamCoverage {
         self.foam.coverage()
     }

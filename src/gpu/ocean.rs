@@ -5,6 +5,7 @@ use rayon::prelude::*;
 
 use super::{FoamStreaks, Sources, TexelLayout};
 use crate::cascade::Cascade;
+use crate::coast::CoastField;
 use crate::error::{self, Error};
 use crate::ocean::OceanState;
 use crate::spectrum::SlopeVariance;
@@ -103,7 +104,7 @@ impl OceanState {
 impl<'a> Textures<'a> {
     /// Packs cascade `cascade` (0 the largest) into interleaved RGBA32F texels of `layout`
     /// (see [`TexelLayout`]), texel (i, j) of that cascade's N×N grid at `out[j * N + i]`.
-    /// The ocean's one foam field lives on cascade 0's grid ([`OceanState::foam`]), so the
+    /// The ocean's one foam field lives on cascade 0's grid ([`FoamView::total`](crate::FoamView::total)), so the
     /// layouts with foam carry it in cascade 0's texels and 0 in every other cascade's (a
     /// shader that sums the foam channels, or combines them as 1 − Π(1 − f), gets the foam).
     /// Copies the values bit for bit. Row blocks in parallel; allocates nothing inside a
@@ -193,6 +194,62 @@ impl<'a> Textures<'a> {
         Ok(())
     }
 
+    /// The waves over the ocean's depth map
+    /// ([`OceanState::set_depth_map`](crate::OceanState::set_depth_map); `None` without
+    /// one): the amplitude factor of each cascade and the fraction of breaking waves Q_b at
+    /// each cell of the map, what a renderer uploads as textures over the map. Costs nothing.
+    pub fn coast(&self) -> Option<&'a CoastField> {
+        self.ocean.coast_field()
+    }
+
+    /// Packs the coast's field over the depth map
+    /// ([`OceanState::set_depth_map`](crate::OceanState::set_depth_map)) into interleaved
+    /// RGBA32F texels `[f₀, f₁, f₂, Q_b]`: the amplitude factors (no unit, 1 the open sea,
+    /// 0 land) of cascades 0, 1 and 2 (1 where the ocean has fewer cascades) and the fraction
+    /// of waves breaking on the bottom Q_b in [0, 1], texel (i, j) of the map's
+    /// `size[0]` × `size[1]` cells at `out[j * size[0] + i]`, for world (x₀ + i·Δ,
+    /// z₀ + j·Δ) with (x₀, z₀) = [`DepthMap::origin`](crate::DepthMap::origin) and Δ =
+    /// [`DepthMap::spacing`](crate::DepthMap::spacing) in metres. A shader multiplies each
+    /// cascade's displacement, height and slope by its factor at the point, sampled
+    /// bilinearly at texel coordinates (p − origin)/Δ + ½ (the queries' interpolation), and
+    /// uses (1, 1, 1, 0) outside the map; the factors reach 1 and Q_b 0 at the map's edge.
+    /// Q_b is the surf's coarse foam coverage (it lays the surf over the whitecaps as
+    /// [`FoamView::foam_at`](crate::FoamView::foam_at) does). An ocean with more than three
+    /// cascades reads the others' factors from [`coast`](Self::coast).
+    ///
+    /// The values are those the queries use at the ocean's time: while a replaced map blends
+    /// in ([`coast::BLEND_SECONDS`](crate::coast::BLEND_SECONDS) of simulated time after
+    /// `set_depth_map`) they change, and a renderer repacks each frame; otherwise once per
+    /// map. Rows in parallel; allocates nothing inside a rayon pool.
+    ///
+    /// # Errors
+    /// [`Error::NotApplicable`] naming `depth_map` if the ocean has no depth map;
+    /// [`Error::LengthMismatch`] naming `out` unless `out.len()` is `size[0] * size[1]`.
+    /// Nothing is written then.
+    pub fn pack_coast(&self, out: &mut [[f32; 4]]) -> Result<(), Error> {
+        let not_set = Error::NotApplicable {
+            name: "depth_map",
+            reason: "the ocean has no depth map (`OceanState::set_depth_map`)",
+        };
+        let (Some(coast), Some(field)) = (self.ocean.coast_state(), self.ocean.coast_field())
+        else {
+            return Err(not_set);
+        };
+        let map = field.map();
+        let [nx, nz] = map.size;
+        error::length("out", out.len(), nx * nz)?;
+        let (t, spacing, origin) = (self.ocean.time(), f64::from(map.spacing), map.origin);
+        out.par_chunks_mut(nx).enumerate().for_each(|(j, row)| {
+            let z = origin[1] + j as f64 * spacing;
+            for (i, texel) in row.iter_mut().enumerate() {
+                let x = origin[0] + i as f64 * spacing;
+                let f = coast.factors(t, x, z);
+                *texel = [f[0], f[1], f[2], coast.breaking(t, x, z)];
+            }
+        });
+        Ok(())
+    }
+
     /// The streak field of the foam's detail and where it lies now ([`FoamStreaks`]): the
     /// texels to upload once, the placement to set each frame. Costs nothing.
     pub fn foam_streaks(&self) -> FoamStreaks<'a> {
@@ -205,7 +262,7 @@ impl<'a> Textures<'a> {
         error::index("cascade", cascade, cascades.len())?;
         let c = &cascades[cascade];
         error::length("out", len, c.size() * c.size())?;
-        let foam = (cascade == 0).then(|| self.ocean.foam());
+        let foam = (cascade == 0).then(|| self.ocean.foam.total());
         Ok((Sources::new(c, foam), c.size()))
     }
 }

@@ -9,12 +9,10 @@ use crate::foam::{FoamCalibration, FoamCoverage, FoamView};
 use super::OceanState;
 
 impl OceanState {
-    /// The foam of the whole ocean in [0, 1] — active whitecaps and residual foam together,
-    /// a + r(1 − a) — on the grid of cascade 0 (the largest): index j·N + i is its grid point
-    /// (i·L/N, j·L/N) in metres, and the field tiles the plane with that cascade's period L.
-    /// Only cascade 0's textures carry foam ([`OceanState::textures`]). The rest of the foam
-    /// (its parts, breaking, coverage, values at a point) is in
-    /// [`foam_view`](Self::foam_view).
+    /// Deprecated: [`FoamView::total`] through [`OceanState::foam_view`] (moved off the
+    /// page to leave room for the coasts, issue 41).
+    #[deprecated(since = "0.4.0", note = "use `ocean.foam_view().total()`")]
+    #[doc(hidden)]
     pub fn foam(&self) -> &[f32] {
         self.foam.total()
     }
@@ -25,7 +23,8 @@ impl OceanState {
     #[inline]
     pub fn foam_view(&self) -> FoamView<'_> {
         let wakes = self.wake.as_ref().map(|_| self as &dyn ExtraFoam);
-        FoamView::new(&self.foam, &self.cascades, wakes)
+        let coast = self.coast_state().map(|coast| (coast, self.time));
+        FoamView::new(&self.foam, &self.cascades, wakes, coast)
     }
 
     /// Deprecated: [`FoamView::active`] through [`OceanState::foam_view`].

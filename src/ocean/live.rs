@@ -143,7 +143,8 @@ impl OceanState {
     /// **Depth.** The water depth, and with it the waves' speeds, cannot change while the
     /// ocean runs: a spectrum with another [`Dispersion`](crate::Dispersion) is refused (waves
     /// whose speed changed would either jump in phase or leave the ocean different from a
-    /// freshly built one forever). Build a new ocean for another depth.
+    /// freshly built one forever). Build a new ocean for another depth. A depth map's
+    /// factors are not solved again (see [`set_depth_map`](Self::set_depth_map), "Weather").
     ///
     /// # Errors
     /// [`Error::NonFinite`] or [`Error::OutOfRange`] for a negative, NaN or infinite

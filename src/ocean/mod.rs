@@ -3,6 +3,7 @@
 //! queried through the world queries; its config, its fit to a sea, its changes of weather and
 //! its snapshots.
 
+mod coast_api;
 mod config;
 mod diagnostics;
 mod fit;

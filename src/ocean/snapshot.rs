@@ -88,7 +88,8 @@ impl OceanSnapshot {
 
 impl OceanState {
     /// The state that cannot be recomputed: time, choppiness and foam (allocates the foam's
-    /// copy; see [`OceanSnapshot::capture`] to reuse one).
+    /// copy; see [`OceanSnapshot::capture`] to reuse one). Not the depth map
+    /// ([`set_depth_map`](Self::set_depth_map)): restoring keeps the ocean's own.
     pub fn snapshot(&self) -> OceanSnapshot {
         let mut snapshot = OceanSnapshot {
             time: 0.0,

@@ -126,7 +126,7 @@ impl OceanState {
     /// other.step(3.0)?;
     /// other.set_time(100.0)?;
     /// other.pre_roll(20.0, 0.05)?;
-    /// assert_eq!(ocean.foam(), other.foam());
+    /// assert_eq!(ocean.foam_view().total(), other.foam_view().total());
     /// # Ok::<(), ocean_fft::Error>(())
     /// ```
     ///

@@ -8,6 +8,7 @@ use std::sync::Arc;
 use super::config::{Interpolation, QueryConfig};
 use super::spline::{Source, Tiles};
 use crate::cascade::Cascade;
+use crate::coast::Coast;
 use crate::error::Error;
 use crate::foam::Foam;
 use crate::math::determinism::Determinism;
@@ -48,6 +49,8 @@ pub(crate) struct Frame {
     foam: Vec<f32>,
     foam_n: usize,
     foam_length: f32,
+    /// The depth map's factors the queries scale the cascades by (none: the open sea).
+    pub(crate) coast: Option<Coast>,
     /// The wake window's buffers at this frame's time (`None` without wakes): the ocean
     /// writes them after each move in time, and the queries add them.
     pub(crate) wake: Option<Wakes>,
@@ -91,6 +94,7 @@ impl Frame {
             foam: Vec::new(),
             foam_n: foam.n,
             foam_length: foam.length,
+            coast: None,
             wake: None,
         })
     }
@@ -180,7 +184,11 @@ impl Fields<'_> {
     #[allow(clippy::manual_clamp)]
     pub(crate) fn foam_at(&self, x: f64, z: f64) -> f32 {
         let (values, n, length) = self.foam_grid();
-        periodic_bilinear(values, n, length, x, z).max(0.0).min(1.0)
+        let foam = periodic_bilinear(values, n, length, x, z).max(0.0).min(1.0);
+        match &self.frame().coast {
+            None => foam,
+            Some(coast) => coast.foam(self.frame().time, x, z, foam),
+        }
     }
 
     /// The foam field [`Fields::foam_at`] interpolates: its values on an N×N grid, N, and
@@ -221,6 +229,7 @@ impl Frames {
     /// nothing), or, if a handle still holds that one too, a new frame is allocated (and the
     /// old one freed when its last handle drops).
     pub(crate) fn advance(&mut self, time: f64, query: QueryConfig) {
+        let coast = self.current.coast.clone();
         if Arc::get_mut(&mut self.current).is_none() {
             let next = match self.spare.take() {
                 // Handles never make weak references: a count of one means no handle.
@@ -232,7 +241,14 @@ impl Frames {
         }
         if let Some(frame) = Arc::get_mut(&mut self.current) {
             frame.reset(time, query);
+            frame.coast = coast;
         }
+    }
+
+    /// Makes the queries of the current frame (and those after it) read `coast`; handles
+    /// taken before keep the coast they saw.
+    pub(crate) fn set_coast(&mut self, coast: Option<Coast>) {
+        Arc::make_mut(&mut self.current).coast = coast;
     }
 }
 

@@ -8,6 +8,7 @@ use super::config::QueryConfig;
 use super::frame::{cell_in, Fields};
 use super::results::{normal_from_slope, Location, SurfaceSample};
 use super::spline::{self, Source, TileData, Weights};
+use crate::coast::Factors;
 use crate::math::periodic::Stencil;
 
 /// What a query sums over the cascades at one undisplaced point (what it did not ask for is
@@ -64,58 +65,70 @@ fn accumulate<
     fields: &Fields<'_>,
     c: usize,
     [x, z]: [f64; 2],
+    factors: Option<&Factors>,
     total: &mut Summed,
 ) {
     let frame = fields.frame();
     let (per_metre, simd) = (frame.grids[c].per_metre, frame.simd);
-    let (displacement, [gx, gz], height, slope) = match taps::<JACOBIAN>(fields, c, x, z) {
-        Taps::Spline(tile, lx, lz, w) => {
-            let [displacement, gx, gz] = if DISPLACEMENT || JACOBIAN {
-                spline::displacement::<JACOBIAN>(simd, tile, lx, lz, &w)
-            } else {
-                [[0.0; 2]; 3]
-            };
-            let height = if HEIGHT {
-                spline::height(simd, tile, lx, lz, &w)
-            } else {
-                0.0
-            };
-            let slope = if SLOPE {
-                spline::slope(simd, tile, lx, lz, &w)
-            } else {
-                [0.0; 2]
-            };
-            (displacement, [gx, gz], height, slope)
-        }
-        Taps::Bilinear(bilinear, source, fx, fz) => {
-            let displacement = if DISPLACEMENT || JACOBIAN {
-                bilinear.vector(source.displacement).to_array()
-            } else {
-                [0.0; 2]
-            };
-            let gradient = if JACOBIAN {
-                let d = bilinear
-                    .index
-                    .map(|i| Vec2::from_array(source.displacement[i]));
-                let gx = (d[1] - d[0]) * (1.0 - fz) + (d[3] - d[2]) * fz;
-                let gz = (d[2] - d[0]) * (1.0 - fx) + (d[3] - d[1]) * fx;
-                [gx.to_array(), gz.to_array()]
-            } else {
-                [[0.0; 2]; 2]
-            };
-            let height = if HEIGHT {
-                bilinear.scalar(source.height)
-            } else {
-                0.0
-            };
-            let slope = if SLOPE {
-                bilinear.vector(source.slope).to_array()
-            } else {
-                [0.0; 2]
-            };
-            (displacement, gradient, height, slope)
-        }
-    };
+    let (mut displacement, [mut gx, mut gz], mut height, mut slope) =
+        match taps::<JACOBIAN>(fields, c, x, z) {
+            Taps::Spline(tile, lx, lz, w) => {
+                let [displacement, gx, gz] = if DISPLACEMENT || JACOBIAN {
+                    spline::displacement::<JACOBIAN>(simd, tile, lx, lz, &w)
+                } else {
+                    [[0.0; 2]; 3]
+                };
+                let height = if HEIGHT {
+                    spline::height(simd, tile, lx, lz, &w)
+                } else {
+                    0.0
+                };
+                let slope = if SLOPE {
+                    spline::slope(simd, tile, lx, lz, &w)
+                } else {
+                    [0.0; 2]
+                };
+                (displacement, [gx, gz], height, slope)
+            }
+            Taps::Bilinear(bilinear, source, fx, fz) => {
+                let displacement = if DISPLACEMENT || JACOBIAN {
+                    bilinear.vector(source.displacement).to_array()
+                } else {
+                    [0.0; 2]
+                };
+                let gradient = if JACOBIAN {
+                    let d = bilinear
+                        .index
+                        .map(|i| Vec2::from_array(source.displacement[i]));
+                    let gx = (d[1] - d[0]) * (1.0 - fz) + (d[3] - d[2]) * fz;
+                    let gz = (d[2] - d[0]) * (1.0 - fx) + (d[3] - d[1]) * fx;
+                    [gx.to_array(), gz.to_array()]
+                } else {
+                    [[0.0; 2]; 2]
+                };
+                let height = if HEIGHT {
+                    bilinear.scalar(source.height)
+                } else {
+                    0.0
+                };
+                let slope = if SLOPE {
+                    bilinear.vector(source.slope).to_array()
+                } else {
+                    [0.0; 2]
+                };
+                (displacement, gradient, height, slope)
+            }
+        };
+    if let Some(factors) = factors {
+        // The cascade's waves scaled by the coast's factor at the point (its gradient
+        // neglected: it varies over many wavelengths, see docs/theory.md, "Coasts").
+        let f = factors[c];
+        displacement = displacement.map(|v| v * f);
+        gx = gx.map(|v| v * f);
+        gz = gz.map(|v| v * f);
+        height *= f;
+        slope = slope.map(|v| v * f);
+    }
     if DISPLACEMENT || JACOBIAN {
         total.displacement[0] += displacement[0];
         total.displacement[1] += displacement[1];
@@ -137,7 +150,8 @@ fn accumulate<
     }
 }
 
-/// [`accumulate`] of cascades `range` at undisplaced world (x, z), in order.
+/// [`accumulate`] of cascades `range` at undisplaced world (x, z), in order, each scaled by
+/// its coast factor in `factors` (`None`: no depth map).
 #[inline(always)]
 fn evaluate<
     const DISPLACEMENT: bool,
@@ -149,12 +163,28 @@ fn evaluate<
     x: f64,
     z: f64,
     range: std::ops::Range<usize>,
+    factors: Option<&Factors>,
 ) -> Summed {
     let mut total = Summed::default();
     for c in range {
-        accumulate::<DISPLACEMENT, JACOBIAN, HEIGHT, SLOPE>(fields, c, [x, z], &mut total);
+        accumulate::<DISPLACEMENT, JACOBIAN, HEIGHT, SLOPE>(fields, c, [x, z], factors, &mut total);
     }
     total
+}
+
+/// The coast's factors of the cascades at world (x, z) (`None` without a depth map:
+/// nothing scaled). A query at an undisplaced point reads them there; a query at a world
+/// point p (`height_at`, `surface_at`, `locate`) reads them at p once and scales the
+/// cascades by them at every iterate of its search and where it lands: the factors vary
+/// over the map's cells and the shoaling distance, not over the metre between p and the
+/// water's rest point (see docs/theory.md, "Coasts").
+#[inline(always)]
+pub(super) fn coast_factors(fields: &Fields<'_>, x: f64, z: f64) -> Option<Factors> {
+    let frame = fields.frame();
+    frame
+        .coast
+        .as_ref()
+        .map(|coast| coast.factors(frame.time, x, z))
 }
 
 /// The [`SurfaceSample`] of displacement `displacement`, height and slope `fields` and foam
@@ -185,7 +215,8 @@ pub(super) fn sample(
     } else {
         0.0
     };
-    let summed = evaluate::<true, false, true, true>(fields, x, z, range);
+    let factors = coast_factors(fields, x, z);
+    let summed = evaluate::<true, false, true, true>(fields, x, z, range, factors.as_ref());
     surface_sample(summed.displacement, summed, foam)
 }
 
@@ -228,15 +259,20 @@ pub(super) fn guessing(count: usize) -> std::ops::Range<usize> {
 /// then end after one Newton step (half without it): 9.2 cascades evaluated a point, one
 /// without the Jacobian, instead of 9.5 (10.2 from p).
 #[inline(always)]
-pub(super) fn first_guess(fields: &Fields<'_>, x: f64, z: f64) -> [f64; 2] {
+pub(super) fn first_guess(
+    fields: &Fields<'_>,
+    x: f64,
+    z: f64,
+    factors: Option<&Factors>,
+) -> [f64; 2] {
     let count = fields.frame().grids.len();
     let cascades = guessing(count);
     let rest = cascades.end..count;
-    let summed = evaluate::<true, true, false, false>(fields, x, z, cascades);
+    let summed = evaluate::<true, true, false, false>(fields, x, z, cascades, factors);
     let [dx, dz] = summed.displacement.map(f64::from);
     let step = newton_step([-dx, -dz], summed.jacobian);
     let [x, z] = [x + step[0], z + step[1]];
-    let short = evaluate::<true, false, false, false>(fields, x, z, rest).displacement;
+    let short = evaluate::<true, false, false, false>(fields, x, z, rest, factors).displacement;
     [x - f64::from(short[0]), z - f64::from(short[1])]
 }
 
@@ -261,13 +297,15 @@ pub(super) struct Search {
     next: [f64; 2],
     /// Whether the search is over (converged, or out of iterations).
     done: bool,
+    /// The coast's factors at the target ([`coast_factors`]).
+    pub(super) factors: Option<Factors>,
 }
 
 impl Search {
     /// The search for the water landing on world (x, z), from the undisplaced point `start`
-    /// ([`first_guess`]).
+    /// ([`first_guess`]), with the coast's `factors` there.
     #[inline(always)]
-    pub(super) fn new(x: f64, z: f64, start: [f64; 2]) -> Search {
+    pub(super) fn new(x: f64, z: f64, start: [f64; 2], factors: Option<Factors>) -> Search {
         Search {
             target: [x, z],
             best: Location {
@@ -282,6 +320,7 @@ impl Search {
             fraction: 1.0,
             next: start,
             done: false,
+            factors,
         }
     }
 
@@ -334,18 +373,22 @@ impl Search {
 /// x₀ + D(x₀) = p from [`first_guess`] (see
 /// [`Water::locate`](crate::Water::locate)), and the summed displacement there.
 #[inline(always)]
-pub(super) fn locate(fields: &Fields<'_>, x: f64, z: f64) -> (Location, [f32; 2]) {
+pub(super) fn locate(fields: &Fields<'_>, x: f64, z: f64) -> (Location, [f32; 2], Option<Factors>) {
     let frame = fields.frame();
-    let mut search = Search::new(x, z, first_guess(fields, x, z));
+    let factors = coast_factors(fields, x, z);
+    let start = first_guess(fields, x, z, factors.as_ref());
+    let mut search = Search::new(x, z, start, factors);
     for iteration in 0..=frame.query.max_iterations {
         let [x0, z0] = search.next;
-        let summed = evaluate::<true, true, false, false>(fields, x0, z0, 0..frame.grids.len());
+        let cascades = 0..frame.grids.len();
+        let summed =
+            evaluate::<true, true, false, false>(fields, x0, z0, cascades, factors.as_ref());
         search.update(iteration, &summed, &frame.query);
         if search.done {
             break;
         }
     }
-    (search.best, search.displacement)
+    (search.best, search.displacement, factors)
 }
 
 /// Points whose queries [`PointQuery::group`](super::point::PointQuery::group) interleaves: enough
@@ -360,14 +403,16 @@ fn locate_group(fields: &Fields<'_>, points: &[[f64; 2]], searches: &mut [Search
     let frame = fields.frame();
     let count = points.len();
     for (search, &[x, z]) in searches.iter_mut().zip(points) {
-        *search = Search::new(x, z, first_guess(fields, x, z));
+        let factors = coast_factors(fields, x, z);
+        *search = Search::new(x, z, first_guess(fields, x, z, factors.as_ref()), factors);
     }
     for iteration in 0..=frame.query.max_iterations {
         let mut sums = [Summed::default(); GROUP];
         for c in 0..frame.grids.len() {
             for (sum, search) in sums.iter_mut().zip(&searches[..count]) {
                 if !search.done {
-                    accumulate::<true, true, false, false>(fields, c, search.next, sum);
+                    let factors = search.factors.as_ref();
+                    accumulate::<true, true, false, false>(fields, c, search.next, factors, sum);
                 }
             }
         }
@@ -385,7 +430,7 @@ fn locate_group(fields: &Fields<'_>, points: &[[f64; 2]], searches: &mut [Search
 }
 
 /// The height (and with `SLOPE` the slope) of cascades `range` at each of `points` (at most
-/// [`GROUP`]), the cascades visited point after point (the same operations for each point
+/// [`GROUP`]), scaled by each point's coast `factors`, the cascades visited point after point (the same operations for each point
 /// as [`evaluate`]'s, so the same bits).
 #[inline(always)]
 pub(super) fn evaluate_group<const DISPLACEMENT: bool, const SLOPE: bool>(
@@ -393,11 +438,13 @@ pub(super) fn evaluate_group<const DISPLACEMENT: bool, const SLOPE: bool>(
     points: impl Fn(usize) -> [f64; 2],
     count: usize,
     range: std::ops::Range<usize>,
+    factors: &[Option<Factors>; GROUP],
 ) -> [Summed; GROUP] {
     let mut sums = [Summed::default(); GROUP];
     for c in range {
         for (p, sum) in sums[..count].iter_mut().enumerate() {
-            accumulate::<DISPLACEMENT, false, true, SLOPE>(fields, c, points(p), sum);
+            let factors = factors[p].as_ref();
+            accumulate::<DISPLACEMENT, false, true, SLOPE>(fields, c, points(p), factors, sum);
         }
     }
     sums
@@ -406,19 +453,20 @@ pub(super) fn evaluate_group<const DISPLACEMENT: bool, const SLOPE: bool>(
 /// The surface where the water at world (x, z) comes from: the sample at the located point.
 #[inline(always)]
 pub(super) fn surface_at(fields: &Fields<'_>, x: f64, z: f64) -> SurfaceSample {
-    let (location, displacement) = locate(fields, x, z);
+    let (location, displacement, factors) = locate(fields, x, z);
     let [x0, z0] = location.undisplaced;
     let cascades = 0..fields.frame().grids.len();
-    let summed = evaluate::<false, false, true, true>(fields, x0, z0, cascades);
+    let summed = evaluate::<false, false, true, true>(fields, x0, z0, cascades, factors.as_ref());
     surface_sample(displacement, summed, fields.foam_at(x0, z0))
 }
 
 /// The water height at world (x, z).
 #[inline(always)]
 pub(super) fn height_at(fields: &Fields<'_>, x: f64, z: f64) -> f32 {
-    let [x0, z0] = locate(fields, x, z).0.undisplaced;
+    let (location, _, factors) = locate(fields, x, z);
+    let [x0, z0] = location.undisplaced;
     let cascades = 0..fields.frame().grids.len();
-    evaluate::<false, false, true, false>(fields, x0, z0, cascades).height
+    evaluate::<false, false, true, false>(fields, x0, z0, cascades, factors.as_ref()).height
 }
 
 /// [`locate_group`] of `points` (at most [`GROUP`]), then the height (and with `SLOPE` the
@@ -429,10 +477,11 @@ pub(super) fn located_group<const SLOPE: bool>(
     fields: &Fields<'_>,
     points: &[[f64; 2]],
 ) -> ([Search; GROUP], [Summed; GROUP]) {
-    let mut searches = [Search::new(0.0, 0.0, [0.0; 2]); GROUP];
+    let mut searches = [Search::new(0.0, 0.0, [0.0; 2], None); GROUP];
     locate_group(fields, points, &mut searches);
     let at = |p: usize| searches[p].best.undisplaced;
     let cascades = 0..fields.frame().grids.len();
-    let sums = evaluate_group::<false, SLOPE>(fields, at, points.len(), cascades);
+    let factors = searches.map(|search| search.factors);
+    let sums = evaluate_group::<false, SLOPE>(fields, at, points.len(), cascades, &factors);
     (searches, sums)
 }

@@ -3,7 +3,8 @@
 
 use super::frame::Fields;
 use super::inversion::{
-    evaluate_group, height_at, locate, located_group, sample, surface_at, surface_sample, GROUP,
+    coast_factors, evaluate_group, height_at, locate, located_group, sample, surface_at,
+    surface_sample, GROUP,
 };
 use super::lanes::{self, Shuffle};
 use super::results::{surface, Location, SurfaceSample};
@@ -127,8 +128,15 @@ impl PointQuery for Sample {
 
     #[inline(always)]
     fn group(&self, fields: &Fields<'_>, points: &[[f64; 2]], out: &mut [SurfaceSample]) {
+        let mut factors = [None; GROUP];
+        if fields.frame().coast.is_some() {
+            for (factors, &[x, z]) in factors.iter_mut().zip(points) {
+                *factors = coast_factors(fields, x, z);
+            }
+        }
+        let range = self.0.clone();
         let sums =
-            evaluate_group::<true, true>(fields, |p| points[p], points.len(), self.0.clone());
+            evaluate_group::<true, true>(fields, |p| points[p], points.len(), range, &factors);
         for ((value, sum), &[x, z]) in out.iter_mut().zip(&sums).zip(points) {
             let foam = if self.0.contains(&0) {
                 fields.foam_at(x, z)

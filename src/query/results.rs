@@ -24,7 +24,7 @@ pub struct SurfaceSample {
     /// Unit normal `[x, y, z]` of the displaced surface (y up), from the summed slope.
     pub normal: [f32; 3],
     /// Foam coverage in [0, 1]: the ocean's one foam field
-    /// ([`OceanState::foam`](crate::OceanState::foam), on cascade 0's grid) interpolated
+    /// ([`FoamView::total`](crate::FoamView::total), on cascade 0's grid) interpolated
     /// bilinearly, the fraction of the sea around the point that foam covers (the expectation
     /// of the foam itself, which [`FoamView::foam_at`](crate::FoamView::foam_at) gives
     /// patterned at the breaking scale); 0 from a range of cascades without cascade 0

@@ -77,6 +77,21 @@ impl<'a> Water<'a> {
         self.fields.frame().grids.len()
     }
 
+    /// Depth of the water in metres at world (`x`, `z`) on the ocean's depth map
+    /// ([`OceanState::set_depth_map`](crate::OceanState::set_depth_map)): ≤ 0 on land, where
+    /// the queries answer the still level (height 0, flat); `None` outside the map or
+    /// without one (the open sea).
+    ///
+    /// # Errors
+    /// [`Error::NonFinite`] for a NaN or infinite coordinate.
+    pub fn depth_at(&self, x: f64, z: f64) -> Result<Option<f32>, Error> {
+        check_point(x, z)?;
+        let coast = self.fields.frame().coast.as_ref();
+        Ok(coast
+            .and_then(|c| c.current.as_ref())
+            .and_then(|field| field.depth_at(x, z)))
+    }
+
     /// Water height y in metres at world point (`x`, `z`) in metres, after horizontal
     /// displacement — the query buoyancy and gameplay need. Where the surface folds the
     /// inversion may not converge; [`locate`](Self::locate) reports how close it came.

@@ -45,7 +45,11 @@ mod engines {
             let n2 = cascade.size() * cascade.size();
             // The ocean's one foam field rides in cascade 0's texels; the others carry 0.
             let zeros = vec![0.0; n2];
-            let foam = if c == 0 { ocean.foam() } else { &zeros[..] };
+            let foam = if c == 0 {
+                ocean.foam_view().total()
+            } else {
+                &zeros[..]
+            };
             // Each channel is the f16 nearest to the buffer it comes from, after this step.
             let near = |texel: f16, value: f32| texel == f16::from_f32(value);
             assert_eq!(

@@ -5,6 +5,7 @@
 use super::shuffle::Shuffle;
 use super::{cells, each, F32s, F64s, FEWEST, LANES};
 use crate::cascade::MAX_CASCADES;
+use crate::coast::Factors;
 use crate::math::periodic::Period;
 use crate::math::simd::Kernel;
 use crate::query::frame::Fields;
@@ -176,7 +177,8 @@ fn heights<S: Shuffle>(
 }
 
 /// The fields of cascades `range` at the undisplaced world points `[x, z]` of eight lanes,
-/// summed in order as [`inversion`]'s `evaluate` sums them: the displacement with
+/// each cascade scaled by each lane's coast `factors` (`None`: no depth map), summed in
+/// order as [`inversion`]'s `evaluate` sums them: the displacement with
 /// `DISPLACEMENT`, its Jacobian with `JACOBIAN`, the height with `HEIGHT`, the slope with
 /// `SLOPE`. Every cascade in `range` must have spline tiles.
 /// Out of line at the batch's SIMD level (see [`Shuffle::run`]): the searches call it from
@@ -193,13 +195,26 @@ pub(super) fn evaluate<
     fields: &Fields<'_>,
     at: &[F64s; 2],
     range: std::ops::Range<usize>,
+    factors: Option<&[Factors; LANES]>,
 ) -> SummedLanes {
     shuffle.run(Evaluate::<S, DISPLACEMENT, JACOBIAN, HEIGHT, SLOPE> {
         shuffle,
         fields,
         at,
         range,
+        factors,
     })
+}
+
+/// The coast's factors at eight world points (`None` without a depth map): what
+/// `inversion::coast_factors` gives at each.
+#[inline(always)]
+pub(super) fn coast_factors(fields: &Fields<'_>, [x, z]: &[F64s; 2]) -> Option<[Factors; LANES]> {
+    let frame = fields.frame();
+    frame
+        .coast
+        .as_ref()
+        .map(|coast| coast.factors_many(frame.time, x, z))
 }
 
 /// [`evaluate`]'s arguments, as a [`Kernel`].
@@ -215,6 +230,7 @@ struct Evaluate<
     fields: &'a Fields<'a>,
     at: &'a [F64s; 2],
     range: std::ops::Range<usize>,
+    factors: Option<&'a [Factors; LANES]>,
 }
 
 impl<
@@ -234,8 +250,9 @@ impl<
             fields,
             at: [x, z],
             range,
+            factors,
         } = self;
-        sum::<S, DISPLACEMENT, JACOBIAN, HEIGHT, SLOPE>(shuffle, fields, [x, z], range)
+        sum::<S, DISPLACEMENT, JACOBIAN, HEIGHT, SLOPE>(shuffle, fields, [x, z], range, factors)
     }
 }
 
@@ -252,6 +269,7 @@ fn sum<
     fields: &Fields<'_>,
     [x, z]: [&F64s; 2],
     range: std::ops::Range<usize>,
+    factors: Option<&[Factors; LANES]>,
 ) -> SummedLanes {
     let frame = fields.frame();
     let mut total = SummedLanes::default();
@@ -301,13 +319,20 @@ fn sum<
             (zero, zero)
         };
         let weights = [spline::weights(fx), spline::weights(fz), dx, dz];
+        // The cascade's fields times its coast factor, rounded as the single query rounds
+        // them (the product, then the sum).
+        let factor: Option<F32s> = factors.map(|f| each(|l| f[l][c]));
+        let scale = |v: F32s| match factor {
+            Some(f) => shuffle.mul(v, f),
+            None => v,
+        };
         if DISPLACEMENT || JACOBIAN {
             let [value, gx, gz] = pairs::<S, JACOBIAN>(shuffle, found, 0, &at, &weights);
             for k in 0..2 {
-                total.displacement[k] = shuffle.add(total.displacement[k], value[k]);
+                total.displacement[k] = shuffle.add(total.displacement[k], scale(value[k]));
             }
             if JACOBIAN {
-                let g = [gx[0], gz[0], gx[1], gz[1]];
+                let g = [scale(gx[0]), scale(gz[0]), scale(gx[1]), scale(gz[1])];
                 for (sum, &g) in total.jacobian.iter_mut().zip(&g) {
                     *sum = shuffle.add_product(*sum, [*per_metre; LANES], g);
                 }
@@ -315,12 +340,12 @@ fn sum<
         }
         if HEIGHT {
             let height = heights(shuffle, found, &at, [&weights[0], &weights[1]]);
-            total.height = shuffle.add(total.height, height);
+            total.height = shuffle.add(total.height, scale(height));
         }
         if SLOPE {
             let [slope, _, _] = pairs::<S, false>(shuffle, found, spline::SLOPE, &at, &weights);
             for k in 0..2 {
-                total.slope[k] = shuffle.add(total.slope[k], slope[k]);
+                total.slope[k] = shuffle.add(total.slope[k], scale(slope[k]));
             }
         }
     }
@@ -328,7 +353,8 @@ fn sum<
 }
 
 /// The foam coverage at eight undisplaced world points: [`Fields::foam_at`] lane by lane
-/// (the same cell, the bilinear stencil's weights and sum, clamped to [0, 1]).
+/// (the same cell, the bilinear stencil's weights and sum, clamped to [0, 1], then the
+/// coast's, point by point).
 #[inline(always)]
 // max then min, as `Fields::foam_at` clamps (`clamp` differs on NaN and −0).
 #[allow(clippy::manual_clamp)]
@@ -356,11 +382,16 @@ pub(super) fn foam(fields: &Fields<'_>, [x, z]: &[F64s; 2]) -> F32s {
         value(&iz1, &ix1),
     ];
     let p: [F32s; 4] = std::array::from_fn(|c| each(|l| corner[c][l] * weight[c][l]));
-    each(|l| {
+    let foam = each(|l| {
         (((p[0][l] + p[1][l]) + p[2][l]) + p[3][l])
             .max(0.0)
             .min(1.0)
-    })
+    });
+    let frame = fields.frame();
+    match &frame.coast {
+        None => foam,
+        Some(coast) => each(|l| coast.foam(frame.time, x[l], z[l], foam[l])),
+    }
 }
 
 /// The surface at each of `points` (undisplaced), summed over cascades `range` (the foam
@@ -384,7 +415,14 @@ pub(crate) fn sample<S: Shuffle>(
             each(|l| points.get(l).unwrap_or(&points[0])[0]),
             each(|l| points.get(l).unwrap_or(&points[0])[1]),
         ];
-        let sums = evaluate::<S, true, false, true, true>(shuffle, fields, &at, range.clone());
+        let factors = coast_factors(fields, &at);
+        let sums = evaluate::<S, true, false, true, true>(
+            shuffle,
+            fields,
+            &at,
+            range.clone(),
+            factors.as_ref(),
+        );
         let foam = if range.contains(&0) {
             foam(fields, &at)
         } else {

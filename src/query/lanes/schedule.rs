@@ -152,14 +152,19 @@ fn advance<S: Shuffle, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
             for k in 0..2 {
                 searches.next[k][l] = searches.next[k][busy];
             }
+            searches.factors[l] = searches.factors[busy];
         }
     }
     let frame = fields.frame();
     let cascades = 0..frame.grids.len();
+    let (at, factors) = (
+        &searches.next,
+        frame.coast.is_some().then_some(&searches.factors),
+    );
     let summed = if read {
-        evaluate::<S, true, true, true, false>(shuffle, fields, &searches.next, cascades)
+        evaluate::<S, true, true, true, false>(shuffle, fields, at, cascades, factors)
     } else {
-        evaluate::<S, true, true, false, false>(shuffle, fields, &searches.next, cascades)
+        evaluate::<S, true, true, false, false>(shuffle, fields, at, cascades, factors)
     };
     let query = &frame.query;
     let done = searches.update(
@@ -234,7 +239,13 @@ fn finish<S: Shuffle, T: FromFound, const HEIGHT: bool, const SLOPE: bool>(
             each(|l| found.get(l).unwrap_or(&found[0]).location.undisplaced[1]),
         ];
         let cascades = 0..fields.frame().grids.len();
-        let sums = evaluate::<S, false, false, HEIGHT, SLOPE>(shuffle, fields, &at, cascades);
+        let factors = fields
+            .frame()
+            .coast
+            .is_some()
+            .then(|| each(|l| found.get(l).unwrap_or(&found[0]).factors));
+        let f = factors.as_ref();
+        let sums = evaluate::<S, false, false, HEIGHT, SLOPE>(shuffle, fields, &at, cascades, f);
         // The foam comes with the slope (a surface sample).
         let foam = if SLOPE {
             foam(fields, &at)

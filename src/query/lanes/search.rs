@@ -2,9 +2,11 @@
 //! points ([`Guesses`]), each lane's update with the single query's operations, and what
 //! each search found ([`Found`]).
 
-use super::evaluate::{evaluate, SummedLanes};
+use super::evaluate::{coast_factors, evaluate, SummedLanes};
 use super::shuffle::Shuffle;
 use super::{each, F32s, F64s, LANES};
+use crate::cascade::MAX_CASCADES;
+use crate::coast::Factors;
 use crate::query::frame::Fields;
 use crate::query::inversion::{guessing, MIN_DETERMINANT};
 use crate::query::results::Location;
@@ -48,6 +50,8 @@ pub(super) struct Guesses {
     pub(super) target: [[f64; 2]; LANES],
     /// Each one's first guess `[x, z]` (`first_guess`, lane by lane).
     pub(super) start: [F64s; 2],
+    /// The coast's factors at each target (`None`: no depth map).
+    pub(super) factors: Option<[Factors; LANES]>,
 }
 
 impl Guesses {
@@ -57,6 +61,7 @@ impl Guesses {
         taken: 0,
         target: [[0.0; 2]; LANES],
         start: [[0.0; LANES]; 2],
+        factors: None,
     };
 
     /// The first guesses of `points` (at most [`LANES`], the first being the batch's point
@@ -75,7 +80,9 @@ impl Guesses {
         let count = fields.frame().grids.len();
         let cascades = guessing(count);
         let rest = cascades.end..count;
-        let summed = evaluate::<S, true, true, false, false>(shuffle, fields, &at, cascades);
+        let factors = coast_factors(fields, &at);
+        let f = factors.as_ref();
+        let summed = evaluate::<S, true, true, false, false>(shuffle, fields, &at, cascades, f);
         let d = &summed.displacement;
         let residual = [each(|l| -f64::from(d[0][l])), each(|l| -f64::from(d[1][l]))];
         let step = newton_steps(&residual, &summed.jacobian);
@@ -83,7 +90,7 @@ impl Guesses {
             each(|l| at[0][l] + step[0][l]),
             each(|l| at[1][l] + step[1][l]),
         ];
-        let short = evaluate::<S, true, false, false, false>(shuffle, fields, &stepped, rest);
+        let short = evaluate::<S, true, false, false, false>(shuffle, fields, &stepped, rest, f);
         let d = &short.displacement;
         Guesses {
             first,
@@ -94,6 +101,7 @@ impl Guesses {
                 each(|l| stepped[0][l] - f64::from(d[0][l])),
                 each(|l| stepped[1][l] - f64::from(d[1][l])),
             ],
+            factors,
         }
     }
 }
@@ -122,6 +130,8 @@ pub(super) struct Searches {
     height: F32s,
     /// Whether the evaluation of the best iterate read the height.
     height_read: [bool; LANES],
+    /// The coast's factors at each lane's target (all 1 without a depth map: unread).
+    pub(super) factors: [Factors; LANES],
 }
 
 /// What a search found: where the water at a point comes from, and the summed fields there
@@ -136,6 +146,8 @@ pub(crate) struct Found {
     pub(super) slope: [f32; 2],
     /// Foam coverage in [0, 1] (with the slope).
     pub(super) foam: f32,
+    /// The coast's factors at the target (all 1 without a depth map: unread).
+    pub(super) factors: Factors,
 }
 
 impl Found {
@@ -151,6 +163,7 @@ impl Found {
         height_read: false,
         slope: [0.0; 2],
         foam: 0.0,
+        factors: [1.0; MAX_CASCADES],
     };
 }
 
@@ -172,6 +185,7 @@ impl Searches {
             displacement: [[0.0; LANES]; 2],
             height: [0.0; LANES],
             height_read: [false; LANES],
+            factors: [[1.0; MAX_CASCADES]; LANES],
         }
     }
 
@@ -186,6 +200,9 @@ impl Searches {
             searches.next[k] = guesses.start[k];
             searches.base[k] = guesses.start[k];
             searches.best[k] = guesses.start[k];
+        }
+        if let Some(factors) = guesses.factors {
+            searches.factors = factors;
         }
         searches
     }
@@ -207,6 +224,9 @@ impl Searches {
         self.iterations[l] = 0;
         self.converged[l] = false;
         self.height_read[l] = false;
+        if let Some(factors) = &guesses.factors {
+            self.factors[l] = factors[p];
+        }
     }
 
     /// Moves lane `l`'s search to lane `to` of `other` (whose lane `to` is idle).
@@ -228,6 +248,7 @@ impl Searches {
         other.converged[to] = self.converged[l];
         other.height[to] = self.height[l];
         other.height_read[to] = self.height_read[l];
+        other.factors[to] = self.factors[l];
     }
 
     /// Takes the sums at each lane's iterate, and sets the iterate after it; returns which
@@ -336,6 +357,7 @@ impl Searches {
             height_read: self.height_read[l],
             slope: [0.0; 2],
             foam: 0.0,
+            factors: self.factors[l],
         }
     }
 }
