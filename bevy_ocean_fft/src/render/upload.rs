@@ -7,14 +7,11 @@ use std::time::Instant;
 
 use bevy::prelude::*;
 use bevy::render::render_asset::RenderAssets;
-use bevy::render::render_resource::{
-    Extent3d, Origin3d, TexelCopyBufferLayout, TexelCopyTextureInfo, TextureAspect,
-};
 use bevy::render::renderer::RenderQueue;
 use bevy::render::texture::GpuImage;
 use bevy::render::Extract;
 
-use super::wake::{wake_gpu_image, write_streaks, write_wake};
+use super::wake::{wake_gpu_image, write_level, write_streaks, write_wake};
 use super::{OceanRender, UploadTime};
 use crate::sim::{OceanTexels, PackedFrame};
 
@@ -79,29 +76,9 @@ pub(super) fn upload_texels(
     for (image, data) in [(displacement, &texels.displacement), (slope, &texels.slope)] {
         for level in texels.levels(data) {
             let side = level.side as u32;
-            queue.write_texture(
-                TexelCopyTextureInfo {
-                    texture: &image.texture,
-                    mip_level: level.level as u32,
-                    origin: Origin3d {
-                        x: 0,
-                        y: 0,
-                        z: level.layer as u32,
-                    },
-                    aspect: TextureAspect::All,
-                },
-                bytemuck::cast_slice(level.texels),
-                TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(side * 8),
-                    rows_per_image: Some(side),
-                },
-                Extent3d {
-                    width: side,
-                    height: side,
-                    depth_or_array_layers: 1,
-                },
-            );
+            let place = [level.layer as u32, level.level as u32];
+            let texels = bytemuck::cast_slice(level.texels);
+            write_level(&queue, image, texels, place, [side, side], 8);
         }
     }
     if let Some(image) = wake_gpu_image(&images, extracted.wake) {

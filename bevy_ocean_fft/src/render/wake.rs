@@ -20,25 +20,70 @@ use crate::sim::PackedFrame;
 /// An n×n RGBA16F image for the wake window (1×1 without wakes: the shader reads none),
 /// sampled with linear filtering and clamp-to-edge addressing.
 pub(super) fn wake_image(n: usize) -> Image {
+    image_2d(
+        [n, n],
+        TextureFormat::Rgba16Float,
+        ImageAddressMode::ClampToEdge,
+    )
+}
+
+/// A `size` (width, height; at least 1) 2D image of `format` to write texels into, sampled
+/// with linear filtering and `address` on both axes.
+fn image_2d(size: [usize; 2], format: TextureFormat, address: ImageAddressMode) -> Image {
     let mut image = Image::new_uninit(
         Extent3d {
-            width: n.max(1) as u32,
-            height: n.max(1) as u32,
+            width: size[0].max(1) as u32,
+            height: size[1].max(1) as u32,
             depth_or_array_layers: 1,
         },
         TextureDimension::D2,
-        TextureFormat::Rgba16Float,
+        format,
         RenderAssetUsages::RENDER_WORLD,
     );
     image.texture_descriptor.usage = TextureUsages::TEXTURE_BINDING | TextureUsages::COPY_DST;
     image.sampler = ImageSampler::Descriptor(ImageSamplerDescriptor {
-        address_mode_u: ImageAddressMode::ClampToEdge,
-        address_mode_v: ImageAddressMode::ClampToEdge,
+        address_mode_u: address,
+        address_mode_v: address,
         mag_filter: ImageFilterMode::Linear,
         min_filter: ImageFilterMode::Linear,
         ..Default::default()
     });
     image
+}
+
+/// Writes `texels` (`bytes_per_texel` each, rows of `width`) into mip level `mip` of layer
+/// `layer` of `image`, a `width`×`height` region from its corner.
+pub(super) fn write_level(
+    queue: &RenderQueue,
+    image: &GpuImage,
+    texels: &[u8],
+    [layer, mip]: [u32; 2],
+    [width, height]: [u32; 2],
+    bytes_per_texel: u32,
+) {
+    queue.write_texture(
+        TexelCopyTextureInfo {
+            texture: &image.texture,
+            mip_level: mip,
+            origin: Origin3d {
+                x: 0,
+                y: 0,
+                z: layer,
+            },
+            aspect: TextureAspect::All,
+        },
+        texels,
+        TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(width * bytes_per_texel),
+            rows_per_image: Some(height),
+        },
+        Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+    );
 }
 
 /// Writes `frame`'s wake texels into `image` if it has their size.
@@ -48,48 +93,17 @@ pub(super) fn write_wake(queue: &RenderQueue, image: &GpuImage, frame: &Arc<Pack
     if !wake.active() || side as usize != wake.size {
         return;
     }
-    queue.write_texture(
-        TexelCopyTextureInfo {
-            texture: &image.texture,
-            mip_level: 0,
-            origin: Origin3d::ZERO,
-            aspect: TextureAspect::All,
-        },
-        bytemuck::cast_slice(&wake.texels),
-        TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(side * 8),
-            rows_per_image: Some(side),
-        },
-        Extent3d {
-            width: side,
-            height: side,
-            depth_or_array_layers: 1,
-        },
-    );
+    let texels = bytemuck::cast_slice(&wake.texels);
+    write_level(queue, image, texels, [0, 0], [side, side], 8);
 }
 
 /// An `across`×`along` R16F image for the streak field (repeat, linear).
 pub(super) fn streak_image(across: usize, along: usize) -> Image {
-    let mut image = Image::new_uninit(
-        Extent3d {
-            width: across.max(1) as u32,
-            height: along.max(1) as u32,
-            depth_or_array_layers: 1,
-        },
-        TextureDimension::D2,
+    image_2d(
+        [across, along],
         TextureFormat::R16Float,
-        RenderAssetUsages::RENDER_WORLD,
-    );
-    image.texture_descriptor.usage = TextureUsages::TEXTURE_BINDING | TextureUsages::COPY_DST;
-    image.sampler = ImageSampler::Descriptor(ImageSamplerDescriptor {
-        address_mode_u: ImageAddressMode::Repeat,
-        address_mode_v: ImageAddressMode::Repeat,
-        mag_filter: ImageFilterMode::Linear,
-        min_filter: ImageFilterMode::Linear,
-        ..Default::default()
-    });
-    image
+        ImageAddressMode::Repeat,
+    )
 }
 
 /// Writes `frame`'s streak field into `image` if it has its size and differs from the
@@ -109,21 +123,8 @@ pub(super) fn write_streaks(
     {
         return;
     }
-    queue.write_texture(
-        TexelCopyTextureInfo {
-            texture: &image.texture,
-            mip_level: 0,
-            origin: Origin3d::ZERO,
-            aspect: TextureAspect::All,
-        },
-        bytemuck::cast_slice(&streaks.texels),
-        TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(size.width * 2),
-            rows_per_image: Some(size.height),
-        },
-        size,
-    );
+    let texels = bytemuck::cast_slice(&streaks.texels);
+    write_level(queue, image, texels, [0, 0], [size.width, size.height], 2);
     *written = streaks.fingerprint;
 }
 
