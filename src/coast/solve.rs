@@ -3,7 +3,9 @@
 //! map (docs/theory.md, "Coasts").
 
 use super::{CoastField, DepthMap, EDGE_RAMP_CELLS};
-use crate::cascade::Cascade;
+use rayon::prelude::*;
+
+use crate::cascade::{Cascade, MAX_CASCADES};
 use crate::error::{self, Error};
 use crate::math::determinism::{with_math, Determinism, Math};
 use crate::spectrum::dispersion::Dispersion;
@@ -48,7 +50,7 @@ fn at_depth(dispersion: Dispersion, depth: f64) -> Dispersion {
 }
 
 /// Battjes & Janssen's (1978) fraction of breaking waves Q_b for b = H_rms/H_max: the root
-/// of (1 − Q)/(−ln Q) = b² (1 for b ≥ 1), by bisection on ln Q.
+/// of (1 − Q)/(−ln Q) = b² (1 for b ≥ 1).
 pub(crate) fn breaking_fraction<M: Math>(b: f64) -> f64 {
     if b.is_nan() || b <= 0.0 {
         return 0.0;
@@ -57,32 +59,32 @@ pub(crate) fn breaking_fraction<M: Math>(b: f64) -> f64 {
         return 1.0;
     }
     let b2 = b * b;
-    // g(Q) = (1 − Q) + b² ln Q rises from −∞ at 0 to 0 at Q = 1 through one root below 1.
-    let (mut lo, mut hi) = (-60.0_f64, 0.0_f64);
-    for _ in 0..80 {
-        let mid = 0.5 * (lo + hi);
-        let q = M::exp(mid);
-        if (1.0 - q) + b2 * mid < 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
+    // g(L) = 1 − e^L + b² L with L = ln Q is concave and rises to a peak at L = ln b², above
+    // the root; from L₀ = −1/b² (where g = −e^L₀ < 0) Newton's tangents stay above g, so
+    // the steps climb to the root without passing it.
+    let mut l = -1.0 / b2;
+    if l < -60.0 {
+        return M::exp(l); // Q = e^(−1/b²) to within a relative e^(−60)
+    }
+    for _ in 0..200 {
+        let q = M::exp(l);
+        let (g, slope) = (1.0 - q + b2 * l, b2 - q);
+        if g >= 0.0 || slope <= 0.0 {
+            break;
+        }
+        let step = -g / slope;
+        l += step;
+        if step <= 1e-15 * l.abs() {
+            break;
         }
     }
-    M::exp(lo)
+    M::exp(l)
 }
 
 /// Battjes & Janssen's largest wave height in metres at depth `d` (m) for the peak wave
 /// number `k` (rad/m): H_max = 0.88/k · tanh(γ k d / 0.88), γ of [`breaker_index`].
 pub(crate) fn max_height<M: Math>(k: f64, d: f64) -> f64 {
     0.88 / k * M::tanh(breaker_index(k, d) * k * d / 0.88)
-}
-
-/// The march's state at one cell: the energy of each band relative to the open sea's, and
-/// the depth (m) it was reached at.
-#[derive(Debug, Clone)]
-struct State {
-    energy: Vec<f64>,
-    depth: f64,
 }
 
 /// Solves the waves of `cascades` (drawn from `spectrum`) over `map` (validated), with the
@@ -110,7 +112,6 @@ fn solve_with<M: Math>(
     let mut breaking = error::try_vec(cells, 0.0_f32)?;
     let mut energy = error::try_vec(cells * count, 0.0_f64)?;
     let omega_peak = f64::from(spectrum.peak_omega());
-    let f_peak = omega_peak / std::f64::consts::TAU;
     let open_depth = match dispersion {
         Dispersion::Deep => f64::INFINITY,
         Dispersion::FiniteDepth { depth } | Dispersion::Capillary { depth } => f64::from(depth),
@@ -120,6 +121,12 @@ fn solve_with<M: Math>(
         .iter()
         .map(|b| group_velocity::<M>(&dispersion, b.omega))
         .collect();
+    let sea = Sea {
+        bands: &bands,
+        open: &open,
+        table: DepthTable::new::<M>(&bands, &dispersion, omega_peak),
+        f_peak: omega_peak / std::f64::consts::TAU,
+    };
     let (ux, uz) = (M::cos(direction), M::sin(direction));
     let (si, sj) = (
         if ux >= 0.0 { 1isize } else { -1 },
@@ -131,52 +138,61 @@ fn solve_with<M: Math>(
         (i >= 0 && j >= 0 && (i as usize) < nx && (j as usize) < nz)
             .then(|| j as usize * nx + i as usize)
     };
-    let mut upstream = State {
-        energy: vec![0.0; count],
-        depth: 0.0,
+    // The ray back from a cell along −u crosses the column i − si (if a ≥ b) or the row
+    // j − sj, so the cells of one column (or row) depend only on the one before it: the
+    // march goes line by line, the cells of a line in parallel (each the same bits
+    // whatever the threads).
+    let along_x = a >= b;
+    let (lines, line_len, step) = if along_x { (nx, nz, si) } else { (nz, nx, sj) };
+    let mut line_energy = error::try_vec(line_len * count, 0.0_f64)?;
+    let mut line_q = error::try_vec(line_len, 0.0_f64)?;
+    let cell_of = |line: usize, m: usize| -> (isize, isize) {
+        let fixed = if step > 0 { line } else { lines - 1 - line } as isize;
+        if along_x {
+            (fixed, m as isize)
+        } else {
+            (m as isize, fixed)
+        }
     };
-    let mut shoaled = vec![0.0; count];
-    for jj in 0..nz as isize {
-        let j = if sj > 0 { jj } else { nz as isize - 1 - jj };
-        for ii in 0..nx as isize {
-            let i = if si > 0 { ii } else { nx as isize - 1 - ii };
-            let cell = j as usize * nx + i as usize;
-            let depth = f64::from(map.depth[cell]);
-            if depth <= 0.0 {
-                continue; // land: no waves, nothing carried on
-            }
-            // The ray back from this cell along −u crosses the column i − si (if a ≥ b) or
-            // the row j − sj; the state there is interpolated between the two cells on it.
-            let (near, far, t, length) = if a >= b {
-                (at(i - si, j), at(i - si, j - sj), b / a, spacing / a)
-            } else {
-                (at(i, j - sj), at(i - si, j - sj), a / b, spacing / b)
-            };
-            let mut depth_up = 0.0;
-            for (k, e) in upstream.energy.iter_mut().enumerate() {
-                let value = |c: Option<usize>| c.map_or(1.0, |c| energy[c * count + k]);
-                *e = value(near) * (1.0 - t) + value(far) * t;
-            }
-            for (c, w) in [(near, 1.0 - t), (far, t)] {
-                // Skipped at weight 0: the open sea's depth may be infinite.
-                if w > 0.0 {
-                    depth_up += w * c.map_or(open_depth, |c| f64::from(map.depth[c]));
+    for line in 0..lines {
+        line_energy
+            .par_chunks_mut(count)
+            .zip(line_q.par_iter_mut())
+            .enumerate()
+            .with_min_len(32)
+            .for_each(|(m, (out, q))| {
+                let (i, j) = cell_of(line, m);
+                let depth = f64::from(map.depth[j as usize * nx + i as usize]);
+                if depth <= 0.0 {
+                    out.fill(0.0); // land: no waves, nothing carried on
+                    *q = 0.0;
+                    return;
                 }
-            }
-            upstream.depth = depth_up;
-            let q = march::<M>(
-                &upstream,
-                depth,
-                length,
-                &bands,
-                &open,
-                &dispersion,
-                omega_peak,
-                f_peak,
-                &mut shoaled,
-            );
-            energy[cell * count..][..count].copy_from_slice(&shoaled);
-            breaking[cell] = q as f32;
+                // The state upstream, interpolated between the two cells between which the
+                // ray crosses the line before.
+                let (near, far, t, length) = if along_x {
+                    (at(i - si, j), at(i - si, j - sj), b / a, spacing / a)
+                } else {
+                    (at(i, j - sj), at(i - si, j - sj), a / b, spacing / b)
+                };
+                for (k, e) in out.iter_mut().enumerate() {
+                    let value = |c: Option<usize>| c.map_or(1.0, |c| energy[c * count + k]);
+                    *e = value(near) * (1.0 - t) + value(far) * t;
+                }
+                let mut depth_up = 0.0;
+                for (c, w) in [(near, 1.0 - t), (far, t)] {
+                    // Skipped at weight 0: the open sea's depth may be infinite.
+                    if w > 0.0 {
+                        depth_up += w * c.map_or(open_depth, |c| f64::from(map.depth[c]));
+                    }
+                }
+                *q = march::<M>(&sea, depth_up, depth, length, out);
+            });
+        for (m, q) in line_q.iter().enumerate() {
+            let (i, j) = cell_of(line, m);
+            let cell = j as usize * nx + i as usize;
+            energy[cell * count..][..count].copy_from_slice(&line_energy[m * count..][..count]);
+            breaking[cell] = *q as f32;
         }
     }
     for j in 0..nz {
@@ -207,63 +223,132 @@ fn solve_with<M: Math>(
     })
 }
 
-/// One step of the march from the `upstream` state to a cell `depth` m deep, `length` m
-/// downstream: linear shoaling (the energy flux E c_g of each band kept) and Battjes &
-/// Janssen's dissipation, shared among the bands in proportion to their energy, over
-/// sub-steps of at most 2 m. Writes the bands' energies to `out`, returns Q_b at the cell.
-#[allow(clippy::too_many_arguments)]
+/// Nodes of the depth table per e-fold of depth: linear interpolation in ln d between them
+/// is off by about (Δ²/8)·|f''|, near 1e-6 of the group velocity (checked in the tests).
+const NODES_PER_E_FOLD: f64 = 200.0;
+
+/// The dispersion at every depth the march meets, tabulated once per solve: at nodes
+/// spaced evenly in ln d from [`MIN_DEPTH`] to where every band is deep (k d ≥ 20, tanh
+/// then 1 to double precision), the group velocity of each band and the peak's wave
+/// number. The exact solve of k from ω costs a dozen transcendental calls; the march asks
+/// for it a few times per band and cell.
+struct DepthTable {
+    ln_min: f64,
+    /// Nodes per unit of ln d.
+    scale: f64,
+    nodes: usize,
+    /// Per node: `stride − 1` group velocities (m/s), then the peak's k (rad/m).
+    values: Vec<f64>,
+    stride: usize,
+}
+
+impl DepthTable {
+    fn new<M: Math>(bands: &[Band], dispersion: &Dispersion, omega_peak: f64) -> DepthTable {
+        let omegas: Vec<f64> = bands.iter().map(|b| b.omega).chain([omega_peak]).collect();
+        // The smallest k of any band in deep water sets the depth beyond which all are deep.
+        let deep = at_depth(*dispersion, 1.0e7);
+        let k_min = omegas
+            .iter()
+            .map(|&w| deep.k_from_omega_with::<M>(w))
+            .filter(|k| *k > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        let ln_min = M::ln(MIN_DEPTH);
+        let ln_max = if k_min.is_finite() {
+            M::ln((20.0 / k_min).max(2.0 * MIN_DEPTH))
+        } else {
+            ln_min + 1.0
+        };
+        let nodes = ((ln_max - ln_min) * NODES_PER_E_FOLD).ceil() as usize + 1;
+        let scale = (nodes - 1) as f64 / (ln_max - ln_min);
+        let stride = omegas.len();
+        let mut values = Vec::with_capacity(nodes * stride);
+        for n in 0..nodes {
+            let at = at_depth(*dispersion, M::exp(ln_min + n as f64 / scale));
+            for &w in &omegas[..stride - 1] {
+                values.push(group_velocity::<M>(&at, w));
+            }
+            values.push(at.k_from_omega_with::<M>(omega_peak));
+        }
+        DepthTable {
+            ln_min,
+            scale,
+            nodes,
+            values,
+            stride,
+        }
+    }
+
+    /// The group velocities of the bands (into `cg`, m/s) and the peak's wave number
+    /// (rad/m) at depth `d` (m; clamped to the table, whose last node is deep water).
+    fn at<M: Math>(&self, d: f64, cg: &mut [f64]) -> f64 {
+        let x = ((M::ln(d.max(MIN_DEPTH)) - self.ln_min) * self.scale).max(0.0);
+        let n = (x as usize).min(self.nodes - 2);
+        let t = (x - n as f64).min(1.0);
+        let lo = &self.values[n * self.stride..][..self.stride];
+        let hi = &self.values[(n + 1) * self.stride..][..self.stride];
+        for (k, c) in cg.iter_mut().enumerate() {
+            *c = lo[k] + (hi[k] - lo[k]) * t;
+        }
+        let p = self.stride - 1;
+        lo[p] + (hi[p] - lo[p]) * t
+    }
+}
+
+/// What every cell's step of the march shares.
+struct Sea<'a> {
+    bands: &'a [Band],
+    /// The open sea's group velocity of each band (m/s).
+    open: &'a [f64],
+    table: DepthTable,
+    /// Peak frequency in Hz.
+    f_peak: f64,
+}
+
+/// One step of the march from the upstream state (the energy of each band relative to the
+/// open sea's, reached at `upstream_depth` m, infinite for the deep open sea) to a cell
+/// `depth` m deep, `length` m downstream: linear shoaling (the energy flux E c_g of each
+/// band kept) and Battjes & Janssen's dissipation, shared among the bands in proportion to
+/// their energy, over sub-steps of at most 2 m. `out` holds the upstream energies on entry
+/// and the cell's on return; returns Q_b at the cell.
 fn march<M: Math>(
-    upstream: &State,
+    sea: &Sea<'_>,
+    upstream_depth: f64,
     depth: f64,
     length: f64,
-    bands: &[Band],
-    open: &[f64],
-    dispersion: &Dispersion,
-    omega_peak: f64,
-    f_peak: f64,
     out: &mut [f64],
 ) -> f64 {
-    out.copy_from_slice(&upstream.energy);
+    let count = sea.bands.len();
     let steps = (length / 2.0).ceil().clamp(1.0, 16.0) as usize;
     let ds = length / steps as f64;
-    let group = |band: &Band, open: f64, d: f64| {
-        if d.is_infinite() {
-            open
-        } else {
-            group_velocity::<M>(&at_depth(*dispersion, d), band.omega)
-        }
-    };
-    let mut before: Vec<f64> = bands
-        .iter()
-        .zip(open)
-        .map(|(band, &open)| group(band, open, upstream.depth.max(MIN_DEPTH)))
-        .collect();
-    let start = if upstream.depth.is_finite() {
-        upstream.depth.max(MIN_DEPTH)
+    let (mut before, mut now) = ([0.0_f64; MAX_CASCADES], [0.0_f64; MAX_CASCADES]);
+    let (before, now) = (&mut before[..count], &mut now[..count]);
+    let start = if upstream_depth.is_finite() {
+        sea.table.at::<M>(upstream_depth, before);
+        upstream_depth.max(MIN_DEPTH)
     } else {
+        before.copy_from_slice(sea.open);
         depth.max(MIN_DEPTH)
     };
     let mut q = 0.0;
     for s in 1..=steps {
         let d = (start + (depth - start) * s as f64 / steps as f64).max(MIN_DEPTH);
+        let kp = sea.table.at::<M>(d, now);
         let mut variance = 0.0;
-        for (k, band) in bands.iter().enumerate() {
-            let cg = group(band, open[k], d);
-            out[k] *= before[k] / cg;
-            before[k] = cg;
-            variance += out[k] * band.variance;
+        for k in 0..count {
+            out[k] *= before[k] / now[k];
+            before[k] = now[k];
+            variance += out[k] * sea.bands[k].variance;
         }
         let h_rms2 = 8.0 * variance;
         if h_rms2 <= 0.0 {
             continue;
         }
-        let kp = at_depth(*dispersion, d).k_from_omega_with::<M>(omega_peak);
         let h_max = max_height::<M>(kp, d);
         q = breaking_fraction::<M>(h_rms2.sqrt() / h_max);
         // D/E = (α/4) f_p Q_b H_max² / (H_rms²/8): the same relative loss rate for every band.
-        let rate = 2.0 * ALPHA * f_peak * q * h_max * h_max / h_rms2;
-        for (k, e) in out.iter_mut().enumerate() {
-            *e *= M::exp(-rate * ds / before[k]);
+        let rate = 2.0 * ALPHA * sea.f_peak * q * h_max * h_max / h_rms2;
+        for (e, cg) in out.iter_mut().zip(before.iter()) {
+            *e *= M::exp(-rate * ds / cg);
         }
     }
     q
@@ -320,7 +405,7 @@ mod tests {
     /// Q_b solves (1 − Q)/(−ln Q) = b²: put the root back into the relation.
     #[test]
     fn breaking_fraction_solves_its_relation() {
-        for b in [0.2, 0.4, 0.6, 0.8, 0.95, 0.999] {
+        for b in [0.05, 0.1, 0.15, 0.2, 0.4, 0.6, 0.8, 0.95, 0.999, 0.999_999] {
             let q = breaking_fraction::<Std>(b);
             assert!(q > 0.0 && q < 1.0, "{b}: {q}");
             let back = (1.0 - q) / (-Std::ln(q));
@@ -338,5 +423,46 @@ mod tests {
         let gamma = breaker_index(k, d);
         assert!((max_height::<Std>(k, d) / (gamma * d) - 1.0).abs() < 1e-6);
         assert!((max_height::<Std>(1.0, 100.0) / 0.88 - 1.0).abs() < 1e-12);
+    }
+
+    /// The table's group velocities and peak wave number against the exact solve, at depths
+    /// between the nodes from 5 cm to deep water: linear interpolation at 200 nodes per
+    /// e-fold is off by about Δ²/8 = 3e-6 times the curvature in ln d, order one here, so
+    /// 2e-5 leaves room and would catch a wrong node or a slip of one node.
+    #[test]
+    fn depth_table_matches_the_exact_dispersion() {
+        let bands: Vec<Band> = [0.4, 1.1, 3.0, 9.0, 27.0]
+            .iter()
+            .map(|&omega| Band {
+                variance: 1.0,
+                omega,
+            })
+            .collect();
+        for dispersion in [
+            Dispersion::Deep,
+            Dispersion::FiniteDepth { depth: 30.0 },
+            Dispersion::Capillary { depth: 30.0 },
+        ] {
+            let omega_peak = 0.8;
+            let table = DepthTable::new::<Std>(&bands, &dispersion, omega_peak);
+            let mut cg = vec![0.0; bands.len()];
+            for n in 0..400 {
+                let d = 0.05 * Std::exp(0.036_43 * f64::from(n)); // 5 cm to 100 km, off the nodes
+                let kp = table.at::<Std>(d, &mut cg);
+                let at = at_depth(dispersion, d);
+                let exact = at.k_from_omega_with::<Std>(omega_peak);
+                assert!(
+                    (kp / exact - 1.0).abs() < 2e-5,
+                    "{dispersion:?} {d}: {kp} {exact}"
+                );
+                for (band, c) in bands.iter().zip(&cg) {
+                    let exact = group_velocity::<Std>(&at, band.omega);
+                    assert!(
+                        (c / exact - 1.0).abs() < 2e-5,
+                        "{dispersion:?} {d}: {c} {exact}"
+                    );
+                }
+            }
+        }
     }
 }

@@ -21,7 +21,8 @@ impl OceanState {
     ///
     /// **Weather.** A change of weather
     /// ([`set_spectrum`](Self::set_spectrum)) does not solve the map again: the solve takes
-    /// seconds for a large map, which a game ramping the weather each frame cannot spend,
+    /// about 35 default steps for a 512² map (docs/performance.md, "Coasts"), which a game
+    /// ramping the weather each frame cannot spend,
     /// and the change draws its new waves over several steps. The factors of the sea the map
     /// was set under stay in use (their breaking limits the heights to the depth whatever
     /// the sea, but the surf zone's width and Q_b are the old sea's); call `set_depth_map`
@@ -30,7 +31,7 @@ impl OceanState {
     /// `None`), and the new sea's factors blend in over 2 s.
     ///
     /// **Snapshots** ([`OceanSnapshot`](crate::OceanSnapshot)) do not carry the map (it is
-    /// world data the game owns, and seconds to solve): `restore` keeps the ocean's current
+    /// world data the game owns, and costly to solve): `restore` keeps the ocean's current
     /// map; set it again after restoring into an ocean that has none.
     ///
     /// Over land (depth ≤ 0) the queries answer the still water level: height 0, no
