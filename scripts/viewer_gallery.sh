@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Makes the README's three viewer pictures, docs/images/viewer_{calm,fresh_breeze,storm}.png
+# Makes the README's viewer pictures, docs/images/viewer_{calm,fresh_breeze,storm,storm_overview,storm_closeup}.png
 # (1280×720), and docs/images/wake_viewer.png and wake_deck_viewer.png, with the real-time viewer rendering headless
 # under a virtual X server, with 4×
 # MSAA and trilinear filtering: on a machine without a GPU (Mesa's software Vulkan, lavapipe)
@@ -31,6 +31,11 @@ shot fresh_breeze --preset fresh_breeze --camera 0,9,0 --heading 20 --pitch -7 -
 # The storm under an overcast sky, looking across the wind from 25 m up: whitecaps on the
 # crests and streaks of foam along the wind.
 shot storm --preset storm --camera 150,25,-400 --heading 100 --pitch -9
+# The storm from 30 m up, looking down across the wind: whitecaps metres across on the
+# crests the breakers compress, residual foam and its streaks between them.
+shot storm_overview --preset storm --camera 150,30,-400 --heading 100 --pitch -35
+# 2 m above the storm's water: a foam sheet with holes, the ripples finer than the grids.
+shot storm_closeup --preset storm --camera 150,2,-400 --pitch -20
 
 # A boat at 8 m/s on a calm sea, seen from 40 m above with the camera following it: its
 # Kelvin wedge and foam trail after 8 s of sea time (240 frames; several minutes).

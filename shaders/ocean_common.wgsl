@@ -68,6 +68,33 @@ fn ocean_noise(p: vec2<f32>) -> f32 {
     return mix(mix(a, b, u.x), mix(c, d, u.x), u.y);
 }
 
+// `ocean_noise` at `p` with its gradient: (value, ∂/∂p.x, ∂/∂p.y), per unit of the lattice.
+// With independent uniform corners the gradient's components have a standard deviation of
+// √(2/12 · 1.2 · 0.743) = 0.3855 (E[(6f(1 − f))²] = 1.2; E[(1 − u)² + u²] = 0.743 for the
+// smoothstep u).
+fn ocean_noise_gradient(p: vec2<f32>) -> vec3<f32> {
+    let cell = floor(p);
+    let f = p - cell;
+    let u = f * f * (3.0 - 2.0 * f);
+    let du = 6.0 * f * (1.0 - f);
+    let i = vec2<i32>(cell);
+    let a = ocean_hash(i);
+    let b = ocean_hash(i + vec2<i32>(1, 0));
+    let c = ocean_hash(i + vec2<i32>(0, 1));
+    let d = ocean_hash(i + vec2<i32>(1, 1));
+    let k = a - b - c + d;
+    return vec3<f32>(
+        a + (b - a) * u.x + (c - a) * u.y + k * u.x * u.y,
+        du.x * ((b - a) + k * u.y),
+        du.y * ((c - a) + k * u.x),
+    );
+}
+
+// `p` turned by the angle whose sine and cosine are `sine` and `cosine`.
+fn ocean_rotate(p: vec2<f32>, sine: f32, cosine: f32) -> vec2<f32> {
+    return vec2<f32>(cosine * p.x - sine * p.y, sine * p.x + cosine * p.y);
+}
+
 // Second look-up offset (in uv) of cascade `c` against visible tiling: a fixed irrational
 // shift, different for each cascade, far larger than the waves' correlation length.
 fn ocean_tiling_offset(c: u32) -> vec2<f32> {
@@ -230,46 +257,6 @@ fn ocean_normal_cdf(x: f32) -> f32 {
     return 0.5 * (1.0 + select(-erf, erf, x >= 0.0));
 }
 
-// Standard deviation of the foam rank below: 0.75 z + 0.5 s + 0.3 l with z, s, l of unit
-// variance, √(0.75² + 0.5² + 0.3²) = 0.950 (√(0.5² + 0.3²) = 0.583 without z). How well
-// thresholds at its normal quantiles keep the coverage: docs/guide/shader.md.
-const OCEAN_FOAM_RANK_SD: f32 = 0.95;
-
-// How much of the water at undisplaced point `xz` (m) foam covers, in [0, 1], from the foam
-// coverage `coverage` of its cell (the foam channel), the summed Jacobian `jacobian` (J − 1
-// of the cascades added, standard deviation `jacobian_sd` over the sea), the horizontal unit
-// `wind` and the pixel's `footprint` on the water (m). The coverage says how much of a cell
-// (3.9 m on the default ocean) is white, not where: the foam goes where the surface is most
-// compressed (lowest J: the crests that break), into streaks along the wind (value noise
-// stretched 40 × along it) and lace. Its area stays `coverage`: the rank of a point mixes
-// the standardised compression z = −(J − 1)/σ_J, nearly Gaussian, with two standardised
-// noises, and the threshold is the rank's (1 − coverage) normal quantile. A footprint wider
-// than the detail sees the mean coverage.
-fn ocean_foam(coverage: f32, jacobian: f32, jacobian_sd: f32, xz: vec2<f32>, wind: vec2<f32>, footprint: f32) -> f32 {
-    let f = clamp(coverage, 0.0, 1.0);
-    let along = dot(xz, wind);
-    let across = dot(xz, vec2<f32>(-wind.y, wind.x));
-    // Without choppiness J stays 1: the rank is then the noises alone.
-    let has_crests = jacobian_sd > 1e-3;
-    let crest = select(0.0, -(jacobian - 1.0) / max(jacobian_sd, 1e-3), has_crests);
-    // Value noise has a standard deviation of 0.2149 (measured): these sums have 0.1637 and
-    // 0.1550.
-    let streak = (0.7 * ocean_noise(vec2<f32>(along / 40.0, across / 1.0))
-        + 0.3 * ocean_noise(vec2<f32>(along / 9.0 + 3.1, across / 0.4)) - 0.5) / 0.1637;
-    let lace = (0.6 * ocean_noise(vec2<f32>(along, across) / 2.5 + vec2<f32>(7.3, 0.0))
-        + 0.4 * ocean_noise(vec2<f32>(along, across) / 0.6) - 0.5) / 0.1550;
-    let rank = 0.75 * crest + 0.5 * streak + 0.3 * lace;
-    let sd = select(0.5831, OCEAN_FOAM_RANK_SD, has_crests);
-    let threshold = sd * ocean_probit(1.0 - f);
-    let edge = sd * (0.12 + 0.5 * min(footprint, 1.0));
-    // Soft edges; and foam that the crests do not carry (streaks and patches left behind)
-    // thinner than a fresh whitecap: 45 % opaque where z ≤ 0.5, fully from z = 2.
-    let detailed = smoothstep(threshold - edge, threshold + edge, rank)
-        * mix(0.45, 1.0, smoothstep(0.5, 2.0, crest));
-    let blur = smoothstep(0.15, 1.2, footprint);
-    return mix(detailed, f * 0.7, blur);
-}
-
 // A soft threshold of a rank at `q` (in the rank's standard deviations) of half-width `w`.
 fn ocean_soft_step(rank: f32, q: f32, w: f32) -> f32 {
     return smoothstep(q - w, q + w, rank);
@@ -279,8 +266,9 @@ fn ocean_soft_step(rank: f32, q: f32, w: f32) -> f32 {
 // at undisplaced point `xz` (m). `coverage` is the whole ocean's foam f = a + r(1 − a) of the
 // cell; the sea's `active_share` splits it into active whitecaps a and residual foam r (the
 // library's two parts, docs/theory.md §15.8). Whitecaps: white where a rank of the
-// standardised compression z = −(J − 1)/σ_J and a fine lace noise passes its (1 − a) normal
-// quantile, so they sit on the most compressed crests. Residual foam: where the library's
+// whitecaps' placement field `crest` (standard normal: `ocean_whitecap_rank`) and a fine lace
+// noise passes its (1 − a) normal quantile, so they sit on the crests the breakers compress
+// (`has_crests` false: no such field, the lace alone). Residual foam: where the library's
 // streak field `streak` (unit variance, long along the wind, thin across, moving with the
 // water) passes its (1 − r) quantile, 55 % opaque (old foam is thin), with marbled foam (15 %) just below
 // the threshold. Bubbles: a halo below the whitecaps' threshold. Edges widen with the pixel's
@@ -290,8 +278,8 @@ fn ocean_soft_step(rank: f32, q: f32, w: f32) -> f32 {
 fn ocean_foam_layers(
     coverage: f32,
     active_share: f32,
-    jacobian: f32,
-    jacobian_sd: f32,
+    crest: f32,
+    has_crests: bool,
     xz: vec2<f32>,
     wind: vec2<f32>,
     footprint: f32,
@@ -302,11 +290,12 @@ fn ocean_foam_layers(
     let r = clamp((f - a) / max(1.0 - a, 1e-4), 0.0, 1.0);
     let along = dot(xz, wind);
     let across = dot(xz, vec2<f32>(-wind.y, wind.x));
-    let has_crests = jacobian_sd > 1e-3;
-    let z = select(0.0, -(jacobian - 1.0) / max(jacobian_sd, 1e-3), has_crests);
+    let z = select(0.0, crest, has_crests);
     // Value noise has a standard deviation of 0.2149; this sum 0.1550.
-    let lace = (0.6 * ocean_noise(vec2<f32>(along, across) / 2.5 + vec2<f32>(7.3, 0.0))
-        + 0.4 * ocean_noise(vec2<f32>(along, across) / 0.6) - 0.5) / 0.1550;
+    // The lace's octaves on lattices turned 37° and 71° from the wind: thresholded value noise
+    // on lattices aligned with each other (and with the streaks) draws square steps.
+    let lace = (0.6 * ocean_noise(ocean_rotate(vec2<f32>(along, across), 0.6018, 0.7986) / 2.5 + vec2<f32>(7.3, 0.0))
+        + 0.4 * ocean_noise(ocean_rotate(vec2<f32>(along, across), 0.9455, 0.3256) / 0.6) - 0.5) / 0.1550;
     let fine = (ocean_noise(vec2<f32>(along / 1.5, across / 0.35) + vec2<f32>(1.7, 9.2)) - 0.5) / 0.2149;
     // Ranks of unit standard deviation.
     let rank_w = select(lace, 0.85 * z + 0.527 * lace, has_crests);
@@ -317,18 +306,31 @@ fn ocean_foam_layers(
     let white = ocean_soft_step(rank_w, q_w, 0.25 + soft);
     let streaks = 0.55 * ocean_soft_step(rank_s, q_s, 0.35 + soft);
     let marble = 0.15 * ocean_soft_step(rank_s, q_s - 0.6, 0.4 + soft);
-    let bubbles = ocean_soft_step(rank_w, q_w - 0.5, 0.35 + soft) * (1.0 - white);
+    // The aerated water fades out over a standard deviation of the rank below the whitecap,
+    // quadratically, so its outer edge is lost in the water instead of drawn as a ring.
+    let halo = smoothstep(q_w - 1.0 - soft, q_w, rank_w);
+    let bubbles = halo * halo * (1.0 - white);
     // Expectations: the soft steps of a standard normal rank cover 1 − Φ(q) (a, r exactly).
     let blur_w = smoothstep(0.2, 1.5, footprint);
     let blur_s = smoothstep(0.08, 0.5, footprint);
     let w_far = a;
     let s_far = 0.55 * r;
     let m_far = 0.15 * (1.0 - ocean_normal_cdf(q_s - 0.6));
-    let b_far = (1.0 - ocean_normal_cdf(q_w - 0.5)) * (1.0 - a);
+    // About the halo's expectation: its weight h² is centred 0.3 below q_w.
+    let b_far = (1.0 - ocean_normal_cdf(q_w - 0.3)) * (1.0 - a);
     let w_mix = mix(white, w_far, blur_w);
     let s_mix = mix(streaks, s_far, blur_s);
     let m_mix = mix(marble, m_far, blur_s);
-    let cover = w_mix + (1.0 - w_mix) * (s_mix + (1.0 - s_mix) * m_mix);
+    var cover = w_mix + (1.0 - w_mix) * (s_mix + (1.0 - s_mix) * m_mix);
+    // Foam is a raft of bubbles, not paint: within a few metres of the eye (footprints below
+    // 1–3 cm, a quarter of the finer lattice: coarser pixels turn them into grain) holes a few
+    // centimetres across open in it, about 8 % of its area.
+    let near = 1.0 - smoothstep(0.012, 0.03, footprint);
+    if (near > 0.0) {
+        let cells = 0.6 * ocean_noise(xz / 0.18 + vec2<f32>(5.1, 2.3))
+            + 0.4 * ocean_noise(xz / 0.07 + vec2<f32>(1.3, 8.7));
+        cover *= 1.0 - 0.5 * near * smoothstep(0.55, 0.75, cells);
+    }
     return vec2<f32>(clamp(cover, 0.0, 1.0), clamp(mix(bubbles, b_far, blur_w), 0.0, 1.0));
 }
 
@@ -375,7 +377,8 @@ struct OceanSurface {
     // Summed height η (m) and its standard deviation over the sea (m).
     height: f32,
     height_sd: f32,
-    // Foam cover of the pixel in [0, 1] (`ocean_foam`, `ocean_foam_layers`).
+    // Foam cover of the pixel in [0, 1]: the cell's coverage from `ocean_water_surface`, the
+    // foam drawn once `ocean_foam_surface` (`ocean_foam_layers`) has placed it.
     foam: f32,
     // Bubbles under and around the whitecaps in [0, 1]: a turquoise glow in the water.
     bubbles: f32,
@@ -384,6 +387,8 @@ struct OceanSurface {
     coverage: f32,
     jacobian: f32,
     footprint: f32,
+    // The whitecaps' placement field Σ ŵ_c (1 − J_c) (`ocean_whitecap_rank`).
+    whitecap: f32,
     // Slope variance (along, across the wind) that the pixel does not resolve.
     variance: vec2<f32>,
     // Horizontal unit wind (x, z).
@@ -424,7 +429,7 @@ fn ocean_shade(light: OceanLight, surface: OceanSurface, dir: vec3<f32>, distanc
     // Bubbles under and around the whitecaps scatter the light back up: a pale turquoise.
     let bubble_light = light.subsurface * (2.5 * ambient + 0.8 * light.sun_colour * max(sun.y, 0.0))
         + vec3<f32>(0.02, 0.05, 0.05) * luminance;
-    let water = mix(body, bubble_light, 0.4 * surface.bubbles);
+    let water = mix(body, bubble_light, 0.3 * surface.bubbles);
     var colour = water * (1.0 - fresnel) + reflection * fresnel + glitter;
     // Foam: a bright, rough, partly translucent scatterer (albedo about 0.85): the sky's
     // light, the sun on the facets facing it, and a share of the sun scattered through it.
@@ -477,7 +482,8 @@ struct OceanUniforms {
     // Cascade c: x = L (m), y = L/N (m), z = N, w = mip levels.
     cascades: array<vec4<f32>, 8>,
     // Cascade c: xy = the corner of the tile under the eye (a multiple of L, m), which uv is
-    // measured from.
+    // measured from; z = the weight ŵ_c of its compression in the whitecaps' placement
+    // (`FoamView::whitecap_weights`; all 0: `ocean_whitecap_rank` falls back to σ_J).
     origins: array<vec4<f32>, 8>,
     // Entry i: x = wave number k_i (rad/m, k_i = table.x · ratio^i); y, z = slope variance
     // along and across the wind of the simulated waves with wave numbers above k_i.
@@ -584,6 +590,41 @@ fn ocean_varying(xz: vec2<f32>, displacement: vec3<f32>) -> OceanVarying {
     return out;
 }
 
+// The slopes of the waves shorter than the finest cascade's grid, drawn where the pixel is
+// small enough to see them: three octaves of value noise at 0.6, 0.25 and 0.1 of the finest
+// texel `u.cascades[n − 1].y`, each with a third of the sub-grid slope variance `u.wind.zw`
+// along and across the wind (a k⁻⁴ saturation range holds the same slope variance in every
+// octave), fading out as the footprint `footprint` (m) grows from an eighth to a quarter of
+// its lattice (a coarser pixel turns its glints into grain).
+// Returns the slopes (∂y/∂x, ∂y/∂z) to add to the normal's and the variance (along, across)
+// they show, which the glitter then leaves out, so the sea's total slope variance stays the
+// same at every distance.
+fn ocean_detail_slope(u: OceanUniforms, xz: vec2<f32>, footprint: f32) -> vec4<f32> {
+    let n = ocean_cascade_count(u);
+    if (n == 0u) {
+        return vec4<f32>(0.0);
+    }
+    let texel = u.cascades[n - 1u].y;
+    let wind = u.wind.xy;
+    let sd = sqrt(max(u.wind.zw, vec2<f32>(0.0)) / 3.0);
+    let p = vec2<f32>(dot(xz, wind), dot(xz, vec2<f32>(-wind.y, wind.x)));
+    var s = vec2<f32>(0.0);
+    var shown = vec2<f32>(0.0);
+    var scale = 0.6;
+    for (var o = 0u; o < 3u; o++) {
+        let lattice = texel * scale;
+        let fade = 1.0 - smoothstep(0.12 * lattice, 0.25 * lattice, footprint);
+        if (fade > 0.0) {
+            let shift = vec2<f32>(17.3, 5.9) * f32(o + 1u);
+            let g = ocean_noise_gradient(p / lattice + shift).yz / 0.3855;
+            s += fade * g * sd;
+            shown += fade * fade * sd * sd;
+        }
+        scale *= 0.42;
+    }
+    return vec4<f32>(s.x * wind.x - s.y * wind.y, s.x * wind.y + s.y * wind.x, shown);
+}
+
 // Slope variance (along, across the wind) of the simulated waves with wave numbers above
 // `k` (rad/m), interpolated in ln k in the uniforms' table.
 fn ocean_unresolved_variance(u: OceanUniforms, k: f32) -> vec2<f32> {
@@ -632,6 +673,7 @@ fn ocean_water_surface(
 
     var slope = vec2<f32>(0.0);
     var jacobian = 1.0;
+    var whitecap = 0.0;
     var foam = 0.0;
     for (var c = 0u; c < ocean_cascade_count(u); c++) {
         let cascade = u.cascades[c];
@@ -639,13 +681,16 @@ fn ocean_water_surface(
         let ux = gx / cascade.x;
         let uy = gy / cascade.x;
         let a = textureSampleGrad(slope_jacobian_foam, ocean_sampler, uv, c, ux, uy);
+        let w = u.origins[c].z;
         slope += a.xy * weights.x;
         jacobian += (a.z - 1.0) * weights.x;
+        whitecap += w * (1.0 - a.z) * weights.x;
         foam += a.w * weights.x * weights.x;
         if (weights.y > 0.0) {
             let b = textureSampleGrad(slope_jacobian_foam, ocean_sampler, uv + ocean_tiling_offset(c), c, ux, uy);
             slope += b.xy * weights.y;
             jacobian += (b.z - 1.0) * weights.y;
+            whitecap += w * (1.0 - b.z) * weights.y;
             foam += b.w * weights.y * weights.y;
         }
     }
@@ -653,18 +698,40 @@ fn ocean_water_surface(
     // The pixel's footprint on the water: geometric mean of its two axes in the undisplaced
     // plane, m.
     let footprint = max(sqrt(length(gx) * length(gy)), 1e-4);
+    let detail = ocean_detail_slope(u, xz, footprint);
     var surface: OceanSurface;
-    surface.normal = ocean_normal(slope);
+    surface.normal = ocean_normal(slope + detail.xy);
     surface.height = height;
     surface.height_sd = u.deep.w;
     surface.wind = u.wind.xy;
-    surface.variance = u.wind.zw + ocean_unresolved_variance(u, OCEAN_PI / footprint);
-    surface.foam = ocean_foam(foam, jacobian, u.subsurface.w, xz, u.wind.xy, footprint);
+    surface.variance = max(u.wind.zw - detail.zw, vec2<f32>(0.0))
+        + ocean_unresolved_variance(u, OCEAN_PI / footprint);
+    surface.foam = clamp(foam, 0.0, 1.0);
     surface.bubbles = 0.0;
     surface.coverage = foam;
     surface.jacobian = jacobian;
+    surface.whitecap = whitecap;
     surface.footprint = footprint;
     return surface;
+}
+
+// The whitecaps' placement field at a fragment (x) and whether there is one (y = 1, else 0):
+// Σ ŵ_c (1 − J_c), which `ocean_water_surface` sums with the weights the library gives
+// (`FoamView::whitecap_weights`, in `origins[c].z`), standard normal; where an engine sets
+// no weights, the standardised compression of all cascades, −(J − 1)/σ_J.
+fn ocean_whitecap_rank(u: OceanUniforms, surface: OceanSurface) -> vec2<f32> {
+    var weighted = false;
+    for (var c = 0u; c < ocean_cascade_count(u); c++) {
+        weighted = weighted || u.origins[c].z > 0.0;
+    }
+    if (weighted) {
+        return vec2<f32>(surface.whitecap, 1.0);
+    }
+    let sd = u.subsurface.w;
+    if (sd > 1e-3) {
+        return vec2<f32>(-(surface.jacobian - 1.0) / sd, 1.0);
+    }
+    return vec2<f32>(0.0);
 }
 
 // `surface` (`ocean_water_surface` at undisplaced point `xz`, m) with its foam drawn by
@@ -680,8 +747,9 @@ fn ocean_foam_surface(
 ) -> OceanSurface {
     var s = surface;
     let streak = ocean_streak(streaks, streak_sampler, u, xz);
+    let rank = ocean_whitecap_rank(u, s);
     let foam = ocean_foam_layers(
-        s.coverage, u.table.w, s.jacobian, u.subsurface.w, xz, u.wind.xy, s.footprint, streak);
+        s.coverage, u.table.w, rank.x, rank.y > 0.0, xz, u.wind.xy, s.footprint, streak);
     s.foam = foam.x;
     s.bubbles = foam.y;
     return s;

@@ -126,6 +126,12 @@ fn main() -> ExitCode {
         })
         // The sea of --preset (a fresh breeze by default) on its default grids.
         .insert_resource(OceanSettings::preset(options.preset))
+        // A storm under a heavy overcast, as the viewer draws it; the panel toggles it.
+        .insert_resource(if options.preset == SeaState::Storm {
+            OceanAppearance::overcast()
+        } else {
+            OceanAppearance::default()
+        })
         .insert_resource(options)
         .init_resource::<Stats>()
         .add_systems(Startup, (scene, panel))

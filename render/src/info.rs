@@ -42,6 +42,9 @@ pub struct OceanInfo {
     /// The share of that coverage that is active whitecaps (the rest residual foam), in
     /// [0, 1].
     pub foam_active_share: f32,
+    /// Weight ŵ_c of each cascade's compression in the whitecaps' placement
+    /// (`FoamView::whitecap_weights`; dimensionless, 0 past `cascades`).
+    pub whitecap_weights: [f32; MAX_CASCADES],
     /// The streak field's placement now ([`streak_uniforms`](crate::streak_uniforms)).
     pub streaks: [f32; 4],
     pub streak_scale: [f32; 4],
@@ -115,6 +118,11 @@ impl OceanInfo {
         } else {
             1.0
         };
+        let weights = ocean.foam_view().whitecap_weights();
+        self.whitecap_weights = [0.0; MAX_CASCADES];
+        for (out, w) in self.whitecap_weights.iter_mut().zip(weights) {
+            *out = w;
+        }
         (self.streaks, self.streak_scale) =
             crate::streak_uniforms(&ocean.textures().foam_streaks());
         Ok(())

@@ -119,7 +119,8 @@ pub struct OceanUniforms {
     /// Cascade c: x = L (m), y = L/N (m), z = N, w = mip levels.
     pub cascades: [[f32; 4]; MAX_CASCADES],
     /// Cascade c: xy = the corner of the tile under the eye (a multiple of L, m), which uv is
-    /// measured from (keeps uv small and continuous over the view).
+    /// measured from (keeps uv small and continuous over the view); z = the weight of its
+    /// compression in the whitecaps' placement ([`OceanInfo::whitecap_weights`]); w unused.
     pub origins: [[f32; 4]; MAX_CASCADES],
     /// Entry i: x = k_i (rad/m); y, z = slope variance along and across the wind of the
     /// simulated waves with wave numbers above k_i.
@@ -202,7 +203,12 @@ impl OceanUniforms {
             ];
             // The corner of the tile under the eye, in f64 so that it stays a multiple of L.
             let corner = |v: f32| ((f64::from(v) / f64::from(l)).floor() * f64::from(l)) as f32;
-            self.origins[c] = [corner(eye[0]), corner(eye[1]), 0.0, 0.0];
+            self.origins[c] = [
+                corner(eye[0]),
+                corner(eye[1]),
+                info.whitecap_weights[c],
+                0.0,
+            ];
         }
         for (entry, t) in self.slope_table.iter_mut().zip(&info.slope_table) {
             *entry = [t[0], t[1], t[2], 0.0];

@@ -14,7 +14,7 @@
 //! solves E\[ρ\] = f for a standard normal t; the inverse is tabulated once, in f64 with the
 //! functions of the ocean's determinism mode.
 
-use crate::cascade::Cascade;
+use crate::cascade::{Cascade, MAX_CASCADES};
 use crate::math::determinism::Math;
 use crate::math::periodic::{cell_on, wrap, Period, Stencil};
 use crate::math::rng::gaussian_pair;
@@ -52,6 +52,19 @@ const PATCH_KERNEL: [f64; 2] = [14.0, 6.0];
 const STREAK_WEIGHTS: [f64; 2] = [1.0, 0.5];
 /// The patches' columns lie this many texels apart (2 m).
 const PATCH_STRIDE: usize = 8;
+/// Speed of the breakers that make the visible whitecaps as a share of the peak's phase
+/// speed: Ding & Farmer (1994) found breaking events travelling 45–75 % slower than the
+/// dominant waves, and Gemmrich & Farmer (1999) breaking at 5–80 % of the dominant wave
+/// scale. At 0.4 the breakers are (0.4)² = 0.16 peak wavelengths long, 13 m in the fresh
+/// breeze: the whitecaps sit on the compression of waves about that long and longer.
+const BREAKER_SPEED_RATIO: f64 = 0.4;
+
+/// The least weight of a finer cascade in the whitecaps' placement, as a share of the largest:
+/// its compression then holds a few per cent of the field's variance, enough to tear the
+/// edges at its scale without moving the whitecaps off the breakers (at 0.3 the fresh
+/// breeze's whitecaps shrank to a 0.75 m correlation along the wind, from 1 m).
+const WEIGHT_FLOOR: f32 = 0.2;
+
 /// Mixed into cascade 0's seed for the streak field's noise, and again for the patches'.
 const STREAK_SEED: u64 = 0x5f0a_3d7e_c41b_9265;
 const PATCH_SEED: u64 = 0x1d3b_77a2_90c4_e651;
@@ -151,6 +164,9 @@ pub(super) struct BilinearVariance {
     /// (V₀, Vₓ, V_z, V_xz) of the compression −(D_xx + D_zz) at unit choppiness, whose
     /// multiplier is k: Σ 2|h0|² k² times 1, (1 − cos k_xΔ), (1 − cos k_zΔ) and both.
     parts: [f64; 4],
+    /// V₀ with each wave weighted by e^(−(k/k_b)²), k_b the breakers' wave number: the part of
+    /// the compression at the whitecaps' scale.
+    breaking: f64,
     /// E\[T²K\] with T = D_xx + D_zz and K = D_xx·D_zz − D_xz² at unit choppiness (Isserlis'
     /// theorem on the covariance of the gradient): 1 − J = −λT − λ²K has the third moment
     /// −3λ⁴E\[T²K\] to leading order.
@@ -158,13 +174,15 @@ pub(super) struct BilinearVariance {
 }
 
 impl BilinearVariance {
-    /// The variance parts of `cascade`'s amplitudes, with the functions of `M`.
-    fn of<M: Math>(cascade: &Cascade) -> BilinearVariance {
+    /// The variance parts of `cascade`'s amplitudes for breakers of wave number `k_b`
+    /// (rad/m), with the functions of `M`.
+    fn of<M: Math>(cascade: &Cascade, k_b: f64) -> BilinearVariance {
         let n = cascade.size();
         let dk = f64::from(cascade.delta_k());
         let spacing = f64::from(cascade.length()) / n as f64;
         let h0 = cascade.h0();
         let mut parts = [0.0f64; 4];
+        let mut breaking = 0.0f64;
         // Covariance of (A, B, C) = (D_xx, D_zz, D_xz).
         let mut cov = [[0.0f64; 3]; 3];
         for j in 0..n {
@@ -186,6 +204,7 @@ impl BilinearVariance {
                     }
                 }
                 parts[0] += v;
+                breaking += v * M::exp(-k2 / (k_b * k_b));
                 parts[1] += v * cx;
                 parts[2] += v * cz;
                 parts[3] += v * cx * cz;
@@ -199,6 +218,7 @@ impl BilinearVariance {
         let t2cc = tt * cc + 2.0 * tc * tc;
         BilinearVariance {
             parts,
+            breaking,
             third: t2ab - t2cc,
         }
     }
@@ -220,6 +240,11 @@ pub(crate) struct Detail {
     /// Per cascade c ≥ 1 (index c − 1), the compression variance its bilinear interpolation
     /// keeps.
     variance: Vec<BilinearVariance>,
+    /// Per cascade c ≥ 1 (index c − 1), the weight w_c of its compression in the whitecaps'
+    /// placement: √(its variance at the breakers' scale / its variance), so that the
+    /// weighted sum has, cascade by cascade, the variance of the compression low-passed at
+    /// the breakers' wave number (docs/theory.md §15.8).
+    weights: Vec<f32>,
     /// Σ V₀ of the cascades ≥ 1 when the detail was built: the sea's unresolved compression
     /// variance is read at every query and divided by it, so a change of weather rescales.
     built_variance: f64,
@@ -238,12 +263,42 @@ pub(crate) struct Detail {
 
 impl Detail {
     /// The detail of an ocean whose cascades are `cascades` (cascade 0's seed seeds the
-    /// streaks) and whose wind blows toward `wind_direction` (rad), with the functions of `M`.
-    pub(super) fn new<M: Math>(cascades: &[Cascade], wind_direction: f64) -> Detail {
+    /// streaks), whose wind blows toward `wind_direction` (rad) and whose peak wavelength is
+    /// `peak_wavelength` (m), with the functions of `M`.
+    pub(super) fn new<M: Math>(
+        cascades: &[Cascade],
+        wind_direction: f64,
+        peak_wavelength: f64,
+    ) -> Detail {
+        let breaker_length = BREAKER_SPEED_RATIO * BREAKER_SPEED_RATIO * peak_wavelength;
+        let k_b = std::f64::consts::TAU / breaker_length.max(1e-3);
         let variance: Vec<BilinearVariance> = cascades[1..]
             .iter()
-            .map(BilinearVariance::of::<M>)
+            .map(|c| BilinearVariance::of::<M>(c, k_b))
             .collect();
+        let mut weights: Vec<f32> = variance
+            .iter()
+            .map(|v| {
+                let w = (v.breaking / v.parts[0]).sqrt();
+                if w.is_finite() {
+                    w as f32
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        // Only the ratios count (the sum is standardised). Every finer cascade keeps at least
+        // WEIGHT_FLOOR of the largest weight, so the whitecaps' edges are torn at the finest
+        // scale as a breaking crest's are; breakers far longer than every finer cascade's
+        // waves weigh them all near 0, and they then share alike.
+        let largest = weights.iter().copied().fold(0.0f32, f32::max);
+        if largest < 1e-6 {
+            weights.fill(1.0);
+        } else {
+            for w in &mut weights {
+                *w = w.max(WEIGHT_FLOOR * largest);
+            }
+        }
         let built_variance = variance.iter().map(|v| v.parts[0]).sum();
         let (sin, cos) = M::sin_cos(wind_direction);
         let (streaks, neighbours) = streak_field::<M>(cascades[0].config().seed ^ STREAK_SEED);
@@ -251,6 +306,7 @@ impl Detail {
             active: Quantiles::new::<M>(ACTIVE_EDGE),
             residual: Quantiles::new::<M>(RESIDUAL_EDGE),
             variance,
+            weights,
             built_variance,
             streaks,
             neighbours,
@@ -304,7 +360,7 @@ impl Detail {
     }
 
     /// The standardised compression of the cascades ≥ 1 at undisplaced world (x, z):
-    /// Σ (1 − J_c) over the analytic standard deviation of that bilinear interpolation there,
+    /// Σ w_c (1 − J_c) over the analytic standard deviation of that bilinear interpolation there,
     /// for a sea whose unresolved compression variance at unit choppiness is `variance`.
     /// `None` where it has none (one cascade, no choppiness, no waves).
     #[inline]
@@ -322,15 +378,19 @@ impl Detail {
         let mut sum = 0.0f32;
         let mut var = 0.0f32;
         let (mut nodes, mut third) = (0.0f32, 0.0f32);
-        for (cascade, parts) in cascades[1..].iter().zip(&self.variance) {
+        for ((cascade, parts), &w) in cascades[1..].iter().zip(&self.variance).zip(&self.weights) {
+            if w == 0.0 {
+                continue;
+            }
             let n = cascade.size();
             let cell = cell_on(x, z, &Period::new(f64::from(cascade.length()), n));
             let (_, fx, _, fz) = cell;
-            sum += 1.0 - Stencil::new(cell, n).scalar(cascade.jacobian());
+            sum += w * (1.0 - Stencil::new(cell, n).scalar(cascade.jacobian()));
             let chop2 = cascade.config().choppiness * cascade.config().choppiness;
-            var += chop2 * parts.at(fx, fz, scale);
-            nodes += chop2 * scale * parts.parts[0] as f32;
-            third -= 3.0 * chop2 * chop2 * scale * scale * parts.third as f32;
+            let w2 = w * w;
+            var += w2 * chop2 * parts.at(fx, fz, scale);
+            nodes += w2 * chop2 * scale * parts.parts[0] as f32;
+            third -= 3.0 * w2 * w * chop2 * chop2 * scale * scale * parts.third as f32;
         }
         if !(var > 0.0 && var.is_finite() && sum.is_finite()) {
             return None;
@@ -343,6 +403,32 @@ impl Detail {
         let skew = if skew.is_finite() { skew } else { 0.0 };
         let z = u - skew * (u * u - 1.0) / 6.0;
         (!z.is_nan()).then_some(z)
+    }
+
+    /// The weights of each cascade's compression 1 − J_c in the whitecaps' placement field
+    /// for a sea whose unresolved compression variance at unit choppiness is `variance`:
+    /// w_c / σ with σ the standard deviation of Σ w_c (1 − J_c) at the cascades' nodes, so
+    /// that the weighted sum is that field standardised (0 for cascade 0 and past the
+    /// cascades; all 0 where the field is not defined, as [`compression_at`](Self::compression_at) says `None`).
+    pub(super) fn placement(&self, cascades: &[Cascade], variance: f64) -> [f32; MAX_CASCADES] {
+        let mut out = [0.0f32; MAX_CASCADES];
+        if !(self.built_variance > 0.0 && variance > 0.0) {
+            return out;
+        }
+        let scale = (variance / self.built_variance) as f32;
+        let mut nodes = 0.0f32;
+        for ((cascade, parts), &w) in cascades[1..].iter().zip(&self.variance).zip(&self.weights) {
+            let chop = cascade.config().choppiness;
+            nodes += w * w * chop * chop * scale * parts.parts[0] as f32;
+        }
+        if !(nodes > 0.0 && nodes.is_finite()) {
+            return out;
+        }
+        let sd = nodes.sqrt();
+        for (o, &w) in out[1..].iter_mut().zip(&self.weights) {
+            *o = w / sd;
+        }
+        out
     }
 
     /// The foam at a point from the coarse active fraction `a` and residual fraction `r`

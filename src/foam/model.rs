@@ -71,6 +71,11 @@ impl FoamSea {
         }
     }
 
+    /// The peak wavelength in m.
+    pub(super) fn peak_wavelength(&self) -> f64 {
+        self.wavelength
+    }
+
     /// θ_w in rad, toward which the wind blows.
     pub(super) fn wind_direction(&self) -> f64 {
         self.wind_direction

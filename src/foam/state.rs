@@ -168,7 +168,7 @@ impl Foam {
             change: None,
             determinism,
             simd: Simd::detect(),
-            detail: Detail::new::<M>(cascades, sea.wind_direction()),
+            detail: Detail::new::<M>(cascades, sea.wind_direction(), sea.peak_wavelength()),
         };
         cascades[0].fill_gradient(&mut foam.gradient);
         foam.refresh();

@@ -162,6 +162,20 @@ impl<'a> FoamView<'a> {
         self.foam.coverage()
     }
 
+    /// How [`foam_at`](Self::foam_at) places the whitecaps inside a cell, for a shader that
+    /// draws them alike: weight ŵ_c of cascade c (dimensionless), so that
+    /// Σ_c ŵ_c (1 − J_c), with J_c each cascade's Jacobian (the `J` of its
+    /// `SlopeJacobianFoam` texels), is the placement field with unit variance at the grid
+    /// nodes. Whitecaps are white where it passes the normal quantile of 1 − a, a the cell's
+    /// active fraction. Cascade 0 (whose compression sets a) and entries past the cascades
+    /// are 0; the finer cascades are weighted toward the compression of the waves that make
+    /// visible whitecaps, about 0.16 peak wavelengths and longer (docs/theory.md §15.8). All
+    /// 0 without finer cascades, choppiness or waves.
+    pub fn whitecap_weights(&self) -> [f32; crate::cascade::MAX_CASCADES] {
+        let variance = self.foam.sea.unresolved_compression();
+        self.foam.detail.placement(self.cascades, variance)
+    }
+
     /// The whitecap calibration of this ocean: the breaking threshold, the target coverage
     /// and what the statistics of the sea predict.
     pub fn calibration(&self) -> FoamCalibration {
