@@ -307,8 +307,9 @@ fn ocean_foam_layers(
     let streaks = 0.55 * ocean_soft_step(rank_s, q_s, 0.35 + soft);
     let marble = 0.15 * ocean_soft_step(rank_s, q_s - 0.6, 0.4 + soft);
     // The aerated water fades out over a standard deviation of the rank below the whitecap,
-    // quadratically, so its outer edge is lost in the water instead of drawn as a ring.
-    let halo = smoothstep(q_w - 1.0 - soft, q_w, rank_w);
+    // quadratically, so its outer edge is lost in the water instead of drawn as a ring (a
+    // fixed width: widened with the footprint, the one-sided halo would grow with distance).
+    let halo = smoothstep(q_w - 1.0, q_w, rank_w);
     let bubbles = halo * halo * (1.0 - white);
     // Expectations: the soft steps of a standard normal rank cover 1 − Φ(q) (a, r exactly).
     let blur_w = smoothstep(0.2, 1.5, footprint);
@@ -316,8 +317,15 @@ fn ocean_foam_layers(
     let w_far = a;
     let s_far = 0.55 * r;
     let m_far = 0.15 * (1.0 - ocean_normal_cdf(q_s - 0.6));
-    // About the halo's expectation: its weight h² is centred 0.3 below q_w.
-    let b_far = (1.0 - ocean_normal_cdf(q_w - 0.3)) * (1.0 - a);
+    // The halo's expectation: h²(1 − white) over the standard normal rank, by the midpoint
+    // rule on eight bands of a quarter of a standard deviation from q_w − 1 to q_w + 1.
+    var b_far = 0.0;
+    for (var k = 0; k < 8; k++) {
+        let x = q_w - 1.0 + (f32(k) + 0.5) * 0.25;
+        let h = smoothstep(q_w - 1.0, q_w, x);
+        let band = ocean_normal_cdf(x + 0.125) - ocean_normal_cdf(x - 0.125);
+        b_far += h * h * (1.0 - ocean_soft_step(x, q_w, 0.25 + soft)) * band;
+    }
     let w_mix = mix(white, w_far, blur_w);
     let s_mix = mix(streaks, s_far, blur_s);
     let m_mix = mix(marble, m_far, blur_s);

@@ -17,6 +17,11 @@ mod uniforms;
 
 use textures::OceanTextures;
 
+/// The reference shading functions alone (shaders/ocean_common.wgsl), for the tests that
+/// run them.
+#[cfg(test)]
+pub const COMMON: &str = include_str!("../../shaders/ocean_common.wgsl");
+
 /// The reference shader: the shading functions, then the viewer's bindings and entry points.
 pub const SHADER: &str = concat!(
     include_str!("../../shaders/ocean_common.wgsl"),

@@ -16,6 +16,8 @@ mod args;
 mod bodies;
 mod camera;
 mod capture;
+#[cfg(test)]
+mod foam_gpu_tests;
 mod gpu;
 mod light;
 mod sea;
