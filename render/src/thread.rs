@@ -10,13 +10,15 @@
 //! calls). Only a change of sea allocates (a new ocean, new tables).
 
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
+use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::Instant;
 
 use ocean_fft::{Error, Hull, OceanState, SurfaceSample};
 
+use crate::coast::{CoastPacker, CoastTexels};
 use crate::info::{OceanInfo, SlopeTable};
-use crate::sea::{apply, build, Plan, SeaSettings, PRE_ROLL_DT};
+use crate::sea::{apply, build_sea, Plan, SeaSettings, PRE_ROLL_DT};
 use crate::streaks::StreakTexels;
 use crate::texels::Texels;
 use crate::wake::WakeTexels;
@@ -44,6 +46,9 @@ pub struct Frame {
     /// The foam's streak field (copied when the ocean is new; upload it when its
     /// generation changes).
     pub streaks: StreakTexels,
+    /// The coast's texels over the depth map (`None` without one; upload them when their
+    /// `generation` changes).
+    pub coast: Option<Arc<CoastTexels>>,
     /// The world points (x, z; m) queried after the step, and their surfaces.
     pub queries: Vec<[f64; 2]>,
     pub samples: Vec<SurfaceSample>,
@@ -88,6 +93,7 @@ struct Worker {
     ocean: OceanState,
     running: SeaSettings,
     slopes: SlopeTable,
+    coast: CoastPacker,
     rebuilds: u64,
 }
 
@@ -131,6 +137,9 @@ impl Simulation {
             .install(|| -> Result<Worker, Error> {
                 let mut ocean = OceanState::new(sea.spectrum.clone(), sea.grids())?;
                 ocean.set_time(time)?;
+                if let Some(map) = &sea.depth_map {
+                    ocean.set_depth_map(Some(ocean_fft::DepthMap::clone(map)))?;
+                }
                 if pre_roll > 0.0 {
                     ocean.pre_roll(pre_roll.min(time.max(PRE_ROLL_DT)), PRE_ROLL_DT)?;
                 }
@@ -138,6 +147,7 @@ impl Simulation {
                     ocean,
                     running: sea,
                     slopes: SlopeTable::default(),
+                    coast: CoastPacker::default(),
                     rebuilds: 0,
                 };
                 worker.fill(&mut first)?;
@@ -276,7 +286,7 @@ impl Worker {
             Plan::Rebuild(config) => config,
         };
         let time = self.ocean.time();
-        self.ocean = build(sea.spectrum.clone(), config, time)?;
+        self.ocean = build_sea(&sea, config, time)?;
         self.running = sea;
         self.rebuilds += 1;
         Ok(())
@@ -288,6 +298,7 @@ impl Worker {
         frame.texels.pack(&self.ocean)?;
         frame.wake.pack(&self.ocean)?;
         frame.streaks.pack(&self.ocean);
+        frame.coast = self.coast.pack(&self.ocean)?;
         frame.info.update(&self.ocean, &mut self.slopes)?;
         frame.info.jacobian_sd = frame.texels.jacobian_sd;
         frame.rebuilds = self.rebuilds;
