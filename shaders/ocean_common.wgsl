@@ -424,9 +424,9 @@ fn ocean_shade(light: OceanLight, surface: OceanSurface, dir: vec3<f32>, distanc
     let deep_body = light.deep * (0.6 + 0.8 * luminance) + light.subsurface * crest * toward
         + light.deep * normal.y;
     // Shallow water over sand: the sand's light back through 2·depth of water, red absorbed
-    // first (absorption about 0.45, 0.09, 0.06 per m with some turbidity), so the shallows
+    // first (attenuation about 0.5, 0.14, 0.12 per m: coastal water), so the shallows
     // turn turquoise and the sand shows through near the waterline.
-    let through = exp(-vec3<f32>(0.45, 0.09, 0.06) * 2.0 * max(surface.depth, 0.0));
+    let through = exp(-vec3<f32>(0.5, 0.14, 0.12) * 2.0 * max(surface.depth, 0.0));
     let sand = vec3<f32>(0.55, 0.48, 0.34)
         * (ambient + light.sun_colour * (1.0 - light.overcast) * max(sun.y, 0.0)) * 0.3;
     let body = mix(deep_body, sand, through);
@@ -871,8 +871,9 @@ fn ocean_coast_factor(coast: OceanCoast, c: u32) -> f32 {
 
 // `ocean_foam_surface` over a coast: the open sea's whitecaps and residual foam fade where
 // the waves die (cascade 0's factor below 1), and the surf lays active foam over the fraction
-// Q_b of breaking waves (as the crate's `foam_at` does), with residual foam left behind in
-// the surf zone (the streaks between the breakers, 60 % of Q_b). The breakers' foam sits on
+// Q_b of breaking waves (as the crate's `foam_at` does, on three quarters of it: broken
+// waves' bores are not white all over), with residual foam left behind in the surf zone (the
+// streaks between the breakers, half of Q_b). The breakers' foam sits on
 // the most compressed crests: the compression is measured against the local waves' (divided
 // by the finest packed cascade's factor), so a surf zone's shrunken waves still break on
 // their crests.
@@ -890,8 +891,10 @@ fn ocean_coast_foam_surface(
     let f = clamp(s.coverage, 0.0, 1.0);
     let whitecaps = f * clamp(u.table.w, 0.0, 1.0);
     let residual = clamp((f - whitecaps) / max(1.0 - whitecaps, 1e-4), 0.0, 1.0);
-    let a = max(whitecaps * open, surf);
-    let r = max(residual * open, 0.6 * surf);
+    // Even where every wave has broken (Q_b = 1) the bores' foam covers part of the water:
+    // three quarters active, half of the rest residual.
+    let a = max(whitecaps * open, 0.75 * surf);
+    let r = max(residual * open, 0.5 * surf);
     let coverage = a + r * (1.0 - a);
     let share = a / max(coverage, 1e-4);
     let jacobian = 1.0 + (s.jacobian - 1.0) / max(coast.near.z, 0.25);

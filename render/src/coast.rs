@@ -194,7 +194,7 @@ const CELLS: usize = 256;
 /// (m).
 pub const ISLAND_CENTRE: [f64; 2] = [420.0, 0.0];
 const ISLAND_RADIUS: f64 = 170.0;
-const BAY_DEPTH: f64 = 85.0;
+const BAY_DEPTH: f64 = 90.0;
 
 /// Depth (m) of the sea bed `s` metres offshore of a beach: 1:25 at the waterline,
 /// steepening slowly offshore (12 m at 225 m, 21 m at 350 m), at most 35 m.
@@ -215,7 +215,7 @@ pub fn island_shore(theta: f64) -> f64 {
         .sin()
         .atan2((theta - std::f64::consts::PI).cos());
     ISLAND_RADIUS + 12.0 * (3.0 * theta + 0.5).sin() + 7.0 * (5.0 * theta + 2.0).sin()
-        - BAY_DEPTH * (-(from_bay / 0.32).powi(2)).exp()
+        - BAY_DEPTH * (-(from_bay / 0.55).powi(2)).exp()
 }
 
 /// An island with sandy beaches, a bay facing the waves (toward −x) and a 26 m hill, centred
@@ -233,7 +233,9 @@ pub fn island() -> DepthMap {
             beach_depth(r - shore)
         } else {
             let inland = shore - r;
-            let hill = 26.0 * (-(r / 85.0).powi(2)).exp() * smoothstep(0.0, 60.0, inland);
+            // The hill stands back from the bay, toward +x.
+            let from_hill = (dx - 45.0).hypot(dz);
+            let hill = 26.0 * (-(from_hill / 75.0).powi(2)).exp() * smoothstep(0.0, 60.0, inland);
             -(land_height(inland) + hill)
         }
     });
@@ -298,8 +300,9 @@ fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
 
 /// The ground of a depth map as a triangle mesh: a vertex per cell at (x, −depth, z) (m),
 /// its unit normal, and a linear RGB colour by height and slope (wet sand at and below the
-/// waterline, dry sand up to 1.5 m, grass above, rock where steeper than 1:1.5); counter-
-/// clockwise seen from above.
+/// waterline, dry sand up to 1.5 m, grass above, rock where steeper than 1:1.5 and on land
+/// narrower than 16 m between water on both sides: a wall, a spit); counter-clockwise seen
+/// from above.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Terrain {
     pub positions: Vec<[f32; 3]>,
@@ -323,6 +326,9 @@ pub fn terrain(map: &DepthMap) -> Terrain {
     let [nx, nz] = map.size;
     let s = map.spacing;
     let height = |i: usize, j: usize| -map.depth[j.min(nz - 1) * nx + i.min(nx - 1)];
+    // Cells 8 m away, for the narrow land.
+    let reach = (8.0 / s).ceil().max(1.0) as usize;
+    let wet = |i: usize, j: usize| height(i, j) < 0.0;
     let mut t = Terrain::default();
     for j in 0..nz {
         for i in 0..nx {
@@ -338,11 +344,18 @@ pub fn terrain(map: &DepthMap) -> Terrain {
             let len = (gx * gx + 1.0 + gz * gz).sqrt();
             t.normals.push([-gx / len, 1.0 / len, -gz / len]);
             let steep = gx.hypot(gz);
-            // A hash of the cell breaks the bands between colours into a ragged edge.
-            let jitter = ((i * 7919 + j * 104_729) % 97) as f32 / 97.0 - 0.5;
+            // A slow wobble breaks the line between sand and grass.
+            let jitter = (x * 0.031).sin() * (z * 0.027 + (x * 0.011).sin()).cos();
+            let narrow = y > -0.5
+                && (i >= reach && wet(i - reach, j) && wet(i + reach, j)
+                    || j >= reach && wet(i, j - reach) && wet(i, j + reach));
             let dry = smoothstep(0.15, 0.5, f64::from(y)) as f32;
             let grassy = smoothstep(1.2, 2.0, f64::from(y + 0.5 * jitter)) as f32;
-            let rocky = smoothstep(0.45, 0.65, f64::from(steep)) as f32;
+            let rocky = if narrow {
+                1.0
+            } else {
+                smoothstep(0.45, 0.65, f64::from(steep)) as f32
+            };
             let ground = mix3(mix3(WET_SAND, SAND, dry), GRASS, grassy);
             let c = mix3(ground, ROCK, rocky);
             t.colours.push([c[0], c[1], c[2], 1.0]);
@@ -377,7 +390,7 @@ mod tests {
             map.depth[j * map.size[0] + i]
         };
         let [cx, cz] = ISLAND_CENTRE;
-        assert!(at(cx, cz) < -20.0, "the hill: {}", at(cx, cz));
+        assert!(at(cx + 45.0, cz) < -20.0, "the hill: {}", at(cx + 45.0, cz));
         assert!(at(map.origin[0], map.origin[1]) > 15.0);
         // Toward +z (θ = π/2): shore radius from `island_shore`; 100 m off it, 1:25 and a
         // little more.
@@ -443,6 +456,10 @@ mod tests {
         assert!(near(colour_at(BEACH_SHORE + 200.0, 0.0), GRASS));
         let side = colour_at(WALL_X + 6.0, 0.0);
         assert!(near(side, ROCK), "{side:?}");
+        assert!(
+            near(colour_at(WALL_X, 0.0), ROCK),
+            "the wall's crest is rock"
+        );
     }
 
     /// The packer's texels are `pack_coast`'s in f16 at every map cell, with the depth and

@@ -39,7 +39,8 @@ pub use coast::{coast_uniforms, terrain, CoastKind, CoastPacker, CoastTexels, Te
 pub use floater::{Body, Column, Floater, Motion, Pose, Push, Velocities, SEA_WATER_DENSITY};
 pub use info::{OceanInfo, SlopeTable, MAX_CASCADES, SLOPE_TABLE};
 pub use sea::{
-    apply, build, build_sea, follow_clock, Change, Plan, SeaSettings, PRE_ROLL, PRE_ROLL_DT,
+    apply, build, build_sea, follow_clock, set_depth_map_at_once, Change, Plan, SeaSettings,
+    PRE_ROLL, PRE_ROLL_DT,
 };
 pub use streaks::{streak_uniforms, StreakTexels};
 pub use texels::{mip_levels, Level, Texels};

@@ -179,10 +179,27 @@ pub fn apply(ocean: &mut OceanState, change: Change) -> Result<(), Error> {
 /// The crate's, for a sea, grids or map it refuses.
 pub fn build_sea(sea: &SeaSettings, config: OceanConfig, time: f64) -> Result<OceanState, Error> {
     let mut ocean = build(sea.spectrum.clone(), config, time)?;
-    if let Some(map) = &sea.depth_map {
-        ocean.set_depth_map(Some(DepthMap::clone(map)))?;
-    }
+    set_depth_map_at_once(&mut ocean, sea.depth_map.as_deref())?;
     Ok(ocean)
+}
+
+/// Sets `map` on a new `ocean` without the blend from the open sea a running ocean gets
+/// (there is no earlier sea to hide a pop from): set at a time
+/// [`BLEND_SECONDS`](ocean_fft::coast::BLEND_SECONDS) before the ocean's, then back (the foam
+/// is kept as it is).
+///
+/// # Errors
+/// The crate's, for a map it refuses; the ocean is unchanged then.
+pub fn set_depth_map_at_once(ocean: &mut OceanState, map: Option<&DepthMap>) -> Result<(), Error> {
+    let Some(map) = map else {
+        return Ok(());
+    };
+    map.validate()?;
+    let time = ocean.time();
+    ocean.set_time(time - ocean_fft::coast::BLEND_SECONDS)?;
+    let set = ocean.set_depth_map(Some(map.clone()));
+    ocean.set_time(time)?;
+    set
 }
 
 /// A new ocean of `spectrum` and `config` at sea time `time`, its foam spun up over the
@@ -306,5 +323,17 @@ mod tests {
         );
         let rebuilt = build_sea(&coast, coast.config.clone(), 5.0).unwrap();
         assert_eq!(rebuilt.textures().coast().unwrap().map(), &*map);
+        // At once: the queries read the map's waves now, not a blend from the open sea.
+        let mut later = OceanState::new(coast.spectrum.clone(), coast.config.clone()).unwrap();
+        later.set_time(5.0).unwrap();
+        later.set_depth_map(Some(DepthMap::clone(&map))).unwrap();
+        later
+            .set_time(5.0 + ocean_fft::coast::BLEND_SECONDS)
+            .unwrap();
+        let mut packed = vec![[0.0f32; 4]; 64];
+        let mut settled = vec![[0.0f32; 4]; 64];
+        rebuilt.textures().pack_coast(&mut packed).unwrap();
+        later.textures().pack_coast(&mut settled).unwrap();
+        assert_eq!(packed, settled);
     }
 }
