@@ -301,7 +301,7 @@ fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
 /// The ground of a depth map as a triangle mesh: a vertex per cell at (x, −depth, z) (m),
 /// its unit normal, and a linear RGB colour by height and slope (wet sand at and below the
 /// waterline, dry sand up to 1.5 m, grass above, rock where steeper than 1:1.5 and on land
-/// narrower than 16 m between water on both sides: a wall, a spit); counter-clockwise seen
+/// with water within 16 m on both sides: a wall, a spit); counter-clockwise seen
 /// from above.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Terrain {
@@ -312,10 +312,10 @@ pub struct Terrain {
 }
 
 /// Linear RGB colours of the ground.
-const WET_SAND: [f32; 3] = [0.30, 0.25, 0.17];
-const SAND: [f32; 3] = [0.66, 0.57, 0.40];
-const GRASS: [f32; 3] = [0.13, 0.22, 0.06];
-const ROCK: [f32; 3] = [0.27, 0.26, 0.24];
+const WET_SAND: [f32; 3] = [0.20, 0.16, 0.105];
+const SAND: [f32; 3] = [0.48, 0.41, 0.28];
+const GRASS: [f32; 3] = [0.075, 0.13, 0.035];
+const ROCK: [f32; 3] = [0.22, 0.21, 0.195];
 
 fn mix3(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
     std::array::from_fn(|k| a[k] + (b[k] - a[k]) * t)
@@ -326,9 +326,16 @@ pub fn terrain(map: &DepthMap) -> Terrain {
     let [nx, nz] = map.size;
     let s = map.spacing;
     let height = |i: usize, j: usize| -map.depth[j.min(nz - 1) * nx + i.min(nx - 1)];
-    // Cells 8 m away, for the narrow land.
-    let reach = (8.0 / s).ceil().max(1.0) as usize;
-    let wet = |i: usize, j: usize| height(i, j) < 0.0;
+    // Narrow land: water within 16 m on both sides along x or along z.
+    let reach = (16.0 / s).ceil().max(1.0) as isize;
+    let wet = |i: isize, j: isize| {
+        (0..nx as isize).contains(&i)
+            && (0..nz as isize).contains(&j)
+            && height(i as usize, j as usize) < 0.0
+    };
+    let water_within = |i: usize, j: usize, di: isize, dj: isize| {
+        (1..=reach).any(|k| wet(i as isize + k * di, j as isize + k * dj))
+    };
     let mut t = Terrain::default();
     for j in 0..nz {
         for i in 0..nx {
@@ -347,8 +354,8 @@ pub fn terrain(map: &DepthMap) -> Terrain {
             // A slow wobble breaks the line between sand and grass.
             let jitter = (x * 0.031).sin() * (z * 0.027 + (x * 0.011).sin()).cos();
             let narrow = y > -0.5
-                && (i >= reach && wet(i - reach, j) && wet(i + reach, j)
-                    || j >= reach && wet(i, j - reach) && wet(i, j + reach));
+                && (water_within(i, j, -1, 0) && water_within(i, j, 1, 0)
+                    || water_within(i, j, 0, -1) && water_within(i, j, 0, 1));
             let dry = smoothstep(0.15, 0.5, f64::from(y)) as f32;
             let grassy = smoothstep(1.2, 2.0, f64::from(y + 0.5 * jitter)) as f32;
             let rocky = if narrow {
@@ -456,10 +463,10 @@ mod tests {
         assert!(near(colour_at(BEACH_SHORE + 200.0, 0.0), GRASS));
         let side = colour_at(WALL_X + 6.0, 0.0);
         assert!(near(side, ROCK), "{side:?}");
-        assert!(
-            near(colour_at(WALL_X, 0.0), ROCK),
-            "the wall's crest is rock"
-        );
+        for x in [-3.0, 0.0, 3.0] {
+            let crest = colour_at(WALL_X + x, 0.0);
+            assert!(near(crest, ROCK), "the wall's crest is rock: {crest:?}");
+        }
     }
 
     /// The packer's texels are `pack_coast`'s in f16 at every map cell, with the depth and
