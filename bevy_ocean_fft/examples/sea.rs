@@ -149,12 +149,11 @@ fn main() -> ExitCode {
             anisotropy: options.anisotropy,
             ..default()
         })
-        // The sea of --preset (a fresh breeze by default) on its default grids, with the
-        // depth map of --coast.
-        .insert_resource(settings(&options))
+        // The sea of --preset (a fresh breeze by default) on its default grids.
+        .insert_resource(OceanSettings::preset(options.preset))
         .insert_resource(options)
         .init_resource::<Stats>()
-        .add_systems(Startup, (scene, panel))
+        .add_systems(Startup, (coast_settings, scene, panel))
         .add_systems(Update, (buttons, hud, frames, drive))
         .run();
     // guide: end
@@ -169,6 +168,14 @@ fn settings(options: &Options) -> OceanSettings {
     let mut settings = OceanSettings::preset(options.preset);
     settings.depth_map = options.coast.0.map(|coast| Arc::new(coast.depth_map()));
     settings
+}
+
+/// `--coast`: the coast's depth map in the settings before the first ocean is built (in
+/// `Last` of the first frame).
+fn coast_settings(options: Res<Options>, mut sea: ResMut<OceanSettings>) {
+    if options.coast.0.is_some() {
+        *sea = settings(&options);
+    }
 }
 
 /// The coast's ground as a Bevy mesh: positions, normals and a colour per vertex.
