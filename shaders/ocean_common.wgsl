@@ -871,9 +871,9 @@ fn ocean_coast_factor(coast: OceanCoast, c: u32) -> f32 {
 
 // `ocean_foam_surface` over a coast: the open sea's whitecaps and residual foam fade where
 // the waves die (cascade 0's factor below 1), and the surf lays active foam over the fraction
-// Q_b of breaking waves (as the crate's `foam_at` does, on three quarters of it: broken
-// waves' bores are not white all over), with residual foam left behind in the surf zone (the
-// streaks between the breakers, half of Q_b). The breakers' foam sits on
+// Q_b of breaking waves (as the crate's `foam_at` does, on 55 % of it: broken waves' bores
+// are not white all over), with residual foam left behind in the surf zone (the streaks
+// between the breakers, 35 % of Q_b). The breakers' foam sits on
 // the most compressed crests: the compression is measured against the local waves' (divided
 // by the finest packed cascade's factor), so a surf zone's shrunken waves still break on
 // their crests.
@@ -892,9 +892,9 @@ fn ocean_coast_foam_surface(
     let whitecaps = f * clamp(u.table.w, 0.0, 1.0);
     let residual = clamp((f - whitecaps) / max(1.0 - whitecaps, 1e-4), 0.0, 1.0);
     // Even where every wave has broken (Q_b = 1) the bores' foam covers part of the water:
-    // three quarters active, half of the rest residual.
-    let a = max(whitecaps * open, 0.75 * surf);
-    let r = max(residual * open, 0.5 * surf);
+    // 55 % active, 35 % of the rest residual (70 % in all; the residual drawn 55 % opaque).
+    let a = max(whitecaps * open, 0.55 * surf);
+    let r = max(residual * open, 0.35 * surf);
     let coverage = a + r * (1.0 - a);
     let share = a / max(coverage, 1e-4);
     let jacobian = 1.0 + (s.jacobian - 1.0) / max(coast.near.z, 0.25);
