@@ -64,5 +64,11 @@ done
     --frames 40 --anisotropy 1 --preset calm --boat-speed 8 --follow-boat \
     --camera -5.56,2.5,-10.63 --look-at 7.4,0,-34.3 --screenshot "$images/wake_deck_bevy.png")
 
+# The island coast (its depth map and ground) under a moderate breeze, from the example's
+# view of it.
+(cd "$work" && xvfb-run -a -s "-screen 0 1920x1080x24" "$root/target/release/examples/sea" \
+    --frames 30 --anisotropy 1 --preset moderate_breeze --coast island \
+    --screenshot "$images/coast_bevy.png")
+
 ls -l "$images"
 du -ch "$images"/*.png | tail -n 1

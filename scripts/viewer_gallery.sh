@@ -46,4 +46,19 @@ xvfb-run -a -s "-screen 0 1920x1080x24" "$viewer" --preset calm --frames 240 --b
 xvfb-run -a -s "-screen 0 1920x1080x24" "$viewer" --preset calm --frames 240 --boat-speed 8 \
     --on-deck --pitch -10 --hide-ui --screenshot "$images/wake_deck_viewer.png"
 
-ls -l "$images"/viewer_*.png "$images"/wake_viewer.png "$images"/wake_deck_viewer.png
+# Coasts under a moderate breeze, the sun behind the eye: the island from 30 m up, its bay
+# from a boat 9 m up, and the breakwater.
+coast() {
+    local name="$1"
+    shift
+    echo "== $name: $*"
+    xvfb-run -a -s "-screen 0 1920x1080x24" "$viewer" --frames 2 --hide-ui --msaa 4 --anisotropy 1 \
+        --width 1280 --height 720 --no-bodies --sun 35,200 --preset moderate_breeze \
+        --screenshot "$images/$name.png" "$@"
+}
+coast coast_viewer --coast island --camera 150,30,-120 --heading 25 --pitch -12
+coast surf_viewer --coast island --camera 235,9,-25 --heading 8 --pitch -6
+coast breakwater_viewer --coast breakwater --camera 100,40,-180 --heading 40 --pitch -14
+
+ls -l "$images"/viewer_*.png "$images"/wake_viewer.png "$images"/wake_deck_viewer.png \
+    "$images"/coast_viewer.png "$images"/surf_viewer.png "$images"/breakwater_viewer.png

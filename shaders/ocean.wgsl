@@ -20,10 +20,15 @@
 //   7  streaks              texture_2d<f32>: the foam's streak field (`FoamStreaks`), R16F,
 //                           read with vertex_sampler (repeat, linear); uploaded when the
 //                           ocean is new
+//   8  coast                texture_2d_array<f32>: the coast over the depth map
+//                           (`CoastTexels`: layer 0 = f₀, f₁, f₂, Q_b; layer 1 = depth, f₃,
+//                           f₄, f₅), RGBA16F, read with wake_sampler (clamp, linear); 1×1 of
+//                           zeros without a map (`ocean.coast.w` = 0 then)
 //
 // Entry points: vs_ocean/fs_ocean draw the water on a clipmap of square rings (no vertex
 // buffer: the vertex index is the grid point, the instance index the ring), vs_sky/fs_sky the
-// sky behind it (a full-screen triangle), vs_body/fs_body the floating bodies.
+// sky behind it (a full-screen triangle), vs_body/fs_body the floating bodies,
+// vs_terrain/fs_terrain the ground of a coast (a mesh with a colour per vertex).
 
 struct Globals {
     // World (m) to clip space (reversed, infinite depth) and back.
@@ -47,6 +52,7 @@ struct Globals {
 @group(0) @binding(5) var wake: texture_2d<f32>;
 @group(0) @binding(6) var wake_sampler: sampler;
 @group(0) @binding(7) var streaks: texture_2d<f32>;
+@group(0) @binding(8) var coast: texture_2d_array<f32>;
 
 fn light() -> OceanLight {
     return ocean_light(globals.ocean, globals.ocean.sun.xyz, globals.ocean.sun_colour.rgb);
@@ -66,8 +72,9 @@ fn vs_ocean(@builtin(vertex_index) vertex: u32, @builtin(instance_index) ring: u
     let morphed = ocean_morph(cell, level.w);
     let xz = level.xy + morphed.xy * level.z;
     let spacing = level.z * (1.0 + morphed.z);
-    let displacement = ocean_add_wake_displacement(wake, wake_sampler, globals.ocean, xz, ocean_displacement(
-        displacement_foam, slope_jacobian_foam, vertex_sampler, globals.ocean, xz, spacing, globals.eye.xz));
+    let shore = ocean_coast(coast, wake_sampler, globals.ocean, xz);
+    let displacement = ocean_add_wake_displacement(wake, wake_sampler, globals.ocean, xz, ocean_coast_displacement(
+        displacement_foam, slope_jacobian_foam, vertex_sampler, globals.ocean, xz, spacing, globals.eye.xz, shore));
     var out = ocean_varying(xz, displacement);
     out.clip = globals.view_proj * vec4<f32>(out.world, 1.0);
     return out;
@@ -75,9 +82,10 @@ fn vs_ocean(@builtin(vertex_index) vertex: u32, @builtin(instance_index) ring: u
 
 @fragment
 fn fs_ocean(in: OceanVarying) -> @location(0) vec4<f32> {
-    let water = ocean_water_surface(
-        slope_jacobian_foam, ocean_sampler, globals.ocean, in.world, in.undisplaced, in.height, globals.eye.xz);
-    let foamed = ocean_foam_surface(streaks, vertex_sampler, globals.ocean, in.undisplaced, water);
+    let shore = ocean_coast(coast, wake_sampler, globals.ocean, in.undisplaced);
+    let water = ocean_coast_water_surface(
+        slope_jacobian_foam, ocean_sampler, globals.ocean, in.world, in.undisplaced, in.height, globals.eye.xz, shore);
+    let foamed = ocean_coast_foam_surface(streaks, vertex_sampler, globals.ocean, in.undisplaced, water, shore);
     let surface = ocean_add_wake_surface(wake, wake_sampler, globals.ocean, in.undisplaced, foamed);
     let to_eye = in.world - globals.eye.xyz;
     let distance = length(to_eye);
@@ -161,4 +169,43 @@ fn fs_body(in: BodyVarying) -> @location(0) vec4<f32> {
     let haze = 1.0 - exp(-distance / l.haze_distance);
     colour = mix(colour, ocean_haze_colour(l, to_eye / distance), haze);
     return vec4<f32>(ocean_tone_map(colour, globals.ocean.sun_colour.w), 1.0);
+}
+
+// ---- The ground of a coast ----
+
+struct TerrainVarying {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) colour: vec3<f32>,
+}
+
+// The ground's mesh, in world space (m).
+@vertex
+fn vs_terrain(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) colour: vec4<f32>,
+) -> TerrainVarying {
+    var out: TerrainVarying;
+    out.world = position;
+    out.clip = globals.view_proj * vec4<f32>(position, 1.0);
+    out.normal = normal;
+    out.colour = colour.rgb;
+    return out;
+}
+
+// Lambert under the sky and the sun (no shadows), the haze of the water.
+@fragment
+fn fs_terrain(in: TerrainVarying) -> @location(0) vec4<f32> {
+    let l = light();
+    let to_eye = in.world - globals.eye.xyz;
+    let distance = length(to_eye);
+    let n = normalize(in.normal);
+    let ambient = ocean_sky_irradiance(l) * (0.6 + 0.4 * n.y);
+    let sun = l.sun_colour * (1.0 - l.overcast) * max(dot(n, l.sun_direction), 0.0);
+    var colour = in.colour * (ambient + sun * 0.6);
+    let haze = 1.0 - exp(-distance / l.haze_distance);
+    colour = mix(colour, ocean_haze_colour(l, to_eye / distance), haze);
+    return vec4<f32>(ocean_dither(ocean_tone_map(colour, globals.ocean.sun_colour.w), in.clip.xy), 1.0);
 }

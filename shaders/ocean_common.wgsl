@@ -401,6 +401,9 @@ struct OceanSurface {
     variance: vec2<f32>,
     // Horizontal unit wind (x, z).
     wind: vec2<f32>,
+    // Water depth under the point (m): the coast's depth map, 1e4 for the open sea
+    // (`ocean_coast_water_surface`); shallow water over sand shows the sand.
+    depth: f32,
 }
 
 // Linear radiance leaving the water toward an eye `distance` metres away along the unit
@@ -431,8 +434,15 @@ fn ocean_shade(light: OceanLight, surface: OceanSurface, dir: vec3<f32>, distanc
     let toward = mix(0.35 + 0.65 * pow(max(dot(dir, sun), 0.0), 3.0), 0.3, light.overcast);
     let ambient = ocean_sky_irradiance(light);
     let luminance = dot(ambient, vec3<f32>(0.2126, 0.7152, 0.0722));
-    let body = light.deep * (0.6 + 0.8 * luminance) + light.subsurface * crest * toward
+    let deep_body = light.deep * (0.6 + 0.8 * luminance) + light.subsurface * crest * toward
         + light.deep * normal.y;
+    // Shallow water over sand: the sand's light back through 2·depth of water, red absorbed
+    // first (attenuation about 0.5, 0.14, 0.12 per m: coastal water), so the shallows
+    // turn turquoise and the sand shows through near the waterline.
+    let through = exp(-vec3<f32>(0.5, 0.14, 0.12) * 2.0 * max(surface.depth, 0.0));
+    let sand = vec3<f32>(0.55, 0.48, 0.34)
+        * (ambient + light.sun_colour * (1.0 - light.overcast) * max(sun.y, 0.0)) * 0.3;
+    let body = mix(deep_body, sand, through);
 
     // Bubbles under and around the whitecaps scatter the light back up: a pale turquoise.
     let bubble_light = light.subsurface * (2.5 * ambient + 0.8 * light.sun_colour * max(sun.y, 0.0))
@@ -505,6 +515,12 @@ struct OceanUniforms {
     // xy = 1/(spacing·texels) across and along (1/m), zw = texels across and along (0: no
     // streak texture, `ocean_foam_layers` uses its own noise).
     streak_scale: vec4<f32>,
+    // The coast texture over the depth map (ocean_fft_render::CoastTexels::uniforms): xy =
+    // world x, z of its texel (0, 0) (m), z = 1/spacing (1/m), w = 1 with a map (0: no
+    // coast read).
+    coast: vec4<f32>,
+    // xy = the coast texture's texels along x and z.
+    coast_size: vec4<f32>,
 }
 
 // The light of the uniforms, with the sun an engine gives (its own light, or the uniforms'
@@ -555,6 +571,22 @@ fn ocean_displacement(
     spacing: f32,
     eye_xz: vec2<f32>,
 ) -> vec3<f32> {
+    return ocean_coast_displacement(
+        displacement_foam, slope_jacobian_foam, vertex_sampler, u, xz, spacing, eye_xz, ocean_open_sea());
+}
+
+// `ocean_displacement` over a coast (`ocean_coast` at `xz`): each cascade's displacement
+// scaled by its factor there.
+fn ocean_coast_displacement(
+    displacement_foam: texture_2d_array<f32>,
+    slope_jacobian_foam: texture_2d_array<f32>,
+    vertex_sampler: sampler,
+    u: OceanUniforms,
+    xz: vec2<f32>,
+    spacing: f32,
+    eye_xz: vec2<f32>,
+    coast: OceanCoast,
+) -> vec3<f32> {
     let weights = ocean_tiling_weights(xz, length(xz - eye_xz), u.horizon.w, u.tiling.x, u.tiling.y);
     var displacement = vec3<f32>(0.0);
     var jacobian = 1.0;
@@ -569,8 +601,9 @@ fn ocean_displacement(
             d += textureSampleLevel(displacement_foam, vertex_sampler, shifted, c, lod).xyz * weights.y;
             j += (textureSampleLevel(slope_jacobian_foam, vertex_sampler, shifted, c, lod).z - 1.0) * weights.y;
         }
-        displacement += d;
-        jacobian += j;
+        let factor = ocean_coast_factor(coast, c);
+        displacement += d * factor;
+        jacobian += j * factor;
     }
     let unfold = mix(0.3, 1.0, smoothstep(-0.2, 0.5, jacobian));
     return vec3<f32>(displacement.x * unfold, displacement.y, displacement.z * unfold);
@@ -672,6 +705,22 @@ fn ocean_water_surface(
     height: f32,
     eye_xz: vec2<f32>,
 ) -> OceanSurface {
+    return ocean_coast_water_surface(
+        slope_jacobian_foam, ocean_sampler, u, world, xz, height, eye_xz, ocean_open_sea());
+}
+
+// `ocean_water_surface` over a coast (`ocean_coast` at `xz`): each cascade's slope and
+// compression scaled by its factor there, and the depth for the shallows' colour.
+fn ocean_coast_water_surface(
+    slope_jacobian_foam: texture_2d_array<f32>,
+    ocean_sampler: sampler,
+    u: OceanUniforms,
+    world: vec3<f32>,
+    xz: vec2<f32>,
+    height: f32,
+    eye_xz: vec2<f32>,
+    coast: OceanCoast,
+) -> OceanSurface {
     let wx = dpdx(world);
     let wy = dpdy(world);
     let limit = 3.0 * max(length(wx), length(wy)) + 1e-4;
@@ -688,17 +737,18 @@ fn ocean_water_surface(
         let uv = ocean_uv(xz, u.origins[c].xy, cascade.x, cascade.z);
         let ux = gx / cascade.x;
         let uy = gy / cascade.x;
+        let factor = ocean_coast_factor(coast, c);
         let a = textureSampleGrad(slope_jacobian_foam, ocean_sampler, uv, c, ux, uy);
         let w = u.origins[c].z;
-        slope += a.xy * weights.x;
-        jacobian += (a.z - 1.0) * weights.x;
-        whitecap += w * (1.0 - a.z) * weights.x;
+        slope += a.xy * weights.x * factor;
+        jacobian += (a.z - 1.0) * weights.x * factor;
+        whitecap += w * (1.0 - a.z) * weights.x * factor;
         foam += a.w * weights.x * weights.x;
         if (weights.y > 0.0) {
             let b = textureSampleGrad(slope_jacobian_foam, ocean_sampler, uv + ocean_tiling_offset(c), c, ux, uy);
-            slope += b.xy * weights.y;
-            jacobian += (b.z - 1.0) * weights.y;
-            whitecap += w * (1.0 - b.z) * weights.y;
+            slope += b.xy * weights.y * factor;
+            jacobian += (b.z - 1.0) * weights.y * factor;
+            whitecap += w * (1.0 - b.z) * weights.y * factor;
             foam += b.w * weights.y * weights.y;
         }
     }
@@ -720,6 +770,7 @@ fn ocean_water_surface(
     surface.jacobian = jacobian;
     surface.whitecap = whitecap;
     surface.footprint = footprint;
+    surface.depth = coast.far.x;
     return surface;
 }
 
@@ -831,5 +882,102 @@ fn ocean_add_wake_surface(
     let foam = mix(detailed, f, blur) * mix(0.55, 1.0, smoothstep(0.3, 0.9, f));
     s.foam = s.foam + foam * (1.0 - s.foam);
     s.bubbles = max(s.bubbles, smoothstep(0.02, 0.4, f) * (1.0 - foam));
+    return s;
+}
+
+// ---- Coasts ----
+//
+// The coast texture over a depth map (`ocean_fft_render::CoastTexels`, from the crate's
+// `pack_coast`): a 2-layer texture_2d_array of RGBA16F texels for world (x₀ + i·Δ, z₀ + j·Δ),
+// read with a linear, clamp-to-edge sampler; layer 0 = (f₀, f₁, f₂, Q_b), the amplitude
+// factors of cascades 0–2 (1 the open sea, 0 land or shelter) and the fraction of waves
+// breaking on the bottom; layer 1 = (depth (m), f₃, f₄, f₅). The factors reach 1 and Q_b 0
+// at the map's edge, and outside the map nothing is read, so the coast ends without a seam.
+// What the tiles cannot show: the waves do not turn toward the shore (no refraction) nor
+// shorten; their crests keep the open sea's direction and length, only their height, slope
+// and foam follow the depth.
+
+// The coast at one point: `near` = (f₀, f₁, f₂, Q_b), `far` = (depth (m), f₃, f₄, f₅).
+struct OceanCoast {
+    near: vec4<f32>,
+    far: vec4<f32>,
+}
+
+// The open sea: every factor 1, no surf, deep water.
+fn ocean_open_sea() -> OceanCoast {
+    var c: OceanCoast;
+    c.near = vec4<f32>(1.0, 1.0, 1.0, 0.0);
+    c.far = vec4<f32>(1e4, 1.0, 1.0, 1.0);
+    return c;
+}
+
+// uv of world point `xz` (m) in the coast texture, and in z whether the coast is read there
+// (1 inside the map, 0 outside it or without a map).
+fn ocean_coast_uv(u: OceanUniforms, xz: vec2<f32>) -> vec3<f32> {
+    if (u.coast.w <= 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let size = max(u.coast_size.xy, vec2<f32>(1.0));
+    let uv = ((xz - u.coast.xy) * u.coast.z + vec2<f32>(0.5)) / size;
+    let inside = all(uv >= vec2<f32>(0.0)) && all(uv <= vec2<f32>(1.0));
+    return vec3<f32>(uv, select(0.0, 1.0, inside));
+}
+
+// The coast at undisplaced point `xz` (m): the texture's two layers, bilinear, or the open
+// sea outside the map.
+fn ocean_coast(coast: texture_2d_array<f32>, coast_sampler: sampler, u: OceanUniforms, xz: vec2<f32>) -> OceanCoast {
+    let c = ocean_coast_uv(u, xz);
+    if (c.z <= 0.0) {
+        return ocean_open_sea();
+    }
+    var out: OceanCoast;
+    out.near = textureSampleLevel(coast, coast_sampler, c.xy, 0, 0.0);
+    out.far = textureSampleLevel(coast, coast_sampler, c.xy, 1, 0.0);
+    return out;
+}
+
+// The amplitude factor of cascade `c` (largest first) at a point of `coast`; a cascade past
+// the sixth takes the sixth's (the shortest waves, limited by the same breaking).
+fn ocean_coast_factor(coast: OceanCoast, c: u32) -> f32 {
+    if (c < 3u) {
+        return coast.near[c];
+    }
+    return coast.far[min(c - 2u, 3u)];
+}
+
+// `ocean_foam_surface` over a coast: the open sea's whitecaps and residual foam fade where
+// the waves die (cascade 0's factor below 1), and the surf lays active foam over the fraction
+// Q_b of breaking waves (as the crate's `foam_at` does, on 55 % of it: broken waves' bores
+// are not white all over), with residual foam left behind in the surf zone (the streaks
+// between the breakers, 35 % of Q_b). The breakers' foam sits on
+// the most compressed crests: the whitecaps' placement field is measured against the local
+// waves' (divided by cascade 1's factor, the cascade that field mostly holds), so a surf
+// zone's shrunken waves still break on their crests.
+fn ocean_coast_foam_surface(
+    streaks: texture_2d<f32>,
+    streak_sampler: sampler,
+    u: OceanUniforms,
+    xz: vec2<f32>,
+    surface: OceanSurface,
+    coast: OceanCoast,
+) -> OceanSurface {
+    var s = surface;
+    let open = clamp(coast.near.x, 0.0, 1.0);
+    let surf = clamp(coast.near.w, 0.0, 1.0);
+    let f = clamp(s.coverage, 0.0, 1.0);
+    let whitecaps = f * clamp(u.table.w, 0.0, 1.0);
+    let residual = clamp((f - whitecaps) / max(1.0 - whitecaps, 1e-4), 0.0, 1.0);
+    // Even where every wave has broken (Q_b = 1) the bores' foam covers part of the water:
+    // 55 % active, 35 % of the rest residual (70 % in all; the residual drawn 55 % opaque).
+    let a = max(whitecaps * open, 0.55 * surf);
+    let r = max(residual * open, 0.35 * surf);
+    let coverage = a + r * (1.0 - a);
+    let share = a / max(coverage, 1e-4);
+    let rank = ocean_whitecap_rank(u, s);
+    let crest = rank.x / max(coast.near.y, 0.25);
+    let streak = ocean_streak(streaks, streak_sampler, u, xz);
+    let foam = ocean_foam_layers(coverage, share, crest, rank.y > 0.0, xz, u.wind.xy, s.footprint, streak);
+    s.foam = foam.x;
+    s.bubbles = foam.y;
     return s;
 }

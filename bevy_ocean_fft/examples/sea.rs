@@ -8,6 +8,11 @@
 //! The boats leave wakes (`Wake`); `--boat-speed 8` drives them ahead, `--follow-boat` keeps
 //! the camera's offset from the first one, `--camera X,Y,Z --look-at X,Y,Z` places it.
 //!
+//! `--coast island` or `--coast breakwater` puts a coast in the sea (the render layer's
+//! procedural depth maps, `OceanSettings::depth_map`) and its ground (a mesh with a colour
+//! per vertex and a `StandardMaterial`): the waves shrink and break on its beaches, and the
+//! camera starts at a view of it.
+//!
 //! `--anisotropy 1` for a software rasteriser (as in CI): anisotropic filtering makes its
 //! frames take minutes. With `--frames N` it renders N frames and exits, printing
 //! `frames N, mean frame … ms, step … ms, upload … ms, …`; with `--screenshot FILE` it saves
@@ -15,15 +20,19 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
 
+use bevy::asset::RenderAssetUsages;
 use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::light::CascadeShadowConfigBuilder;
+use bevy::mesh::{Indices, PrimitiveTopology};
 use bevy::prelude::*;
 use bevy::render::view::screenshot::{save_to_disk, Screenshot, ScreenshotCaptured};
 use bevy::window::WindowResolution;
 use bevy_ocean_fft::prelude::*;
 use bevy_ocean_fft::UploadTime;
 use clap::Parser;
+use ocean_fft_render::{terrain, CoastKind};
 
 /// The sea in Bevy: a fresh breeze, four boats, and a panel that changes the weather.
 #[derive(Parser, Resource, Debug, Clone)]
@@ -63,6 +72,22 @@ struct Options {
     /// The point the camera looks at, m.
     #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = point)]
     look_at: Option<Vec3>,
+    /// A coast: `island` (beaches and a bay facing the waves) or `breakwater` (a beach behind
+    /// a wall), with its ground; `none` for the open sea.
+    #[arg(long, value_name = "NAME", default_value = "none", value_parser = coast)]
+    coast: Coast,
+}
+
+/// `--coast`'s value: a coast, or none.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Coast(Option<CoastKind>);
+
+/// `--coast`: `none` or a `CoastKind` name.
+fn coast(text: &str) -> Result<Coast, String> {
+    match text {
+        "none" => Ok(Coast(None)),
+        name => name.parse().map(|kind| Coast(Some(kind))),
+    }
 }
 
 /// `--preset`: a `SeaState` name.
@@ -134,7 +159,7 @@ fn main() -> ExitCode {
         })
         .insert_resource(options)
         .init_resource::<Stats>()
-        .add_systems(Startup, (scene, panel))
+        .add_systems(Startup, (coast_settings, scene, panel))
         .add_systems(Update, (buttons, hud, frames, drive))
         .run();
     // guide: end
@@ -142,6 +167,34 @@ fn main() -> ExitCode {
         AppExit::Success => ExitCode::SUCCESS,
         AppExit::Error(code) => ExitCode::from(code.get()),
     }
+}
+
+/// The sea of the options: the preset, and the coast's depth map if any.
+fn settings(options: &Options) -> OceanSettings {
+    let mut settings = OceanSettings::preset(options.preset);
+    settings.depth_map = options.coast.0.map(|coast| Arc::new(coast.depth_map()));
+    settings
+}
+
+/// `--coast`: the coast's depth map in the settings before the first ocean is built (in
+/// `Last` of the first frame).
+fn coast_settings(options: Res<Options>, mut sea: ResMut<OceanSettings>) {
+    if options.coast.0.is_some() {
+        *sea = settings(&options);
+    }
+}
+
+/// The coast's ground as a Bevy mesh: positions, normals and a colour per vertex.
+fn ground_mesh(coast: CoastKind) -> Mesh {
+    let t = terrain(&coast.depth_map());
+    Mesh::new(
+        PrimitiveTopology::TriangleList,
+        RenderAssetUsages::default(),
+    )
+    .with_inserted_attribute(Mesh::ATTRIBUTE_POSITION, t.positions)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_NORMAL, t.normals)
+    .with_inserted_attribute(Mesh::ATTRIBUTE_COLOR, t.colours)
+    .with_inserted_indices(Indices::U32(t.indices))
 }
 
 /// The sun: 24° up, 30° to the right of the view, so that its glitter path runs toward the
@@ -165,8 +218,30 @@ fn scene(
     mut materials: ResMut<Assets<StandardMaterial>>,
     options: Res<Options>,
 ) {
-    let eye = options.camera.unwrap_or(Vec3::new(0.0, 7.0, 24.0));
-    let target = options.look_at.unwrap_or(Vec3::new(0.0, 1.0, -40.0));
+    // A coast's own view (its eye, heading and pitch), else the boats'.
+    let (default_eye, default_target) = match options.coast.0 {
+        Some(coast) => {
+            let (eye, heading, pitch) = coast.view();
+            let (h, p) = (heading.to_radians(), pitch.to_radians());
+            let eye = Vec3::from_array(eye);
+            let look = Vec3::new(h.cos() * p.cos(), p.sin(), h.sin() * p.cos());
+            (eye, eye + 100.0 * look)
+        }
+        None => (Vec3::new(0.0, 7.0, 24.0), Vec3::new(0.0, 1.0, -40.0)),
+    };
+    let eye = options.camera.unwrap_or(default_eye);
+    let target = options.look_at.unwrap_or(default_target);
+    if let Some(coast) = options.coast.0 {
+        // Vertex colours times white: sand, grass and rock, matte.
+        commands.spawn((
+            Name::new("coast"),
+            Mesh3d(meshes.add(ground_mesh(coast))),
+            MeshMaterial3d(materials.add(StandardMaterial {
+                perceptual_roughness: 0.95,
+                ..default()
+            })),
+        ));
+    }
     commands.spawn((
         Camera3d::default(),
         // The filmic curve the reference shader's palette was tuned with (ACES).
@@ -491,7 +566,17 @@ mod tests {
             (o.preset, o.boat_speed, o.follow_boat),
             (SeaState::FreshBreeze, 0.0, false)
         );
-        assert_eq!((o.camera, o.look_at), (None, None));
+        assert_eq!((o.camera, o.look_at, o.coast), (None, None, Coast(None)));
+        let island = parse(&["--coast", "island"]).unwrap();
+        assert_eq!(island.coast, Coast(Some(CoastKind::Island)));
+        let sea = settings(&island);
+        assert_eq!(
+            sea.depth_map.as_deref(),
+            Some(&CoastKind::Island.depth_map())
+        );
+        assert_eq!(settings(&o).depth_map, None);
+        let ground = ground_mesh(CoastKind::Breakwater);
+        assert_eq!(ground.count_vertices(), 256 * 256);
         let o = parse(&[
             "--preset",
             "calm",
@@ -541,6 +626,7 @@ mod tests {
             (&["--boat-speed", "30"], "--boat-speed"),
             (&["--camera", "1,2"], "--camera"),
             (&["--preset", "gale"], "--preset"),
+            (&["--coast", "reef"], "--coast"),
             (&["--bogus"], "--bogus"),
         ] {
             let text = parse(args).expect_err("a bad command line").to_string();

@@ -26,7 +26,7 @@ use crate::sim::OceanTexels;
 
 use assets::{cascade_image, ring_mesh};
 use upload::{extract_texels, upload_texels};
-use wake::{streak_image, wake_image};
+use wake::{coast_image, streak_image, wake_image};
 
 mod assets;
 mod upload;
@@ -150,6 +150,10 @@ pub struct OceanMaterial {
     #[texture(7)]
     #[sampler(8)]
     pub streaks: Handle<Image>,
+    /// The coast over the depth map (`CoastTexels`: layer 0 = f₀, f₁, f₂, Q_b; layer 1 =
+    /// depth, f₃, f₄, f₅), read with the wake's sampler (clamped, linear); 1×1 without a map.
+    #[texture(9, dimension = "2d_array")]
+    pub coast: Handle<Image>,
 }
 
 impl Material for OceanMaterial {
@@ -250,6 +254,10 @@ pub struct OceanRender {
     /// The streak field's image and size (across, along; (0, 0): the placeholder).
     streaks: Handle<Image>,
     streak_size: (usize, usize),
+    /// The coast's image and size ([0, 0]: the placeholder), and its place for the uniforms.
+    coast: Handle<Image>,
+    coast_size: [usize; 2],
+    coast_uniforms: [[f32; 4]; 2],
     /// The last texels' information.
     info: OceanInfo,
     /// The uniforms both materials get.
@@ -353,12 +361,14 @@ fn setup(
     let slope = images.add(cascade_image(2, 1, anisotropy.0));
     let wake = images.add(wake_image(0));
     let streaks = images.add(streak_image(0, 0));
+    let coast = images.add(coast_image([1, 1]));
     let material = materials.add(OceanMaterial {
         displacement: displacement.clone(),
         slope: slope.clone(),
         uniforms: UniformBlock::default(),
         wake: wake.clone(),
         streaks: streaks.clone(),
+        coast: coast.clone(),
     });
     let sky = skies.add(OceanSkyMaterial {
         uniforms: UniformBlock::default(),
@@ -403,6 +413,9 @@ fn setup(
         wake_size: 0,
         streaks,
         streak_size: (0, 0),
+        coast,
+        coast_size: [0, 0],
+        coast_uniforms: [[0.0; 4]; 2],
         info: OceanInfo::default(),
         uniforms: bytemuck::Zeroable::zeroed(),
     });
@@ -434,6 +447,15 @@ fn fit_textures(
         render.streaks = images.add(streak_image(streak_size.0, streak_size.1));
         if let Some(mut material) = materials.get_mut(&render.material) {
             material.streaks = render.streaks.clone();
+        }
+    }
+    render.coast_uniforms = ocean_fft_render::coast_uniforms(frame.coast.as_deref());
+    let coast_size = frame.coast.as_ref().map_or([0, 0], |c| c.size);
+    if render.coast_size != coast_size {
+        render.coast_size = coast_size;
+        render.coast = images.add(coast_image(coast_size.map(|n| n.max(1))));
+        if let Some(mut material) = materials.get_mut(&render.material) {
+            material.coast = render.coast.clone();
         }
     }
     let grid = (frame.texels.size, frame.texels.cascades);
@@ -533,6 +555,7 @@ fn follow_camera(
     u.set_light(&light, a.exposure, a.sun_scale);
     u.set_ocean(&render.info, [camera.x, camera.z], &tiling);
     u.tiling[3] = render.half_cells as f32;
+    [u.coast, u.coast_size] = render.coast_uniforms;
     let block = UniformBlock::from(&*u);
     if let Some(mut sky) = skies.get_mut(&render.sky) {
         sky.uniforms = block;

@@ -10,8 +10,8 @@ use bevy::prelude::*;
 use bevy::tasks::{block_on, AsyncComputeTaskPool, Task};
 use ocean_fft::{Error, OceanState, Spectrum};
 use ocean_fft_render::{
-    apply, build, follow_clock, OceanInfo, Plan, SeaSettings, SlopeTable, StreakTexels, Texels,
-    WakeTexels,
+    apply, build_sea, follow_clock, CoastPacker, CoastTexels, OceanInfo, Plan, SeaSettings,
+    SlopeTable, StreakTexels, Texels, WakeTexels,
 };
 
 use crate::settings::{OceanClock, OceanSettings};
@@ -26,16 +26,25 @@ pub struct PackedFrame {
     pub wake: WakeTexels,
     /// The foam's streak field (copied when the ocean is new).
     pub streaks: StreakTexels,
+    /// The coast's texels over the depth map (`None` without one; upload them when their
+    /// generation changes).
+    pub coast: Option<Arc<CoastTexels>>,
     /// The ocean at the time the texels hold.
     pub info: OceanInfo,
 }
 
 impl PackedFrame {
     /// Packs `ocean` as it is now (allocates only when the grid changed).
-    fn pack(&mut self, ocean: &OceanState, slopes: &mut SlopeTable) -> Result<(), Error> {
+    fn pack(
+        &mut self,
+        ocean: &OceanState,
+        slopes: &mut SlopeTable,
+        coast: &mut CoastPacker,
+    ) -> Result<(), Error> {
         self.texels.pack(ocean)?;
         self.wake.pack(ocean)?;
         self.streaks.pack(ocean);
+        self.coast = coast.pack(ocean)?;
         self.info.update(ocean, slopes)?;
         self.info.jacobian_sd = self.texels.jacobian_sd;
         Ok(())
@@ -47,6 +56,7 @@ struct Stepped {
     ocean: OceanState,
     texels: PackedFrame,
     slopes: Box<SlopeTable>,
+    coast: Box<CoastPacker>,
     errors: Vec<String>,
     step_ms: f64,
     pack_ms: f64,
@@ -74,6 +84,7 @@ pub struct OceanSim {
     pool: Vec<PackedFrame>,
     lent: Vec<Arc<PackedFrame>>,
     slopes: Option<Box<SlopeTable>>,
+    coast: Option<Box<CoastPacker>>,
 }
 
 impl OceanSim {
@@ -146,6 +157,7 @@ pub(crate) fn collect(
         }
         sim.ocean = Some(stepped.ocean);
         sim.slopes = Some(stepped.slopes);
+        sim.coast = Some(stepped.coast);
         let previous = texels.texels.replace(Arc::new(stepped.texels));
         texels.generation += 1;
         // The render world holds a frame's texels until its next extraction: recycle them
@@ -234,7 +246,7 @@ pub(crate) fn launch(
                 let wanted = wanted.clone();
                 sim.build = Some(AsyncComputeTaskPool::get().spawn(async move {
                     Built {
-                        ocean: build(wanted.spectrum.clone(), config, target),
+                        ocean: build_sea(&wanted, config, target),
                         settings: wanted,
                     }
                 }));
@@ -254,6 +266,7 @@ pub(crate) fn launch(
     }
     let mut texels = sim.pool.pop().unwrap_or_default();
     let mut slopes = sim.slopes.take().unwrap_or_default();
+    let mut coast = sim.coast.take().unwrap_or_default();
     sim.step = Some(AsyncComputeTaskPool::get().spawn(async move {
         let mut errors = Vec::new();
         for change in changes {
@@ -266,13 +279,14 @@ pub(crate) fn launch(
             errors.push(format!("step refused: {error}"));
         }
         let stepped = Instant::now();
-        if let Err(error) = texels.pack(&ocean, &mut slopes) {
+        if let Err(error) = texels.pack(&ocean, &mut slopes, &mut coast) {
             errors.push(format!("packing refused: {error}"));
         }
         Stepped {
             ocean,
             texels,
             slopes,
+            coast,
             errors,
             step_ms: (stepped - start).as_secs_f64() * 1e3,
             pack_ms: stepped.elapsed().as_secs_f64() * 1e3,

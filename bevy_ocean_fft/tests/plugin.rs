@@ -503,3 +503,72 @@ fn a_wake_body_presses_the_water_and_is_packed() {
         status(&app).last_error
     );
 }
+
+/// A depth map in the settings reaches the ocean (its queries see the beach) and the packed
+/// texels (the coast, as the crate packs it); new weather solves it again (new texels), and
+/// a sea without it drops them.
+#[test]
+fn a_depth_map_reaches_the_ocean_and_the_texels() {
+    use bevy_ocean_fft::ocean_fft::DepthMap;
+    use std::sync::Arc;
+    let mut sea = settings(SeaState::FreshBreeze, 1.0);
+    // 48 × 8 cells 4 m apart from x = 0: 1:16 from 12 m deep to dry land past x = 192 m.
+    let map = Arc::new(DepthMap {
+        origin: [0.0, -16.0],
+        spacing: 4.0,
+        size: [48, 8],
+        depth: (0..48 * 8).map(|c| 12.0 - (c % 48) as f32 * 0.25).collect(),
+    });
+    sea.depth_map = Some(map.clone());
+    let mut app = app(sea.clone());
+    let coast = |app: &App| {
+        let texels = app.world().resource::<OceanTexels>();
+        texels.texels.as_ref().and_then(|f| f.coast.clone())
+    };
+    run_until(&mut app, "the coast packed", |w| {
+        let texels = w.resource::<OceanTexels>();
+        texels.texels.as_ref().is_some_and(|f| f.coast.is_some())
+    });
+    for _ in 0..10 {
+        app.update();
+    }
+    let first = coast(&app).expect("a coast");
+    assert_eq!(first.size, [48, 8]);
+    assert_eq!(first.origin, [0.0, -16.0]);
+    // The game's queries see the ocean with the map.
+    #[derive(Resource, Default)]
+    struct MapSeen(Option<DepthMap>);
+    app.init_resource::<MapSeen>();
+    app.add_systems(Update, |water: Water, mut seen: ResMut<MapSeen>| {
+        if let Some(field) = water.ocean().and_then(|o| o.textures().coast()) {
+            seen.0 = Some(field.map().clone());
+        }
+    });
+    app.update();
+    assert_eq!(app.world().resource::<MapSeen>().0.as_ref(), Some(&*map));
+
+    let mut calmer = sea.clone();
+    calmer.set_weather(SeaState::ModerateBreeze);
+    app.insert_resource(calmer.clone());
+    run_until(&mut app, "the map solved for new weather", |w| {
+        let texels = w.resource::<OceanTexels>();
+        let generation = texels
+            .texels
+            .as_ref()
+            .and_then(|f| f.coast.as_ref())
+            .map(|c| c.generation);
+        generation.is_some_and(|g| g > first.generation)
+    });
+    let mut open = calmer;
+    open.depth_map = None;
+    app.insert_resource(open);
+    run_until(&mut app, "the coast dropped", |w| {
+        let texels = w.resource::<OceanTexels>();
+        texels.texels.as_ref().is_some_and(|f| f.coast.is_none())
+    });
+    assert!(
+        status(&app).last_error.is_none(),
+        "{:?}",
+        status(&app).last_error
+    );
+}

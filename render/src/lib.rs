@@ -13,6 +13,8 @@
 //! - [`StreakTexels`]: the foam's streak field, uploaded once per ocean, placed each frame.
 //! - [`WakeTexels`]: the wake window's texels and place; [`hull_of`] a floating body's
 //!   [`Hull`](ocean_fft::Hull), [`wake_centre`] where the window goes for a camera.
+//! - [`coast`]: the coast's texels over a depth map ([`CoastTexels`], kept by a
+//!   [`CoastPacker`]) and procedural coasts with their ground ([`CoastKind`], [`Terrain`]).
 //! - [`floater`]: floating bodies ([`Body`] of vertical columns, [`Pose`], [`Motion`]): the
 //!   water's push on them from a batch of height queries ([`Push`]: Archimedes and drag) and
 //!   the kinematic step of their heave, pitch and roll; [`Floater`] holds one with its state.
@@ -21,6 +23,7 @@
 //! engine adds only that engine's glue (textures, buffers, pipelines, its scheduling).
 
 pub mod clipmap;
+pub mod coast;
 pub mod floater;
 mod info;
 mod sea;
@@ -32,9 +35,13 @@ mod thread;
 mod uniforms;
 mod wake;
 
+pub use coast::{coast_uniforms, terrain, CoastKind, CoastPacker, CoastTexels, Terrain};
 pub use floater::{Body, Column, Floater, Motion, Pose, Push, Velocities, SEA_WATER_DENSITY};
 pub use info::{OceanInfo, SlopeTable, MAX_CASCADES, SLOPE_TABLE};
-pub use sea::{apply, build, follow_clock, Change, Plan, SeaSettings, PRE_ROLL, PRE_ROLL_DT};
+pub use sea::{
+    apply, build, build_sea, follow_clock, set_depth_map_at_once, Change, Plan, SeaSettings,
+    PRE_ROLL, PRE_ROLL_DT,
+};
 pub use streaks::{streak_uniforms, StreakTexels};
 pub use texels::{mip_levels, Level, Texels};
 pub use thread::{Frame, SimTimes, Simulation};

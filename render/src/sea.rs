@@ -1,8 +1,11 @@
 //! The sea an engine asks for ([`SeaSettings`]) and the policy that turns a change of it into
 //! what a running ocean can take live (new weather over a transition, a new choppiness, new
-//! foam settings) or a new ocean (new grids, a new water depth, a sea the grids cannot hold).
+//! foam settings, a new depth map) or a new ocean (new grids, a new water depth, a sea the
+//! grids cannot hold).
 
-use ocean_fft::{Error, FoamConfig, OceanConfig, OceanState, SeaState, Spectrum};
+use std::sync::Arc;
+
+use ocean_fft::{DepthMap, Error, FoamConfig, OceanConfig, OceanState, SeaState, Spectrum};
 
 /// Seconds of foam spun up when a new ocean is built (at steps of [`PRE_ROLL_DT`]).
 pub const PRE_ROLL: f64 = 6.0;
@@ -21,6 +24,10 @@ pub struct SeaSettings {
     /// Seconds of sea time over which a new spectrum replaces the old one (0: at the next
     /// step).
     pub transition_seconds: f64,
+    /// The water depth over a part of the world (`OceanState::set_depth_map`; `None`: the
+    /// spectrum's depth everywhere). The map is solved for the weather: a new spectrum
+    /// solves it again. A 256² map takes about a second on the thread that applies it.
+    pub depth_map: Option<Arc<DepthMap>>,
 }
 
 impl Default for SeaSettings {
@@ -39,6 +46,9 @@ pub enum Change {
     Choppiness(f32),
     /// New foam settings (`OceanState::set_foam_config`).
     Foam(FoamConfig),
+    /// A depth map set (again) (`OceanState::set_depth_map`): a new map, or the same one
+    /// solved for new weather.
+    DepthMap(Option<Arc<DepthMap>>),
 }
 
 /// What going from the sea an ocean runs to a new one takes.
@@ -60,6 +70,7 @@ impl SeaSettings {
             spectrum,
             config,
             transition_seconds: 10.0,
+            depth_map: None,
         }
     }
 
@@ -99,10 +110,19 @@ impl SeaSettings {
     /// when the water depth changes (`set_spectrum` keeps the dispersion), or when the
     /// running grids hold less than `limits::MIN_CHANGE_SHARE` of the new sea (they may
     /// be fitted to an earlier one); live changes otherwise, the choppiness first (so that a
-    /// calmer sea at a higher choppiness is checked with the choppiness it will run with).
+    /// calmer sea at a higher choppiness is checked with the choppiness it will run with),
+    /// the depth map after the spectrum (a map is solved for the weather, so new weather
+    /// sets it again).
     pub fn plan(&self, running: &SeaSettings, ocean: &OceanState) -> Plan {
         if self == running {
             return Plan::Nothing;
+        }
+        if self.spectrum == running.spectrum
+            && self.config == running.config
+            && self.transition_seconds == running.transition_seconds
+        {
+            // Only the map changed.
+            return Plan::Live(vec![Change::DepthMap(self.depth_map.clone())]);
         }
         let mut grids = running.config.clone();
         grids.choppiness = self.config.choppiness;
@@ -131,6 +151,10 @@ impl SeaSettings {
         if running.config.foam != self.config.foam {
             changes.push(Change::Foam(self.config.foam));
         }
+        let new_weather = running.spectrum != self.spectrum && self.depth_map.is_some();
+        if running.depth_map != self.depth_map || new_weather {
+            changes.push(Change::DepthMap(self.depth_map.clone()));
+        }
         Plan::Live(changes)
     }
 }
@@ -144,7 +168,38 @@ pub fn apply(ocean: &mut OceanState, change: Change) -> Result<(), Error> {
         Change::Spectrum(spectrum, duration) => ocean.set_spectrum(spectrum, duration),
         Change::Choppiness(choppiness) => ocean.set_choppiness(choppiness),
         Change::Foam(foam) => ocean.set_foam_config(foam),
+        Change::DepthMap(map) => ocean.set_depth_map(map.as_deref().cloned()),
     }
+}
+
+/// A new ocean of `sea` on the grids `config` at sea time `time` ([`build`]) with its depth
+/// map set.
+///
+/// # Errors
+/// The crate's, for a sea, grids or map it refuses.
+pub fn build_sea(sea: &SeaSettings, config: OceanConfig, time: f64) -> Result<OceanState, Error> {
+    let mut ocean = build(sea.spectrum.clone(), config, time)?;
+    set_depth_map_at_once(&mut ocean, sea.depth_map.as_deref())?;
+    Ok(ocean)
+}
+
+/// Sets `map` on a new `ocean` without the blend from the open sea a running ocean gets
+/// (there is no earlier sea to hide a pop from): set at a time
+/// [`BLEND_SECONDS`](ocean_fft::coast::BLEND_SECONDS) before the ocean's, then back (the foam
+/// is kept as it is).
+///
+/// # Errors
+/// The crate's, for a map it refuses; the ocean is unchanged then.
+pub fn set_depth_map_at_once(ocean: &mut OceanState, map: Option<&DepthMap>) -> Result<(), Error> {
+    let Some(map) = map else {
+        return Ok(());
+    };
+    map.validate()?;
+    let time = ocean.time();
+    ocean.set_time(time - ocean_fft::coast::BLEND_SECONDS)?;
+    let set = ocean.set_depth_map(Some(map.clone()));
+    ocean.set_time(time)?;
+    set
 }
 
 /// A new ocean of `spectrum` and `config` at sea time `time`, its foam spun up over the
@@ -228,5 +283,57 @@ mod tests {
         let fit = config.fit(&storm.spectrum).unwrap();
         assert!(fit.held >= ocean_fft::limits::MIN_CHANGE_SHARE, "{fit:?}");
         assert_eq!(config.size, 32);
+    }
+
+    /// A new depth map is a live change; new weather over a map sets the map again, after
+    /// the spectrum; a rebuild keeps the map ([`build_sea`]).
+    #[test]
+    fn depth_maps_follow_the_weather() {
+        let breeze = small(SeaState::FreshBreeze);
+        let ocean = OceanState::new(breeze.spectrum.clone(), breeze.config.clone()).unwrap();
+        let map = Arc::new(DepthMap {
+            origin: [0.0, 0.0],
+            spacing: 4.0,
+            size: [8, 8],
+            depth: (0..64).map(|c| 10.0 - (c % 8) as f32 * 2.0).collect(),
+        });
+        let mut coast = breeze.clone();
+        coast.depth_map = Some(map.clone());
+        assert_eq!(
+            coast.plan(&breeze, &ocean),
+            Plan::Live(vec![Change::DepthMap(Some(map.clone()))])
+        );
+        let mut weather = coast.clone();
+        weather.set_weather(SeaState::ModerateBreeze);
+        let Plan::Live(changes) = weather.plan(&coast, &ocean) else {
+            panic!("new weather is live");
+        };
+        let spectrum = changes
+            .iter()
+            .position(|c| matches!(c, Change::Spectrum(..)));
+        let solved = changes
+            .iter()
+            .position(|c| *c == Change::DepthMap(Some(map.clone())));
+        assert!(spectrum.unwrap() < solved.unwrap(), "{changes:?}");
+        let mut no_map = coast.clone();
+        no_map.depth_map = None;
+        assert_eq!(
+            no_map.plan(&coast, &ocean),
+            Plan::Live(vec![Change::DepthMap(None)])
+        );
+        let rebuilt = build_sea(&coast, coast.config.clone(), 5.0).unwrap();
+        assert_eq!(rebuilt.textures().coast().unwrap().map(), &*map);
+        // At once: the queries read the map's waves now, not a blend from the open sea.
+        let mut later = OceanState::new(coast.spectrum.clone(), coast.config.clone()).unwrap();
+        later.set_time(5.0).unwrap();
+        later.set_depth_map(Some(DepthMap::clone(&map))).unwrap();
+        later
+            .set_time(5.0 + ocean_fft::coast::BLEND_SECONDS)
+            .unwrap();
+        let mut packed = vec![[0.0f32; 4]; 64];
+        let mut settled = vec![[0.0f32; 4]; 64];
+        rebuilt.textures().pack_coast(&mut packed).unwrap();
+        later.textures().pack_coast(&mut settled).unwrap();
+        assert_eq!(packed, settled);
     }
 }

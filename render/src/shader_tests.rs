@@ -69,6 +69,12 @@ fn the_shading_functions_stand_alone() {
         "ocean_foam_layers",
         "ocean_foam_surface",
         "ocean_dither",
+        "ocean_coast_uv",
+        "ocean_coast",
+        "ocean_coast_factor",
+        "ocean_coast_displacement",
+        "ocean_coast_water_surface",
+        "ocean_coast_foam_surface",
     ] {
         assert!(
             names.contains(&wanted),
@@ -121,6 +127,11 @@ fn the_uniforms_have_the_rust_layout() {
         (
             "streak_scale",
             std::mem::offset_of!(OceanUniforms, streak_scale),
+        ),
+        ("coast", std::mem::offset_of!(OceanUniforms, coast)),
+        (
+            "coast_size",
+            std::mem::offset_of!(OceanUniforms, coast_size),
         ),
     ];
     assert_eq!(members.len(), rust.len(), "members");

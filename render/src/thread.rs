@@ -10,13 +10,15 @@
 //! calls). Only a change of sea allocates (a new ocean, new tables).
 
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
+use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::Instant;
 
 use ocean_fft::{Error, Hull, OceanState, SurfaceSample};
 
+use crate::coast::{CoastPacker, CoastTexels};
 use crate::info::{OceanInfo, SlopeTable};
-use crate::sea::{apply, build, Plan, SeaSettings, PRE_ROLL_DT};
+use crate::sea::{apply, build_sea, set_depth_map_at_once, Plan, SeaSettings, PRE_ROLL_DT};
 use crate::streaks::StreakTexels;
 use crate::texels::Texels;
 use crate::wake::WakeTexels;
@@ -44,6 +46,9 @@ pub struct Frame {
     /// The foam's streak field (copied when the ocean is new; upload it when its
     /// generation changes).
     pub streaks: StreakTexels,
+    /// The coast's texels over the depth map (`None` without one; upload them when their
+    /// `generation` changes).
+    pub coast: Option<Arc<CoastTexels>>,
     /// The world points (x, z; m) queried after the step, and their surfaces.
     pub queries: Vec<[f64; 2]>,
     pub samples: Vec<SurfaceSample>,
@@ -88,6 +93,7 @@ struct Worker {
     ocean: OceanState,
     running: SeaSettings,
     slopes: SlopeTable,
+    coast: CoastPacker,
     rebuilds: u64,
 }
 
@@ -131,6 +137,7 @@ impl Simulation {
             .install(|| -> Result<Worker, Error> {
                 let mut ocean = OceanState::new(sea.spectrum.clone(), sea.grids())?;
                 ocean.set_time(time)?;
+                set_depth_map_at_once(&mut ocean, sea.depth_map.as_deref())?;
                 if pre_roll > 0.0 {
                     ocean.pre_roll(pre_roll.min(time.max(PRE_ROLL_DT)), PRE_ROLL_DT)?;
                 }
@@ -138,6 +145,7 @@ impl Simulation {
                     ocean,
                     running: sea,
                     slopes: SlopeTable::default(),
+                    coast: CoastPacker::default(),
                     rebuilds: 0,
                 };
                 worker.fill(&mut first)?;
@@ -276,7 +284,7 @@ impl Worker {
             Plan::Rebuild(config) => config,
         };
         let time = self.ocean.time();
-        self.ocean = build(sea.spectrum.clone(), config, time)?;
+        self.ocean = build_sea(&sea, config, time)?;
         self.running = sea;
         self.rebuilds += 1;
         Ok(())
@@ -288,6 +296,7 @@ impl Worker {
         frame.texels.pack(&self.ocean)?;
         frame.wake.pack(&self.ocean)?;
         frame.streaks.pack(&self.ocean);
+        frame.coast = self.coast.pack(&self.ocean)?;
         frame.info.update(&self.ocean, &mut self.slopes)?;
         frame.info.jacobian_sd = frame.texels.jacobian_sd;
         frame.rebuilds = self.rebuilds;
@@ -417,6 +426,53 @@ mod tests {
         assert!(
             (origin[0] - 168.0).abs() <= 1.0 && (origin[1] + 72.0).abs() <= 1.0,
             "{origin:?}"
+        );
+    }
+
+    /// A sea with a depth map carries the coast's texels from the first frame on; new
+    /// weather solves the map again (a new generation); a sea without the map drops them.
+    #[test]
+    fn frames_carry_the_coast() {
+        let mut sea = SeaSettings::preset(SeaState::FreshBreeze);
+        sea.config.size = 32;
+        sea.depth_map = Some(Arc::new(ocean_fft::DepthMap {
+            origin: [-64.0, -32.0],
+            spacing: 4.0,
+            size: [32, 16],
+            depth: (0..32 * 16).map(|c| 12.0 - (c % 32) as f32 * 0.5).collect(),
+        }));
+        let queries = [[0.0, 0.0]];
+        let mut sim = Simulation::start(sea.clone(), 5.0, 0.0, 1, &queries).unwrap();
+        let mut calmer = sea.clone();
+        calmer.set_weather(SeaState::ModerateBreeze);
+        let mut open = calmer.clone();
+        open.depth_map = None;
+        let mut generations = Vec::new();
+        for n in 0..8 {
+            let change = match n {
+                1 => Some(calmer.clone()),
+                5 => Some(open.clone()),
+                _ => None,
+            };
+            let frame = sim.next(1.0, change, &queries).unwrap();
+            assert_eq!(frame.error, None);
+            generations.push(frame.coast.as_ref().map(|c| {
+                assert_eq!(c.size, [32, 16]);
+                assert_eq!(c.origin, [-64.0, -32.0]);
+                c.generation
+            }));
+            sim.give_back(frame);
+        }
+        // Frames 0–1: the first map (repacked while it blends in); 2 on: the map solved for
+        // the calmer weather (asked with frame 1's request), new texels; from 6 on none.
+        assert!(
+            generations[..6].iter().all(Option::is_some),
+            "{generations:?}"
+        );
+        assert!(generations[2] > generations[1], "{generations:?}");
+        assert!(
+            generations[6..].iter().all(Option::is_none),
+            "{generations:?}"
         );
     }
 }

@@ -134,6 +134,11 @@ pub struct OceanUniforms {
     /// x, y = 1/(spacing·texels) across and along (1/m); z, w = texels across and along (0:
     /// no streak texture bound, the shader uses its own noise).
     pub streak_scale: [f32; 4],
+    /// The depth map's coast texture ([`CoastTexels::uniforms`](crate::CoastTexels::uniforms)):
+    /// x, z of its texel (0, 0) (m), 1/spacing (1/m), w = 1 with a map (0: no coast read).
+    pub coast: [f32; 4],
+    /// x, y = the coast texture's texels along x and z; z, w unused.
+    pub coast_size: [f32; 4],
 }
 
 impl OceanUniforms {
@@ -163,6 +168,12 @@ impl OceanUniforms {
         self.horizon = rgb(light.horizon, self.horizon[3]);
         self.deep = rgb(light.deep, self.deep[3]);
         self.subsurface = rgb(light.subsurface, self.subsurface[3]);
+    }
+
+    /// Writes the coast texture's place ([`coast_uniforms`](crate::coast_uniforms)), or
+    /// turns the coast off with `None`.
+    pub fn set_coast(&mut self, coast: Option<&crate::CoastTexels>) {
+        [self.coast, self.coast_size] = crate::coast_uniforms(coast);
     }
 
     /// Writes what `info` says of the ocean (cascades, wind, statistics, slope table) for an

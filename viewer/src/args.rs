@@ -10,6 +10,7 @@ use clap::builder::PossibleValuesParser;
 use clap::error::ErrorKind;
 use clap::{CommandFactory, Parser};
 use glam::Vec3;
+use ocean_fft_render::CoastKind;
 
 use crate::gpu::RenderSettings;
 use crate::light::LightSettings;
@@ -46,6 +47,8 @@ pub struct Options {
     pub deck: bool,
     pub hide_ui: bool,
     pub vsync: bool,
+    /// The coast drawn (a depth map and its ground), `None` for the open sea.
+    pub coast: Option<CoastKind>,
 }
 
 /// ocean-fft-viewer: the ocean in real time (winit + wgpu + egui).
@@ -181,6 +184,18 @@ struct Cli {
     /// (--pitch and --fov still apply; --camera and --heading do not).
     #[arg(long)]
     on_deck: bool,
+    /// A coast: `island` (a beach and a bay facing the waves, 250 m ahead of the default
+    /// coast eye) or `breakwater` (a beach sheltered by a wall), drawn with its ground; the
+    /// waves shrink and break over it (a 256² depth map, solved in about a second at the
+    /// start and again after a change of weather). With a coast, --camera defaults to a view
+    /// of it (pair it with --heading and --pitch: island 28, -11; breakwater 42, -13).
+    #[arg(
+        long,
+        value_name = "NAME",
+        default_value = "none",
+        value_parser = PossibleValuesParser::new(["none", "island", "breakwater"])
+    )]
+    coast: String,
     /// Start without the panels (Tab toggles them).
     #[arg(long)]
     hide_ui: bool,
@@ -322,6 +337,12 @@ impl Options {
             .spectrum()
             .map_err(|e| Cli::command().error(ErrorKind::ValueValidation, e))?
             .significant_wave_height();
+        let coast = match cli.coast.as_str() {
+            "none" => None,
+            name => Some(CoastKind::from_str(name).map_err(|e| {
+                Cli::command().error(ErrorKind::InvalidValue, format!("--coast: {e}"))
+            })?),
+        };
         let [elevation, azimuth] = cli.sun.0;
         let light = LightSettings {
             elevation,
@@ -341,7 +362,10 @@ impl Options {
             camera: cli
                 .camera
                 .map(|c| Vec3::from_array(c.0))
-                .unwrap_or_else(|| crate::default_eye(hs)),
+                .unwrap_or_else(|| match coast {
+                    Some(coast) => Vec3::from_array(coast.view().0),
+                    None => crate::default_eye(hs),
+                }),
             heading: cli.heading,
             pitch: cli.pitch,
             fov: cli.fov,
@@ -363,6 +387,7 @@ impl Options {
             deck: cli.on_deck,
             hide_ui: cli.hide_ui,
             vsync: !cli.no_vsync,
+            coast,
         })
     }
 }

@@ -12,6 +12,7 @@ use ocean_fft_render::{OceanUniforms, Tiling};
 use meshes::{boat, buoy, BodyVertex};
 
 mod meshes;
+mod terrain;
 mod textures;
 mod uniforms;
 
@@ -115,7 +116,12 @@ pub struct Renderer {
     wake: [f32; 4],
     /// Whether the streak texture holds the ocean's field.
     streaks_bound: bool,
+    /// `OceanUniforms::coast` and `coast_size` of the last upload.
+    coast: [[f32; 4]; 2],
     ocean_pipeline: wgpu::RenderPipeline,
+    terrain_pipeline: wgpu::RenderPipeline,
+    /// The coast's ground: vertices, indices, index count.
+    terrain: Option<(wgpu::Buffer, wgpu::Buffer, u32)>,
     sky_pipeline: wgpu::RenderPipeline,
     body_pipeline: wgpu::RenderPipeline,
     /// Index buffers of the clipmap: the full square, and the rings with their hole at each
@@ -216,6 +222,7 @@ impl Renderer {
                     },
                     count: None,
                 },
+                texture_entry(8),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -336,6 +343,15 @@ impl Renderer {
             wgpu::CompareFunction::GreaterEqual,
             None,
         );
+        let terrain_pipeline = pipeline(
+            "terrain",
+            "vs_terrain",
+            "fs_terrain",
+            &[Some(terrain::layout())],
+            true,
+            wgpu::CompareFunction::GreaterEqual,
+            None,
+        );
 
         let index_buffer = |label: &str, indices: &[u32]| {
             let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -381,7 +397,10 @@ impl Renderer {
             textures: None,
             wake: [0.0; 4],
             streaks_bound: false,
+            coast: [[0.0; 4]; 2],
             ocean_pipeline,
+            terrain_pipeline,
+            terrain: None,
             sky_pipeline,
             body_pipeline,
             full,
@@ -503,6 +522,13 @@ impl Renderer {
             };
             pass.set_index_buffer(buffer.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..*indices, 0, ring as u32..ring as u32 + 1);
+        }
+
+        if let Some((vertices, indices, count)) = &self.terrain {
+            pass.set_pipeline(&self.terrain_pipeline);
+            pass.set_vertex_buffer(0, vertices.slice(..));
+            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..*count, 0, 0..1);
         }
 
         pass.set_pipeline(&self.body_pipeline);

@@ -40,8 +40,8 @@ use bodies::Fleet;
 use camera::Camera;
 use capture::save_capture;
 use gpu::{Bodies, Renderer, View};
-use ocean_fft::Hull;
-use ocean_fft_render::{wake_centre, OceanInfo, SeaSettings, Simulation};
+use ocean_fft::{DepthMap, Hull};
+use ocean_fft_render::{terrain, wake_centre, OceanInfo, SeaSettings, Simulation};
 use ui::{Controls, Hud};
 
 fn main() {
@@ -95,8 +95,11 @@ struct State {
     /// The boats' hulls handed to the wake each frame.
     hulls: Vec<Hull>,
     controls: Controls,
-    /// The sea last sent to the simulation.
+    /// The sea last sent to the simulation, and whether its depth map was on.
     applied: sea::SeaParams,
+    applied_coast: Option<bool>,
+    /// The coast's depth map (`--coast`), shared with the simulation's settings.
+    depth_map: Option<Arc<DepthMap>>,
     hud: Hud,
     frames: usize,
     last: Instant,
@@ -271,13 +274,17 @@ impl State {
         surface.configure(&device, &config);
         let (msaa, anisotropy) = options.quality_for(adapter_info.device_type);
         eprintln!("msaa {msaa}, anisotropy {anisotropy}");
-        let renderer = Renderer::new(
+        let mut renderer = Renderer::new(
             &device,
             format.add_srgb_suffix(),
             msaa,
             options.mesh,
             anisotropy,
         );
+        let depth_map = options.coast.map(|coast| Arc::new(coast.depth_map()));
+        if let Some(map) = &depth_map {
+            renderer.set_terrain(&device, Some(&terrain(map)));
+        }
         let egui_ctx = egui::Context::default();
         let egui = egui_winit::State::new(
             egui_ctx,
@@ -304,6 +311,7 @@ impl State {
                 spectrum,
                 config: sea.config(),
                 transition_seconds: 10.0,
+                depth_map: depth_map.clone(),
             },
             options.time,
             options.pre_roll,
@@ -327,6 +335,7 @@ impl State {
             error: None,
             boat_speed: options.boat_speed,
             boats: options.bodies,
+            coast: controls_coast(&depth_map),
         };
         let adapter_name: &'static str = Box::leak(
             format!("{} ({:?})", adapter_info.name, adapter_info.backend).into_boxed_str(),
@@ -348,6 +357,8 @@ impl State {
             hulls: Vec::new(),
             controls,
             applied: sea,
+            applied_coast: controls_coast(&depth_map),
+            depth_map,
             hud: Hud {
                 adapter: adapter_name,
                 ..Hud::default()
@@ -366,7 +377,8 @@ impl State {
     /// simulation takes it live or builds a new ocean (`SeaSettings::plan`).
     fn sea_change(&mut self) -> Option<SeaSettings> {
         let edited = &self.controls.sea;
-        if *edited == self.applied || self.egui.egui_ctx().egui_is_using_pointer() {
+        let same = *edited == self.applied && self.controls.coast == self.applied_coast;
+        if same || self.egui.egui_ctx().egui_is_using_pointer() {
             return None;
         }
         let spectrum = match edited.spectrum() {
@@ -378,10 +390,15 @@ impl State {
         };
         self.controls.error = None;
         self.applied = edited.clone();
+        self.applied_coast = self.controls.coast;
         Some(SeaSettings {
             spectrum,
             config: edited.config(),
             transition_seconds: f64::from(self.controls.transition),
+            depth_map: self
+                .depth_map
+                .clone()
+                .filter(|_| self.controls.coast == Some(true)),
         })
     }
 
@@ -591,6 +608,11 @@ impl State {
         }
         Ok(false)
     }
+}
+
+/// The coast toggle's state for a coast's map: on when there is one.
+fn controls_coast(map: &Option<Arc<DepthMap>>) -> Option<bool> {
+    map.as_ref().map(|_| true)
 }
 
 /// The default eye: 2 m + 1.5 H_s above the water (at most 12 m), at the origin.

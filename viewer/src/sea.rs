@@ -153,7 +153,7 @@ impl SeaParams {
         Self::from_built("default", &spectrum, &OceanConfig::default())
     }
 
-    /// The parameters of a built spectrum (read as [`SpectrumParams`]) and config.
+    /// The parameters of a built spectrum (read as [`SpectrumParams`](ocean_fft::SpectrumParams)) and config.
     fn from_built(name: &str, spectrum: &Spectrum, config: &OceanConfig) -> SeaParams {
         let params = spectrum.params();
         let (model, fetch, gamma) = match params.kind {

@@ -32,9 +32,11 @@ fn the_reference_shader_validates_with_the_viewers_entry_points() {
         ("fs_body", ShaderStage::Fragment),
         ("fs_ocean", ShaderStage::Fragment),
         ("fs_sky", ShaderStage::Fragment),
+        ("fs_terrain", ShaderStage::Fragment),
         ("vs_body", ShaderStage::Vertex),
         ("vs_ocean", ShaderStage::Vertex),
         ("vs_sky", ShaderStage::Vertex),
+        ("vs_terrain", ShaderStage::Vertex),
     ];
     assert_eq!(
         entries,
@@ -48,7 +50,7 @@ fn the_bindings_and_the_uniform_layout_are_the_viewers() {
     let (module, _) = validate("ocean_common.wgsl + ocean.wgsl", SHADER);
     let mut layouter = naga::proc::Layouter::default();
     layouter.update(module.to_ctx()).expect("layouts");
-    let mut seen = [false; 8];
+    let mut seen = [false; 9];
     for (_, global) in module.global_variables.iter() {
         let binding = global.binding.as_ref().expect("every global is bound");
         assert_eq!(binding.group, 0, "{:?}", global.name);
@@ -79,7 +81,7 @@ fn the_bindings_and_the_uniform_layout_are_the_viewers() {
                 }
                 assert_eq!(layouter[global.ty].size, *span);
             }
-            1 | 2 => {
+            1 | 2 | 8 => {
                 let TypeInner::Image {
                     dim,
                     arrayed,
@@ -89,7 +91,7 @@ fn the_bindings_and_the_uniform_layout_are_the_viewers() {
                     panic!("binding {} is not a texture", binding.binding);
                 };
                 assert_eq!(*dim, ImageDimension::D2);
-                assert!(*arrayed, "a layer per cascade");
+                assert!(*arrayed, "a layer per cascade, two for the coast");
                 assert!(matches!(
                     class,
                     ImageClass::Sampled {
@@ -113,7 +115,7 @@ fn the_bindings_and_the_uniform_layout_are_the_viewers() {
         }
         seen[binding.binding as usize] = true;
     }
-    assert_eq!(seen, [true; 8], "bindings 0–7");
+    assert_eq!(seen, [true; 9], "bindings 0–8");
 }
 
 /// Every entry point translates to GLSL 4.50 with naga's GLSL back end (the route to Godot's

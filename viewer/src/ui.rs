@@ -24,6 +24,8 @@ pub struct Controls {
     /// The boats' speed, m/s (and whether there are boats).
     pub boat_speed: f32,
     pub boats: bool,
+    /// With a coast (`--coast`): whether its depth map acts on the waves (the ground stays).
+    pub coast: Option<bool>,
 }
 
 /// Smoothed timings for the HUD, ms.
@@ -219,6 +221,12 @@ fn panels(ui: &mut Ui, controls: &mut Controls, info: &OceanInfo) {
         ui.heading("Boats");
         ui.checkbox(&mut controls.sea.wakes, "wakes");
         slider(ui, &mut controls.boat_speed, 0.0..=20.0, "speed [m/s]");
+        ui.separator();
+    }
+
+    if let Some(on) = controls.coast.as_mut() {
+        ui.heading("Coast");
+        ui.checkbox(on, "waves feel the depth map");
         ui.separator();
     }
 

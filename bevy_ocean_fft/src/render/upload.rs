@@ -11,7 +11,7 @@ use bevy::render::renderer::RenderQueue;
 use bevy::render::texture::GpuImage;
 use bevy::render::Extract;
 
-use super::wake::{wake_gpu_image, write_level, write_streaks, write_wake};
+use super::wake::{wake_gpu_image, write_coast, write_level, write_streaks, write_wake};
 use super::{OceanRender, UploadTime};
 use crate::sim::{OceanTexels, PackedFrame};
 
@@ -23,6 +23,7 @@ pub(super) struct ExtractedTexels {
     images: Option<(AssetId<Image>, AssetId<Image>)>,
     wake: Option<AssetId<Image>>,
     streaks: Option<AssetId<Image>>,
+    coast: Option<AssetId<Image>>,
 }
 
 pub(super) fn extract_texels(
@@ -36,6 +37,7 @@ pub(super) fn extract_texels(
         images: render.as_ref().map(|r| (r.displacement.id(), r.slope.id())),
         wake: render.as_ref().map(|r| r.wake.id()),
         streaks: render.as_ref().map(|r| r.streaks.id()),
+        coast: render.as_ref().map(|r| r.coast.id()),
     });
 }
 
@@ -47,6 +49,7 @@ pub(super) fn upload_texels(
     upload: Res<UploadTime>,
     mut uploaded: Local<u64>,
     mut streaks_written: Local<(Option<AssetId<Image>>, u64)>,
+    mut coast_written: Local<(Option<AssetId<Image>>, u64)>,
 ) {
     let Some(extracted) = extracted else {
         return;
@@ -90,6 +93,13 @@ pub(super) fn upload_texels(
             *streaks_written = (extracted.streaks, 0);
         }
         write_streaks(&queue, image, frame, &mut streaks_written.1);
+    }
+    if let Some(image) = wake_gpu_image(&images, extracted.coast) {
+        // A new image holds no coast yet.
+        if coast_written.0 != extracted.coast {
+            *coast_written = (extracted.coast, 0);
+        }
+        write_coast(&queue, image, frame, &mut coast_written.1);
     }
     upload.0.store(
         (start.elapsed().as_secs_f64() * 1e3).to_bits(),

@@ -1,6 +1,8 @@
 //! The wake window and the foam's streak field on the GPU: an RGBA16F image of the window's
 //! texels (clamped, linear), written by the render world when a new frame of texels arrives,
-//! and an R16F image of the streak field (repeat, linear), written when the field changes.
+//! an R16F image of the streak field (repeat, linear), written when the field changes, and
+//! the coast's 2-layer RGBA16F array over the depth map (clamped, linear), written when its
+//! texels are new.
 
 use std::sync::Arc;
 
@@ -10,10 +12,11 @@ use bevy::prelude::*;
 use bevy::render::render_asset::RenderAssets;
 use bevy::render::render_resource::{
     Extent3d, Origin3d, TexelCopyBufferLayout, TexelCopyTextureInfo, TextureAspect,
-    TextureDimension, TextureFormat, TextureUsages,
+    TextureDimension, TextureFormat, TextureUsages, TextureViewDescriptor, TextureViewDimension,
 };
 use bevy::render::renderer::RenderQueue;
 use bevy::render::texture::GpuImage;
+use ocean_fft_render::CoastTexels;
 
 use crate::sim::PackedFrame;
 
@@ -95,6 +98,51 @@ pub(super) fn write_wake(queue: &RenderQueue, image: &GpuImage, frame: &Arc<Pack
     }
     let texels = bytemuck::cast_slice(&wake.texels);
     write_level(queue, image, texels, [0, 0], [side, side], 8);
+}
+
+/// A 2-layer RGBA16F array image of `size` texels (x, z; [1, 1] without a map, the
+/// placeholder) for the coast (`CoastTexels`), clamped to the edge, linear.
+pub(super) fn coast_image(size: [usize; 2]) -> Image {
+    let mut image = image_2d(
+        size,
+        TextureFormat::Rgba16Float,
+        ImageAddressMode::ClampToEdge,
+    );
+    image.texture_descriptor.size.depth_or_array_layers = CoastTexels::LAYERS as u32;
+    image.texture_view_descriptor = Some(TextureViewDescriptor {
+        dimension: Some(TextureViewDimension::D2Array),
+        ..Default::default()
+    });
+    image
+}
+
+/// Writes `frame`'s coast texels into `image` if it has their size and they are not the
+/// ones written last (`written`: their generation).
+pub(super) fn write_coast(
+    queue: &RenderQueue,
+    image: &GpuImage,
+    frame: &Arc<PackedFrame>,
+    written: &mut u64,
+) {
+    let Some(coast) = frame.coast.as_deref() else {
+        return;
+    };
+    let size = image.texture_descriptor.size;
+    if *written == coast.generation || [size.width as usize, size.height as usize] != coast.size {
+        return;
+    }
+    for layer in 0..CoastTexels::LAYERS {
+        let texels = bytemuck::cast_slice(coast.layer(layer));
+        write_level(
+            queue,
+            image,
+            texels,
+            [layer as u32, 0],
+            [size.width, size.height],
+            8,
+        );
+    }
+    *written = coast.generation;
 }
 
 /// An `across`×`along` R16F image for the streak field (repeat, linear).

@@ -24,9 +24,9 @@
 #import bevy_core_pipeline::tonemapping::tone_mapping
 #endif
 #import ocean_fft::common::{
-    OceanLight, OceanUniforms, OceanVarying, ocean_light, ocean_morph, ocean_displacement,
-    ocean_varying, ocean_water_surface, ocean_shade, ocean_add_wake_displacement,
-    ocean_add_wake_surface, ocean_foam_surface,
+    OceanLight, OceanUniforms, OceanVarying, ocean_light, ocean_morph, ocean_varying,
+    ocean_shade, ocean_add_wake_displacement, ocean_add_wake_surface, ocean_coast,
+    ocean_coast_displacement, ocean_coast_water_surface, ocean_coast_foam_surface,
 }
 
 @group(#{MATERIAL_BIND_GROUP}) @binding(0) var displacement_foam: texture_2d_array<f32>;
@@ -42,6 +42,9 @@
 // The foam's streak field (R16F), repeat, linear.
 @group(#{MATERIAL_BIND_GROUP}) @binding(7) var streaks: texture_2d<f32>;
 @group(#{MATERIAL_BIND_GROUP}) @binding(8) var streak_sampler: sampler;
+// The coast over the depth map (2 layers: f₀, f₁, f₂, Q_b; depth, f₃, f₄, f₅), read with
+// wake_sampler (clamped, linear); `ocean.coast.w` = 0 without a map.
+@group(#{MATERIAL_BIND_GROUP}) @binding(9) var coast: texture_2d_array<f32>;
 
 // The light: Bevy's first directional light (colour × exposure, scaled to the reference
 // shader's sun) when there is one, the uniforms' sun otherwise; the sky and water colours of
@@ -70,8 +73,9 @@ fn vertex(v: Vertex) -> OceanVarying {
     let morphed = ocean_morph(v.position.xz, ocean.tiling.w);
     let xz = model[3].xz + morphed.xy * cell_size;
     let spacing = cell_size * (1.0 + morphed.z);
-    let displacement = ocean_add_wake_displacement(wake, wake_sampler, ocean, xz, ocean_displacement(
-        displacement_foam, slope_jacobian_foam, vertex_sampler, ocean, xz, spacing, view.world_position.xz));
+    let shore = ocean_coast(coast, wake_sampler, ocean, xz);
+    let displacement = ocean_add_wake_displacement(wake, wake_sampler, ocean, xz, ocean_coast_displacement(
+        displacement_foam, slope_jacobian_foam, vertex_sampler, ocean, xz, spacing, view.world_position.xz, shore));
     var out = ocean_varying(xz, displacement);
     out.clip = position_world_to_clip(out.world);
     return out;
@@ -80,9 +84,10 @@ fn vertex(v: Vertex) -> OceanVarying {
 @fragment
 fn fragment(in: OceanVarying) -> @location(0) vec4<f32> {
     let eye = view.world_position;
-    let water = ocean_water_surface(
-        slope_jacobian_foam, ocean_sampler, ocean, in.world, in.undisplaced, in.height, eye.xz);
-    let foamed = ocean_foam_surface(streaks, streak_sampler, ocean, in.undisplaced, water);
+    let shore = ocean_coast(coast, wake_sampler, ocean, in.undisplaced);
+    let water = ocean_coast_water_surface(
+        slope_jacobian_foam, ocean_sampler, ocean, in.world, in.undisplaced, in.height, eye.xz, shore);
+    let foamed = ocean_coast_foam_surface(streaks, streak_sampler, ocean, in.undisplaced, water, shore);
     let surface = ocean_add_wake_surface(wake, wake_sampler, ocean, in.undisplaced, foamed);
     let to_eye = in.world - eye;
     let distance = length(to_eye);

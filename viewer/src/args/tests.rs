@@ -45,6 +45,20 @@ fn defaults_are_the_documented_ones() {
         (None, None, 64, 2)
     );
     assert!(o.bodies && !o.hide_ui && o.vsync);
+    assert_eq!(o.coast, None);
+}
+
+/// `--coast` picks the procedural coast and, without `--camera`, the eye of its view.
+#[test]
+fn the_coast_flag() {
+    let o = parse(&["--coast", "island"]).unwrap();
+    assert_eq!(o.coast, Some(CoastKind::Island));
+    assert_eq!(o.camera, Vec3::from_array(CoastKind::Island.view().0));
+    let o = parse(&["--coast", "breakwater", "--camera", "1,2,3"]).unwrap();
+    assert_eq!(o.coast, Some(CoastKind::Breakwater));
+    assert_eq!(o.camera, Vec3::new(1.0, 2.0, 3.0));
+    assert_eq!(parse(&["--coast", "none"]).unwrap().coast, None);
+    error(&["--coast", "reef"], "--coast");
 }
 
 #[test]
@@ -97,10 +111,13 @@ fn every_flag_sets_its_field() {
         "--threads",
         "4",
         "--no-bodies",
+        "--coast",
+        "breakwater",
         "--hide-ui",
         "--no-vsync",
     ])
     .unwrap();
+    assert_eq!(o.coast, Some(CoastKind::Breakwater));
     let mut calm = SeaParams::preset("calm").unwrap();
     calm.choppiness = 0.5;
     calm.foam_coverage = 2.0;
@@ -276,6 +293,7 @@ fn help_lists_every_flag_with_its_default() {
         "--mesh",
         "--threads",
         "--no-bodies",
+        "--coast",
         "--hide-ui",
         "--no-vsync",
     ] {

@@ -1,10 +1,11 @@
 //! The textures the water is drawn from: the cascades (two 2D arrays, a layer per cascade,
 //! RGBA16F with mipmaps), the wake window (a 2D texture, RGBA16F, one level; a 1×1 zero
 //! texel when the ocean has no wakes), the foam's streak field (R16F, written when the ocean
-//! is new), and the bind group that holds them.
+//! is new), the coast over the depth map (a 2-layer 2D array, RGBA16F; 1×1 zeros without a
+//! map, written when its generation changes), and the bind group that holds them.
 
 use ocean_fft::half::f16;
-use ocean_fft_render::{Frame, StreakTexels, WakeTexels};
+use ocean_fft_render::{CoastTexels, Frame, StreakTexels, WakeTexels};
 
 use super::Renderer;
 
@@ -14,6 +15,7 @@ pub struct OceanTextures {
     slope: wgpu::Texture,
     wake: wgpu::Texture,
     streaks: wgpu::Texture,
+    coast: wgpu::Texture,
     pub bind_group: wgpu::BindGroup,
     size: usize,
     cascades: usize,
@@ -23,6 +25,9 @@ pub struct OceanTextures {
     /// Size of the streak texture (across, along) and the fingerprint of the field in it.
     streak_size: (usize, usize),
     streak_fingerprint: u64,
+    /// Size of the coast texture ([1, 1]: the placeholder) and the generation in it.
+    coast_size: [usize; 2],
+    coast_generation: u64,
 }
 
 /// Writes `texels` (RGBA16F, `side`² of them) into `texture`'s level `level`, layer `layer`.
@@ -31,6 +36,18 @@ fn write(
     texture: &wgpu::Texture,
     (level, layer): (u32, u32),
     side: u32,
+    texels: &[[f16; 4]],
+) {
+    write_rect(queue, texture, (level, layer), [side, side], texels);
+}
+
+/// Writes `texels` (RGBA16F, `size[0]` × `size[1]`) into `texture`'s level `level`, layer
+/// `layer`.
+fn write_rect(
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    (level, layer): (u32, u32),
+    [width, height]: [u32; 2],
     texels: &[[f16; 4]],
 ) {
     queue.write_texture(
@@ -47,12 +64,12 @@ fn write(
         bytemuck::cast_slice(texels),
         wgpu::TexelCopyBufferLayout {
             offset: 0,
-            bytes_per_row: Some(side * 8),
-            rows_per_image: Some(side),
+            bytes_per_row: Some(width * 8),
+            rows_per_image: Some(height),
         },
         wgpu::Extent3d {
-            width: side,
-            height: side,
+            width,
+            height,
             depth_or_array_layers: 1,
         },
     );
@@ -65,23 +82,29 @@ impl Renderer {
         let mips = texels.level_offsets.len();
         let wake_size = frame.wake.size.max(1);
         let streak_size = (frame.streaks.across.max(1), frame.streaks.along.max(1));
+        let coast_size = frame.coast.as_ref().map_or([1, 1], |c| c.size);
         let fits = self.textures.as_ref().is_some_and(|t| {
             t.size == texels.size
                 && t.cascades == texels.cascades
                 && t.mips == mips
                 && t.wake_size == wake_size
                 && t.streak_size == streak_size
+                && t.coast_size == coast_size
         });
         if !fits {
             self.textures = Some(self.create_textures(
                 device,
                 (texels.size, texels.cascades, mips),
-                wake_size,
-                streak_size,
+                (wake_size, streak_size, coast_size),
             ));
+            let textures = self.textures.as_ref().expect("created above");
             if !frame.wake.active() {
-                let textures = self.textures.as_ref().expect("created above");
                 write(queue, &textures.wake, (0, 0), 1, &[[f16::ZERO; 4]]);
+            }
+            if frame.coast.is_none() {
+                for layer in 0..CoastTexels::LAYERS as u32 {
+                    write(queue, &textures.coast, (0, layer), 1, &[[f16::ZERO; 4]]);
+                }
             }
         }
         let textures = self.textures.as_ref().expect("created above");
@@ -96,6 +119,29 @@ impl Renderer {
         }
         self.upload_wake(queue, &frame.wake);
         self.upload_streaks(queue, &frame.streaks);
+        self.upload_coast(queue, frame.coast.as_deref());
+    }
+
+    /// The coast's texels when they are new, and their place.
+    fn upload_coast(&mut self, queue: &wgpu::Queue, coast: Option<&CoastTexels>) {
+        self.coast = ocean_fft_render::coast_uniforms(coast);
+        let (Some(coast), Some(textures)) = (coast, self.textures.as_mut()) else {
+            return;
+        };
+        if textures.coast_generation == coast.generation {
+            return;
+        }
+        textures.coast_generation = coast.generation;
+        let size = coast.size.map(|n| n as u32);
+        for layer in 0..CoastTexels::LAYERS {
+            write_rect(
+                queue,
+                &textures.coast,
+                (0, layer as u32),
+                size,
+                coast.layer(layer),
+            );
+        }
     }
 
     /// The streak field, when it is not the one on the GPU.
@@ -148,8 +194,7 @@ impl Renderer {
         &self,
         device: &wgpu::Device,
         (size, cascades, mips): (usize, usize, usize),
-        wake_size: usize,
-        streak_size: (usize, usize),
+        (wake_size, streak_size, coast_size): (usize, (usize, usize), [usize; 2]),
     ) -> OceanTextures {
         let texture = |label: &str, (width, height), layers: usize, mips: usize, format| {
             device.create_texture(&wgpu::TextureDescriptor {
@@ -183,6 +228,13 @@ impl Renderer {
             1,
             1,
             wgpu::TextureFormat::R16Float,
+        );
+        let coast = texture(
+            "coast",
+            (coast_size[0], coast_size[1]),
+            CoastTexels::LAYERS,
+            1,
+            rgba,
         );
         let view = |t: &wgpu::Texture, dimension| {
             t.create_view(&wgpu::TextureViewDescriptor {
@@ -233,6 +285,10 @@ impl Renderer {
                         wgpu::TextureViewDimension::D2,
                     )),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 8,
+                    resource: wgpu::BindingResource::TextureView(&view(&coast, array)),
+                },
             ],
         });
         OceanTextures {
@@ -240,6 +296,7 @@ impl Renderer {
             slope,
             wake,
             streaks,
+            coast,
             bind_group,
             size,
             cascades,
@@ -247,6 +304,8 @@ impl Renderer {
             wake_size,
             streak_size,
             streak_fingerprint: 0,
+            coast_size,
+            coast_generation: 0,
         }
     }
 }

@@ -34,6 +34,7 @@ impl Renderer {
         };
         g.ocean.set_ocean(info, [view.eye.x, view.eye.z], &tiling);
         g.ocean.wake = self.wake;
+        [g.ocean.coast, g.ocean.coast_size] = self.coast;
         if !self.streaks_bound {
             g.ocean.streak_scale = [0.0; 4];
         }
