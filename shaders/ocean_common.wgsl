@@ -270,9 +270,11 @@ fn ocean_soft_step(rank: f32, q: f32, w: f32) -> f32 {
 // noise passes its (1 − a) normal quantile, so they sit on the crests the breakers compress
 // (`has_crests` false: no such field, the lace alone). Residual foam: where the library's
 // streak field `streak` (unit variance, long along the wind, thin across, moving with the
-// water) passes its (1 − r) quantile, 55 % opaque (old foam is thin), with marbled foam (15 %) just below
+// water) passes its (1 − r) quantile, 40 % opaque where r is small (old foam is thin) to 80 %
+// where it covers most of the sea, with marbled foam (15 %) just below
 // the threshold. Bubbles: a halo below the whitecaps' threshold. Edges widen with the pixel's
-// `footprint` (m), and each layer blends into its expectation (the same coverage) where the
+// `footprint` (m; `across_footprint`, its extent across the wind, for the streaks), and each
+// layer blends into its expectation (the same coverage) where the
 // footprint outgrows its detail, so the distant sea keeps its foam statistically: no shimmer,
 // and no band where the detail hands over.
 fn ocean_foam_layers(
@@ -283,6 +285,7 @@ fn ocean_foam_layers(
     xz: vec2<f32>,
     wind: vec2<f32>,
     footprint: f32,
+    across_footprint: f32,
     streak: f32,
 ) -> vec2<f32> {
     let f = clamp(coverage, 0.0, 1.0);
@@ -304,7 +307,10 @@ fn ocean_foam_layers(
     let q_s = ocean_probit(1.0 - r);
     let soft = 0.5 * min(footprint, 2.0);
     let white = ocean_soft_step(rank_w, q_w, 0.25 + soft);
-    let streaks = 0.55 * ocean_soft_step(rank_s, q_s, 0.35 + soft);
+    // Residual foam is thin where there is little of it (a breeze's streaks: 40 % opaque)
+    // and thick where the sea is covered (a gale's sheets: 80 %).
+    let opacity = mix(0.4, 0.8, smoothstep(0.1, 0.6, r));
+    let streaks = opacity * ocean_soft_step(rank_s, q_s, 0.45 + soft);
     let marble = 0.15 * ocean_soft_step(rank_s, q_s - 0.6, 0.4 + soft);
     // The aerated water fades out over a standard deviation of the rank below the whitecap,
     // quadratically, so its outer edge is lost in the water instead of drawn as a ring (a
@@ -313,9 +319,12 @@ fn ocean_foam_layers(
     let bubbles = halo * halo * (1.0 - white);
     // Expectations: the soft steps of a standard normal rank cover 1 − Φ(q) (a, r exactly).
     let blur_w = smoothstep(0.2, 1.5, footprint);
-    let blur_s = smoothstep(0.08, 0.5, footprint);
+    // The streaks are about a metre wide across the wind: where a pixel spans a fair part of
+    // that across them (a grazing view across the wind), their detail would alias into
+    // bright dashes, so they blend into their expectation by that extent too.
+    let blur_s = max(smoothstep(0.08, 0.5, footprint), smoothstep(0.1, 0.35, across_footprint));
     let w_far = a;
-    let s_far = 0.55 * r;
+    let s_far = opacity * r;
     let m_far = 0.15 * (1.0 - ocean_normal_cdf(q_s - 0.6));
     // The halo's expectation: h²(1 − white) over the standard normal rank, by the midpoint
     // rule on eight bands of a quarter of a standard deviation from q_w − 1 to q_w + 1.
@@ -397,6 +406,8 @@ struct OceanSurface {
     footprint: f32,
     // The whitecaps' placement field Σ ŵ_c (1 − J_c) (`ocean_whitecap_rank`).
     whitecap: f32,
+    // The pixel's extent on the water across the wind (m), which the streaks resolve by.
+    across_footprint: f32,
     // Slope variance (along, across the wind) that the pixel does not resolve.
     variance: vec2<f32>,
     // Horizontal unit wind (x, z).
@@ -770,6 +781,8 @@ fn ocean_coast_water_surface(
     surface.jacobian = jacobian;
     surface.whitecap = whitecap;
     surface.footprint = footprint;
+    let across = vec2<f32>(-u.wind.y, u.wind.x);
+    surface.across_footprint = max(abs(dot(gx, across)), abs(dot(gy, across)));
     surface.depth = coast.far.x;
     return surface;
 }
@@ -808,7 +821,8 @@ fn ocean_foam_surface(
     let streak = ocean_streak(streaks, streak_sampler, u, xz);
     let rank = ocean_whitecap_rank(u, s);
     let foam = ocean_foam_layers(
-        s.coverage, u.table.w, rank.x, rank.y > 0.0, xz, u.wind.xy, s.footprint, streak);
+        s.coverage, u.table.w, rank.x, rank.y > 0.0, xz, u.wind.xy, s.footprint,
+        s.across_footprint, streak);
     s.foam = foam.x;
     s.bubbles = foam.y;
     return s;
@@ -976,7 +990,8 @@ fn ocean_coast_foam_surface(
     let rank = ocean_whitecap_rank(u, s);
     let crest = rank.x / max(coast.near.y, 0.25);
     let streak = ocean_streak(streaks, streak_sampler, u, xz);
-    let foam = ocean_foam_layers(coverage, share, crest, rank.y > 0.0, xz, u.wind.xy, s.footprint, streak);
+    let foam = ocean_foam_layers(coverage, share, crest, rank.y > 0.0, xz, u.wind.xy, s.footprint,
+        s.across_footprint, streak);
     s.foam = foam.x;
     s.bubbles = foam.y;
     return s;

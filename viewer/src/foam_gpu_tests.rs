@@ -41,7 +41,7 @@ fn foam_samples(@builtin(global_invocation_id) id: vec3<u32>) {
     let crest = radius * cos(angle);
     let streak = radius * sin(angle);
     results[i] = ocean_foam_layers(case_in.coverage, case_in.active_share, crest, true, xz,
-        vec2<f32>(1.0, 0.0), case_in.footprint, streak);
+        vec2<f32>(1.0, 0.0), case_in.footprint, case_in.footprint, streak);
 }
 ";
 
